@@ -1,0 +1,2 @@
+#include <cstdio>
+int main() { std::puts("rigidflex " RIGIDFLEX_VERSION); return 0; }

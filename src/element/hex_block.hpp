@@ -1,0 +1,78 @@
+// Contiguous batch of 8-node hexahedra that share part, section, material and hourglass
+// settings. Kernels loop over a block with no per-element dispatch.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "material/elastic.hpp"
+#include "model/model.hpp"
+
+namespace rf::element {
+
+// Read-only view of the nodal arrays a kernel needs (struct-of-arrays, dense indices).
+struct NodalView {
+  const double* x;  // current coordinates x^{n+1}
+  const double* y;
+  const double* z;
+  const double* vx;  // velocity v^{n+1/2}
+  const double* vy;
+  const double* vz;
+};
+
+// Hourglass settings resolved for a block (part HGID, else *CONTROL_HOURGLASS).
+struct HourglassSettings {
+  int ihq = 1;      // 1-3 viscous (Flanagan-Belytschko), 4-5 stiffness, 6 Belytschko-Bindeman
+  double qm = 0.1;  // coefficient
+};
+
+struct HexBlock {
+  model::Id part_id = 0;
+  int part_index = 0;
+  int elform = 1;  // 1: one-point + hourglass; 2: selective-reduced (2x2x2 deviatoric, 1pt volumetric)
+  HourglassSettings hourglass;
+  material::ElasticConstants material;
+
+  std::vector<model::Id> element_id;  // user IDs, size n
+  std::vector<std::int32_t> conn;     // dense node indices, 8 per element
+
+  // Per-element state, struct-of-arrays where it is streamed.
+  // Cauchy stress, Voigt order xx,yy,zz,xy,yz,zx; 6 * points_per_element() per element.
+  std::vector<double> stress;
+  // Accumulated hourglass generalized forces for the stiffness forms (IHQ 4,5,6): 12 per element.
+  std::vector<double> hourglass_state;
+  std::vector<double> volume0;  // reference volume
+  std::vector<double> volume;   // current volume
+  // Element nodal forces of the last evaluation, 24 per element (node-major: f0x,f0y,f0z,...).
+  std::vector<double> force;
+
+  std::size_t size() const { return element_id.size(); }
+  int points_per_element() const { return elform == 2 ? 8 : 1; }
+};
+
+// What one pass of a kernel over a block reports back to the solver.
+struct KernelResult {
+  double hourglass_work = 0.0;      // work done by hourglass forces this step (energy units)
+  double min_dt = 1e300;            // smallest critical step over the block (no TSSFAC)
+  std::int64_t min_dt_element = -1; // index within the block
+  bool failed = false;              // negative/zero volume or non-finite result
+  std::int64_t failed_element = -1;
+  double failed_volume = 0.0;
+};
+
+// Allocates per-element state and computes reference volumes. Throws rf::SolverError naming
+// the element if a volume is not positive.
+void initialize_hex_block(HexBlock& block, const NodalView& nodes);
+
+// Internal forces of every element of the block at x^{n+1} with strain rate from v^{n+1/2},
+// updating stresses and hourglass state over a step dt. Element forces go to block.force.
+// OpenMP-parallel over elements; no shared writes.
+KernelResult compute_hex_forces(HexBlock& block, const NodalView& nodes, double dt);
+
+// Critical time step of each element at the current configuration (L_e / c), minimum reported.
+KernelResult hex_critical_timestep(const HexBlock& block, const NodalView& nodes);
+
+// Lumped mass: rho * V0 / 8 to each node (degenerate hexes: per distinct node, see docs).
+void add_hex_lumped_mass(const HexBlock& block, std::vector<double>& nodal_mass);
+
+}  // namespace rf::element

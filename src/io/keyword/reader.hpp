@@ -1,0 +1,30 @@
+// Keyword deck reader: LS-DYNA dialect (fixed-width and free format) today; the IMPETUS
+// dialect plugs in beside it. Produces a model::Model or throws rf::InputError.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <string_view>
+
+#include "model/model.hpp"
+
+namespace rf::io {
+
+enum class Dialect { Auto, LsDyna, Impetus };
+
+struct ReadOptions {
+  Dialect dialect = Dialect::Auto;
+  // Values that replace *PARAMETER definitions of the same name (CLI --set name=value).
+  std::map<std::string, double> parameter_overrides;
+};
+
+// Reads a deck file and everything it includes (paths relative to the including file).
+model::Model read_deck(const std::filesystem::path& path, const ReadOptions& options = {});
+
+// Reads a deck held in memory; `name` is used in messages and `base_dir` resolves *INCLUDE.
+model::Model read_deck_text(std::string_view text, const std::string& name = "<input>",
+                            const std::filesystem::path& base_dir = ".",
+                            const ReadOptions& options = {});
+
+}  // namespace rf::io

@@ -1,0 +1,12 @@
+// Evaluation of *DEFINE_CURVE load curves.
+#pragma once
+
+#include "model/model.hpp"
+
+namespace rf::model {
+
+// LS-DYNA semantics: value(t) = SFO * f(t / SFA - OFFA) + OFFO with f piecewise linear
+// through the points and held constant beyond the first and last abscissa.
+double evaluate(const Curve& curve, double t);
+
+}  // namespace rf::model

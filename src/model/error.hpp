@@ -1,0 +1,36 @@
+// Errors in user input. Every message names where it happened so that a CAE engineer can
+// go straight to the card: file, line, keyword, card and field, and what was expected.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace rf {
+
+struct InputErrorContext {
+  std::string file;
+  int line = 0;            // 1-based; 0 when not tied to a line
+  std::string keyword;     // e.g. "*SECTION_SOLID"
+  int card = 0;            // 1-based card number within the keyword; 0 when not applicable
+  std::string field;       // field name as in the manual, e.g. "ELFORM"
+};
+
+// Thrown for any problem with the deck. what() is the full one-line message.
+class InputError : public std::runtime_error {
+ public:
+  InputError(InputErrorContext context, const std::string& message);
+  const InputErrorContext& context() const { return context_; }
+  const std::string& detail() const { return detail_; }
+
+ private:
+  InputErrorContext context_;
+  std::string detail_;
+};
+
+// Thrown when the solution breaks down (NaN, negative volume, time-step collapse).
+class SolverError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace rf

@@ -1,0 +1,230 @@
+// The model: what a keyword deck describes, keyed by the user's IDs, exactly as read.
+// Nothing here is solver state; solver/state.hpp turns a Model into dense arrays.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace rf::model {
+
+using Id = std::int64_t;
+
+// Where a definition came from, so that errors found after reading can still name
+// file, line and keyword.
+struct SourceLocation {
+  std::string file;
+  int line = 0;
+  std::string keyword;
+};
+
+struct Node {
+  Id id = 0;
+  std::array<double, 3> x{};
+  int tc = 0;  // translational constraint code from *NODE (0..7)
+  int rc = 0;  // rotational constraint code (ignored for solids)
+};
+
+// 8-node hexahedron as written in *ELEMENT_SOLID. Degenerate shapes (wedge, pyramid,
+// tetrahedron) are written with repeated node IDs per the LS-DYNA conventions.
+struct SolidElement {
+  Id id = 0;
+  Id pid = 0;
+  std::array<Id, 8> nodes{};
+  SourceLocation where;
+};
+
+struct Part {
+  Id id = 0;
+  std::string title;
+  Id secid = 0;
+  Id mid = 0;
+  Id eosid = 0;
+  Id hgid = 0;
+  SourceLocation where;
+};
+
+struct SectionSolid {
+  Id id = 0;
+  int elform = 1;  // 1: one-point reduced + hourglass control; 2: selective-reduced 2x2x2
+  SourceLocation where;
+};
+
+// Material cards. Each kind is its own struct; the variant-like tag keeps dispatch out of
+// per-element loops (the solver groups elements by material kind once).
+enum class MaterialKind { Elastic, Rigid };
+
+struct Material {
+  Id id = 0;
+  MaterialKind kind = MaterialKind::Elastic;
+  std::string keyword;  // e.g. "*MAT_ELASTIC"
+  double rho = 0.0;
+  double e = 0.0;
+  double pr = 0.0;
+  SourceLocation where;
+};
+
+struct Hourglass {
+  Id id = 0;
+  int ihq = 0;        // 0: use *CONTROL_HOURGLASS default
+  double qm = 0.1;    // hourglass coefficient
+  double q1 = 1.5;    // bulk viscosity (read, kept for later)
+  double q2 = 0.06;
+  double qb = 0.0;
+  double qw = 0.0;
+  SourceLocation where;
+};
+
+// Curve with *DEFINE_CURVE scaling already stored separately so that errors and output
+// can refer to the raw points. value(t) = SFO * f(t / SFA - OFFA) + OFFO, as LS-DYNA defines.
+struct Curve {
+  Id id = 0;
+  int sidr = 0;
+  double sfa = 1.0;
+  double sfo = 1.0;
+  double offa = 0.0;
+  double offo = 0.0;
+  std::vector<double> abscissa;
+  std::vector<double> ordinate;
+  SourceLocation where;
+};
+
+struct NodeSet {
+  Id id = 0;
+  std::vector<Id> nodes;
+  SourceLocation where;
+};
+
+struct PartSet {
+  Id id = 0;
+  std::vector<Id> parts;
+  SourceLocation where;
+};
+
+struct SegmentSet {
+  Id id = 0;
+  std::vector<std::array<Id, 4>> segments;
+  SourceLocation where;
+};
+
+// Which entity a boundary condition or load addresses.
+enum class Target { Node, NodeSet, Part, PartSet, All };
+
+struct Spc {
+  Target target = Target::Node;
+  Id id = 0;  // node or node-set ID
+  std::array<bool, 3> fix{};     // DOFX DOFY DOFZ
+  std::array<bool, 3> fix_rot{}; // read, not used by solids
+  Id cid = 0;
+  SourceLocation where;
+};
+
+// *BOUNDARY_PRESCRIBED_MOTION_NODE/_SET.
+struct PrescribedMotion {
+  Target target = Target::Node;
+  Id id = 0;
+  int dof = 1;  // 1,2,3 translation x,y,z; -1..-3 the same with the curve reversed... see docs
+  int vad = 0;  // 0 velocity, 1 acceleration, 2 displacement
+  Id lcid = 0;
+  double sf = 1.0;
+  Id vid = 0;
+  double death = 1e28;
+  double birth = 0.0;
+  SourceLocation where;
+};
+
+struct InitialVelocity {
+  // A single generated velocity field: v = v_trans + omega * axis x (x - point).
+  Target target = Target::Node;
+  Id id = 0;                       // node, node set, part or part set; 0 with All
+  std::array<double, 3> v{};       // translational velocity
+  double omega = 0.0;              // rad/time about axis through point
+  std::array<double, 3> point{};
+  std::array<double, 3> axis{};
+  std::vector<Id> exempt_nodes;    // *INITIAL_VELOCITY IRIGID/NSIDEX exemptions
+  SourceLocation where;
+};
+
+// *LOAD_NODE_POINT/_SET: a force on each node of the target.
+struct NodalLoad {
+  Target target = Target::Node;
+  Id id = 0;
+  int dof = 1;  // 1,2,3 force x,y,z
+  Id lcid = 0;
+  double sf = 1.0;
+  SourceLocation where;
+};
+
+// *LOAD_BODY_X/Y/Z: a base acceleration; the body force on a node is -m * a(t).
+struct BodyLoad {
+  int direction = 0;  // 0,1,2 for X,Y,Z
+  Id lcid = 0;
+  double sf = 1.0;
+  SourceLocation where;
+};
+
+struct Termination {
+  double endtim = 0.0;
+  int endcyc = 0;
+  double dtmin = 0.0;
+};
+
+struct TimestepControl {
+  double dtinit = 0.0;
+  double tssfac = 0.9;
+  double dt2ms = 0.0;
+  Id lctm = 0;
+};
+
+struct HourglassControl {
+  int ihq = 1;
+  double qh = 0.1;
+};
+
+struct OutputControl {
+  double glstat_dt = 0.0;  // 0: about 1000 rows per run
+  double nodout_dt = 0.0;  // 0: about 1000 rows per run when history nodes exist
+  double d3plot_dt = 0.0;  // 0: 20 frames per run
+  std::vector<Id> history_nodes;
+};
+
+struct Warning {
+  SourceLocation where;
+  std::string message;
+};
+
+struct Model {
+  std::string title;
+  std::vector<std::string> files;  // every file read, main deck first
+
+  std::vector<Node> nodes;                   // in input order
+  std::vector<SolidElement> solids;          // in input order
+  std::map<Id, Part> parts;
+  std::map<Id, SectionSolid> solid_sections;
+  std::map<Id, Material> materials;
+  std::map<Id, Hourglass> hourglass;
+  std::map<Id, Curve> curves;
+  std::map<Id, NodeSet> node_sets;
+  std::map<Id, PartSet> part_sets;
+  std::map<Id, SegmentSet> segment_sets;
+
+  std::vector<Spc> spcs;
+  std::vector<PrescribedMotion> prescribed_motions;
+  std::vector<InitialVelocity> initial_velocities;
+  std::vector<NodalLoad> nodal_loads;
+  std::vector<BodyLoad> body_loads;
+
+  Termination termination;
+  TimestepControl timestep;
+  HourglassControl hourglass_control;
+  OutputControl output;
+
+  std::map<std::string, double> parameters;  // *PARAMETER values, final
+  std::vector<Warning> warnings;             // unknown keywords and other notices
+  std::map<std::string, int> unknown_keywords;  // keyword -> occurrences
+};
+
+}  // namespace rf::model

@@ -1,0 +1,63 @@
+// Solver state: dense indices and contiguous arrays, built once from a Model.
+// Nodal quantities are struct-of-arrays (one vector per component) so kernels stream them.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "element/hex_block.hpp"
+#include "model/model.hpp"
+
+namespace rf::solver {
+
+struct Vec3Array {
+  std::vector<double> x, y, z;
+  void resize(std::size_t n, double value = 0.0) {
+    x.assign(n, value);
+    y.assign(n, value);
+    z.assign(n, value);
+  }
+  std::size_t size() const { return x.size(); }
+};
+
+struct NodalState {
+  std::vector<model::Id> id;  // dense index -> user node ID
+  Vec3Array x0;               // reference coordinates
+  Vec3Array x;                // current coordinates x^n
+  Vec3Array v;                // velocity v^{n-1/2} before the update, v^{n+1/2} after
+  Vec3Array a;                // acceleration a^n
+  Vec3Array f_int;            // assembled internal force (elements, incl. hourglass)
+  Vec3Array f_ext;            // assembled external force (loads, body forces)
+  std::vector<double> mass;   // lumped mass
+  std::size_t size() const { return id.size(); }
+};
+
+// Node -> element-slot incidence (CSR). Element kernels write each element's nodal forces
+// into their own 24-entry slot; assembly sums the slots of a node in a fixed order, so the
+// result is race-free and identical for any thread count.
+struct NodeIncidence {
+  std::vector<std::int64_t> offset;  // size nodes + 1
+  std::vector<std::int64_t> slot;    // flattened (block, element, local node) → force index
+  std::vector<std::int32_t> block;   // which block each slot belongs to
+};
+
+struct PartInfo {
+  model::Id id = 0;
+  std::string title;
+  int elform = 1;
+  std::int64_t element_count = 0;
+};
+
+struct State {
+  NodalState nodes;
+  std::vector<element::HexBlock> hex_blocks;  // one block per part (contiguous elements)
+  NodeIncidence incidence;
+  std::vector<PartInfo> parts;
+  double time = 0.0;
+  double dt = 0.0;       // dt^{n+1/2}, the step about to be taken
+  double dt_prev = 0.0;  // dt^{n-1/2}
+  std::int64_t cycle = 0;
+};
+
+}  // namespace rf::solver
