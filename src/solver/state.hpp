@@ -58,6 +58,7 @@ struct State {
   double dt = 0.0;       // dt^{n+1/2}, the step about to be taken
   double dt_prev = 0.0;  // dt^{n-1/2}
   std::int64_t cycle = 0;
+  std::vector<const double*> block_force_pointers;  // scratch for assembly, sized once
 };
 
 }  // namespace rf::solver

@@ -1,0 +1,49 @@
+#!/usr/bin/env python3
+"""Benchmark deck: an N x N x N elastic steel cube (0.1 m) hitting a fixed plane at 10 m/s.
+
+The plane is modelled by fixing the z translation of the cube's bottom face from t = 0 (the
+cube arrives with all other nodes moving at -10 m/s), so a compressive wave runs up the cube.
+Usage: make_cube_deck.py N [ELFORM] [IHQ] [CYCLES] > cube.k
+The run ends after CYCLES cycles (default 200) so timings are comparable between sizes.
+"""
+import sys
+
+n = int(sys.argv[1])
+elform = int(sys.argv[2]) if len(sys.argv) > 2 else 1
+ihq = int(sys.argv[3]) if len(sys.argv) > 3 else 1
+cycles = int(sys.argv[4]) if len(sys.argv) > 4 else 200
+size = 0.1
+w = sys.stdout.write
+
+def nid(i, j, k):
+    return 1 + i + (n + 1) * (j + (n + 1) * k)
+
+w("*KEYWORD\n*TITLE\nbenchmark cube %d^3 ELFORM %d IHQ %d\n" % (n, elform, ihq))
+w("*CONTROL_TERMINATION\n%10.4g%10d\n" % (1.0, cycles))
+w("*CONTROL_HOURGLASS\n%10d%10.4g\n" % (ihq, 0.1))
+w("*DATABASE_GLSTAT\n%10.4g\n" % 1.0)
+w("*DATABASE_BINARY_D3PLOT\n%10.4g\n" % 1.0)
+w("*PART\ncube\n%10d%10d%10d\n" % (1, 1, 1))
+w("*SECTION_SOLID\n%10d%10d\n" % (1, elform))
+w("*MAT_ELASTIC\n%10d%10.4g%10.4g%10.4g\n" % (1, 7850.0, 210e9, 0.3))
+w("*NODE\n")
+for k in range(n + 1):
+    for j in range(n + 1):
+        for i in range(n + 1):
+            w("%8d%16.8g%16.8g%16.8g\n" % (nid(i, j, k), size * i / n, size * j / n, size * k / n))
+w("*ELEMENT_SOLID\n")
+e = 0
+for k in range(n):
+    for j in range(n):
+        for i in range(n):
+            e += 1
+            c = [nid(i, j, k), nid(i + 1, j, k), nid(i + 1, j + 1, k), nid(i, j + 1, k),
+                 nid(i, j, k + 1), nid(i + 1, j, k + 1), nid(i + 1, j + 1, k + 1), nid(i, j + 1, k + 1)]
+            w("%8d%8d" % (e, 1) + "".join("%8d" % x for x in c) + "\n")
+bottom = [nid(i, j, 0) for j in range(n + 1) for i in range(n + 1)]
+w("*SET_NODE_LIST\n%10d\n" % 1)
+for c in range(0, len(bottom), 8):
+    w("".join("%10d" % x for x in bottom[c:c + 8]) + "\n")
+w("*BOUNDARY_SPC_SET\n%10d%10d%10d%10d%10d\n" % (1, 0, 0, 0, 1))
+w("*INITIAL_VELOCITY\n%10d%10d\n%10.4g%10.4g%10.4g\n" % (0, 1, 0.0, 0.0, -10.0))
+w("*END\n")

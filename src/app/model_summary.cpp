@@ -1,0 +1,86 @@
+#include "app/model_summary.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+#include "solver/simulation.hpp"
+
+namespace rf::app {
+
+namespace {
+
+const char* shape_of(const model::SolidElement& e) {
+  std::set<model::Id> distinct(e.nodes.begin(), e.nodes.end());
+  switch (distinct.size()) {
+    case 4: return "tetrahedron";
+    case 5: return "pyramid";
+    case 6: return "wedge";
+    case 8: return "hexahedron";
+    default: return "degenerate";
+  }
+}
+
+}  // namespace
+
+void print_model_summary(const model::Model& model, std::FILE* out) {
+  // Building the simulation validates every cross reference exactly as `run` would.
+  const solver::Simulation sim(model, solver::SimulationOptions{});
+  const solver::State& state = sim.state();
+
+  std::map<std::string, std::int64_t> shapes;
+  for (const auto& e : model.solids) ++shapes[shape_of(e)];
+
+  fmt::print(out, "title: {}\n", model.title.empty() ? "(none)" : model.title);
+  fmt::print(out, "files: {}\n", model.files.size());
+  for (const auto& f : model.files) fmt::print(out, "  {}\n", f);
+  fmt::print(out, "nodes: {}\n", model.nodes.size());
+  fmt::print(out, "solid elements: {}\n", model.solids.size());
+  for (const auto& [shape, count] : shapes) fmt::print(out, "  {}: {}\n", shape, count);
+  fmt::print(out, "parts: {}\n", model.parts.size());
+  double total_mass = 0.0;
+  for (double m : state.nodes.mass) total_mass += m;
+  for (const auto& block : state.hex_blocks) {
+    const auto& part = model.parts.at(block.part_id);
+    const auto& mat = model.materials.at(part.mid);
+    double dt = 0.0;
+    const element::NodalView view{state.nodes.x.x.data(), state.nodes.x.y.data(),
+                                  state.nodes.x.z.data(), state.nodes.v.x.data(),
+                                  state.nodes.v.y.data(), state.nodes.v.z.data()};
+    dt = element::hex_critical_timestep(block, view).min_dt;
+    fmt::print(out,
+               "  part {} '{}': {} elements, section {} (ELFORM {}), material {} {} "
+               "(rho {:g}, E {:g}, nu {:g}), hourglass IHQ {} QM {:g}, element step {:.4g}\n",
+               part.id, part.title, block.size(), part.secid, block.elform, mat.id,
+               mat.keyword, mat.rho, mat.e, mat.pr, block.hourglass.ihq, block.hourglass.qm,
+               dt);
+  }
+  fmt::print(out, "total mass: {:.6g}\n", total_mass);
+  fmt::print(out, "node sets: {}, part sets: {}, segment sets: {}\n", model.node_sets.size(),
+             model.part_sets.size(), model.segment_sets.size());
+  fmt::print(out, "curves: {}\n", model.curves.size());
+  for (const auto& [id, c] : model.curves) {
+    fmt::print(out, "  curve {}: {} points\n", id, c.abscissa.size());
+  }
+  fmt::print(out, "SPCs: {}, prescribed motions: {}, nodal loads: {}, body loads: {}, "
+                  "initial velocities: {}\n",
+             model.spcs.size(), model.prescribed_motions.size(), model.nodal_loads.size(),
+             model.body_loads.size(), model.initial_velocities.size());
+  fmt::print(out, "termination: ENDTIM {:g}{}\n", model.termination.endtim,
+             model.termination.endcyc > 0 ? fmt::format(", ENDCYC {}", model.termination.endcyc)
+                                          : "");
+  fmt::print(out, "time step: TSSFAC {:g}, first step {:.4g} (controlled by element {})\n",
+             model.timestep.tssfac, state.dt, sim.controlling_element());
+  fmt::print(out, "warnings: {}\n", model.warnings.size());
+  for (const auto& w : model.warnings) {
+    fmt::print(out, "  {}:{}: {}: {}\n", w.where.file, w.where.line, w.where.keyword, w.message);
+  }
+  if (!model.unknown_keywords.empty()) {
+    fmt::print(out, "unknown keywords (ignored):\n");
+    for (const auto& [kw, count] : model.unknown_keywords) fmt::print(out, "  {} x{}\n", kw, count);
+  }
+}
+
+}  // namespace rf::app

@@ -1,0 +1,258 @@
+#include "solver/boundary.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "model/curve.hpp"
+#include "model/error.hpp"
+
+namespace rf::solver {
+
+namespace {
+
+InputErrorContext context_of(const model::SourceLocation& where, const char* field) {
+  InputErrorContext c;
+  c.file = where.file;
+  c.line = where.line;
+  c.keyword = where.keyword;
+  c.field = field ? field : "";
+  return c;
+}
+
+ScaledCurve make_curve(const model::Model& model, model::Id lcid, double sf, double shift,
+                       const model::SourceLocation& where) {
+  ScaledCurve c;
+  c.scale = sf;
+  c.shift = shift;
+  if (lcid != 0) {
+    const auto it = model.curves.find(lcid);
+    if (it == model.curves.end()) {
+      throw InputError(context_of(where, "LCID"),
+                       fmt::format("load curve {} is not defined", lcid));
+    }
+    c.curve = &it->second;
+  }
+  return c;
+}
+
+int translation_axis(int dof, const model::SourceLocation& where) {
+  const int a = std::abs(dof);
+  if (a < 1 || a > 3) {
+    throw InputError(context_of(where, "DOF"),
+                     fmt::format("DOF={} is not supported here (supported: 1, 2, 3 for x, y, z)",
+                                 dof));
+  }
+  return a - 1;
+}
+
+}  // namespace
+
+double ScaledCurve::operator()(double t) const {
+  return curve ? scale * model::evaluate(*curve, t - shift) : scale;
+}
+
+std::vector<std::int32_t> resolve_nodes(const model::Model& model, const NodeIndex& node_index,
+                                        const State& state, model::Target target, model::Id id,
+                                        const model::SourceLocation& where, const char* field) {
+  std::vector<std::int32_t> out;
+  auto add_part = [&](model::Id pid) {
+    bool found = false;
+    for (const auto& block : state.hex_blocks) {
+      if (block.part_id != pid) continue;
+      found = true;
+      out.insert(out.end(), block.conn.begin(), block.conn.end());
+    }
+    if (!found && model.parts.count(pid) == 0) {
+      throw InputError(context_of(where, field), fmt::format("part {} is not defined", pid));
+    }
+  };
+  switch (target) {
+    case model::Target::Node:
+      out.push_back(node_index.at(id, where, field));
+      break;
+    case model::Target::NodeSet: {
+      const auto it = model.node_sets.find(id);
+      if (it == model.node_sets.end()) {
+        throw InputError(context_of(where, field), fmt::format("node set {} is not defined", id));
+      }
+      for (const model::Id nid : it->second.nodes) out.push_back(node_index.at(nid, where, field));
+      break;
+    }
+    case model::Target::Part:
+      add_part(id);
+      break;
+    case model::Target::PartSet: {
+      const auto it = model.part_sets.find(id);
+      if (it == model.part_sets.end()) {
+        throw InputError(context_of(where, field), fmt::format("part set {} is not defined", id));
+      }
+      for (const model::Id pid : it->second.parts) add_part(pid);
+      break;
+    }
+    case model::Target::All:
+      out.resize(state.nodes.size());
+      for (std::size_t i = 0; i < out.size(); ++i) out[i] = static_cast<std::int32_t>(i);
+      break;
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+Boundary resolve_boundary(const model::Model& model, const NodeIndex& node_index,
+                          const State& state) {
+  Boundary b;
+  const std::size_t n = state.nodes.size();
+  b.fixed.assign(n, 0);
+  // *NODE TC: 1 x, 2 y, 3 z, 4 xy, 5 yz, 6 zx, 7 xyz.
+  static constexpr std::uint8_t kTcMask[8] = {0, 1, 2, 4, 3, 6, 5, 7};
+  for (std::size_t i = 0; i < n; ++i) {
+    const int tc = model.nodes[i].tc;
+    if (tc >= 0 && tc <= 7) b.fixed[i] |= kTcMask[tc];
+  }
+  for (const auto& spc : model.spcs) {
+    const auto nodes =
+        resolve_nodes(model, node_index, state, spc.target, spc.id, spc.where,
+                      spc.target == model::Target::Node ? "NID" : "NSID");
+    const std::uint8_t mask = static_cast<std::uint8_t>((spc.fix[0] ? 1 : 0) |
+                                                        (spc.fix[1] ? 2 : 0) | (spc.fix[2] ? 4 : 0));
+    for (const auto i : nodes) b.fixed[i] |= mask;
+  }
+  for (const auto& pm : model.prescribed_motions) {
+    const int axis = translation_axis(pm.dof, pm.where);
+    if (pm.vad < 0 || pm.vad > 2) {
+      throw InputError(context_of(pm.where, "VAD"),
+                       fmt::format("VAD={} is not supported (0 velocity, 1 acceleration, "
+                                   "2 displacement)",
+                                   pm.vad));
+    }
+    const auto nodes = resolve_nodes(model, node_index, state, pm.target, pm.id, pm.where,
+                                     pm.target == model::Target::Node ? "NID" : "NSID");
+    const ScaledCurve value = make_curve(model, pm.lcid, pm.sf, pm.birth, pm.where);
+    for (const auto i : nodes) {
+      if (b.fixed[i] & (1u << axis)) {
+        throw InputError(context_of(pm.where, "DOF"),
+                         fmt::format("node {} has a prescribed motion in a DOF that is also "
+                                     "fixed by an SPC",
+                                     state.nodes.id[i]));
+      }
+      b.prescribed.push_back(PrescribedDof{i, axis, pm.vad, value, pm.birth,
+                                           pm.death <= 0.0 ? 1e28 : pm.death});
+    }
+  }
+  for (const auto& load : model.nodal_loads) {
+    const int axis = translation_axis(load.dof, load.where);
+    const auto nodes =
+        resolve_nodes(model, node_index, state, load.target, load.id, load.where,
+                      load.target == model::Target::Node ? "NID" : "NSID");
+    const ScaledCurve value = make_curve(model, load.lcid, load.sf, 0.0, load.where);
+    for (const auto i : nodes) b.nodal_forces.push_back(NodalForce{i, axis, value});
+  }
+  for (const auto& body : model.body_loads) {
+    b.body_accelerations.push_back(
+        BodyAcceleration{body.direction, make_curve(model, body.lcid, body.sf, 0.0, body.where)});
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (b.fixed[i]) b.constrained_nodes.push_back(static_cast<std::int32_t>(i));
+  }
+  for (const auto& p : b.prescribed) b.constrained_nodes.push_back(p.node);
+  std::sort(b.constrained_nodes.begin(), b.constrained_nodes.end());
+  b.constrained_nodes.erase(std::unique(b.constrained_nodes.begin(), b.constrained_nodes.end()),
+                            b.constrained_nodes.end());
+  return b;
+}
+
+void apply_initial_velocities(const model::Model& model, const NodeIndex& node_index,
+                              State& state) {
+  NodalState& nodes = state.nodes;
+  for (const auto& iv : model.initial_velocities) {
+    const char* field = iv.target == model::Target::Node      ? "NID"
+                        : iv.target == model::Target::NodeSet ? "NSID"
+                                                              : "ID";
+    auto targets = resolve_nodes(model, node_index, state, iv.target, iv.id, iv.where, field);
+    if (!iv.exempt_nodes.empty()) {
+      std::vector<std::int32_t> exempt;
+      for (const auto nid : iv.exempt_nodes) exempt.push_back(node_index.at(nid, iv.where, "NSIDEX"));
+      std::sort(exempt.begin(), exempt.end());
+      std::erase_if(targets, [&](std::int32_t i) {
+        return std::binary_search(exempt.begin(), exempt.end(), i);
+      });
+    }
+    double ax = iv.axis[0], ay = iv.axis[1], az = iv.axis[2];
+    const double len = std::sqrt(ax * ax + ay * ay + az * az);
+    if (iv.omega != 0.0) {
+      if (len == 0.0) {
+        throw InputError(context_of(iv.where, "NX"), "rotation axis has zero length");
+      }
+      ax /= len;
+      ay /= len;
+      az /= len;
+    }
+    for (const auto i : targets) {
+      // v = v_t + omega * (axis x (x - point)): rigid rotation about the axis.
+      const double rx = nodes.x0.x[i] - iv.point[0];
+      const double ry = nodes.x0.y[i] - iv.point[1];
+      const double rz = nodes.x0.z[i] - iv.point[2];
+      nodes.v.x[i] = iv.v[0] + iv.omega * (ay * rz - az * ry);
+      nodes.v.y[i] = iv.v[1] + iv.omega * (az * rx - ax * rz);
+      nodes.v.z[i] = iv.v[2] + iv.omega * (ax * ry - ay * rx);
+    }
+  }
+}
+
+void compute_external_forces(const Boundary& boundary, double t, State& state) {
+  NodalState& nodes = state.nodes;
+  std::fill(nodes.f_ext.x.begin(), nodes.f_ext.x.end(), 0.0);
+  std::fill(nodes.f_ext.y.begin(), nodes.f_ext.y.end(), 0.0);
+  std::fill(nodes.f_ext.z.begin(), nodes.f_ext.z.end(), 0.0);
+  double* f[3] = {nodes.f_ext.x.data(), nodes.f_ext.y.data(), nodes.f_ext.z.data()};
+  for (const auto& body : boundary.body_accelerations) {
+    // LS-DYNA *LOAD_BODY prescribes a base acceleration: the body force is -m a.
+    const double a = body.value(t);
+    double* fa = f[body.axis];
+    const std::size_t n = nodes.size();
+    for (std::size_t i = 0; i < n; ++i) fa[i] -= nodes.mass[i] * a;
+  }
+  for (const auto& load : boundary.nodal_forces) f[load.axis][load.node] += load.value(t);
+}
+
+void constrain_accelerations(const Boundary& boundary, double t_n, State& state) {
+  NodalState& nodes = state.nodes;
+  double* a[3] = {nodes.a.x.data(), nodes.a.y.data(), nodes.a.z.data()};
+  for (const auto i : boundary.constrained_nodes) {
+    const std::uint8_t mask = boundary.fixed[i];
+    for (int k = 0; k < 3; ++k) {
+      if (mask & (1u << k)) a[k][i] = 0.0;
+    }
+  }
+  for (const auto& p : boundary.prescribed) {
+    if (p.vad == 1 && p.active(t_n)) a[p.axis][p.node] = p.value(t_n);
+  }
+}
+
+void constrain_velocities(const Boundary& boundary, double t_n, double dt, State& state) {
+  NodalState& nodes = state.nodes;
+  double* v[3] = {nodes.v.x.data(), nodes.v.y.data(), nodes.v.z.data()};
+  const double* x[3] = {nodes.x.x.data(), nodes.x.y.data(), nodes.x.z.data()};
+  const double* x0[3] = {nodes.x0.x.data(), nodes.x0.y.data(), nodes.x0.z.data()};
+  for (const auto i : boundary.constrained_nodes) {
+    const std::uint8_t mask = boundary.fixed[i];
+    for (int k = 0; k < 3; ++k) {
+      if (mask & (1u << k)) v[k][i] = 0.0;
+    }
+  }
+  const double t_mid = t_n + 0.5 * dt;
+  const double t_end = t_n + dt;
+  for (const auto& p : boundary.prescribed) {
+    if (p.vad == 0 && p.active(t_mid)) {
+      v[p.axis][p.node] = p.value(t_mid);
+    } else if (p.vad == 2 && p.active(t_end)) {
+      const double u_now = x[p.axis][p.node] - x0[p.axis][p.node];
+      v[p.axis][p.node] = (p.value(t_end) - u_now) / dt;
+    }
+  }
+}
+
+}  // namespace rf::solver

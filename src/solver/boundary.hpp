@@ -1,0 +1,76 @@
+// Boundary conditions, loads and initial conditions resolved to dense node indices.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "model/model.hpp"
+#include "solver/build_state.hpp"
+#include "solver/state.hpp"
+
+namespace rf::solver {
+
+// A time function: SF * curve(t - BIRTH) or a constant SF when no curve is given.
+struct ScaledCurve {
+  const model::Curve* curve = nullptr;
+  double scale = 1.0;
+  double shift = 0.0;  // subtracted from t before evaluation (BIRTH for prescribed motion)
+  double operator()(double t) const;
+};
+
+struct PrescribedDof {
+  std::int32_t node = 0;
+  int axis = 0;  // 0,1,2
+  int vad = 0;   // 0 velocity, 1 acceleration, 2 displacement
+  ScaledCurve value;
+  double birth = 0.0;
+  double death = 1e28;
+  bool active(double t) const { return t >= birth && t <= death; }
+};
+
+struct NodalForce {
+  std::int32_t node = 0;
+  int axis = 0;
+  ScaledCurve value;
+};
+
+struct BodyAcceleration {
+  int axis = 0;
+  ScaledCurve value;
+};
+
+struct Boundary {
+  // Bit k set: translation k of the node is fixed (SPC, *NODE TC).
+  std::vector<std::uint8_t> fixed;
+  std::vector<PrescribedDof> prescribed;
+  std::vector<NodalForce> nodal_forces;
+  std::vector<BodyAcceleration> body_accelerations;
+  // Sorted unique nodes with a fixed or prescribed DOF: their reactions enter external work.
+  std::vector<std::int32_t> constrained_nodes;
+};
+
+Boundary resolve_boundary(const model::Model& model, const NodeIndex& node_index,
+                          const State& state);
+
+// Nodes addressed by a target (node, node set, part, part set, all), as dense indices.
+std::vector<std::int32_t> resolve_nodes(const model::Model& model, const NodeIndex& node_index,
+                                        const State& state, model::Target target, model::Id id,
+                                        const model::SourceLocation& where, const char* field);
+
+// Applies *INITIAL_VELOCITY* cards in input order (later cards override earlier ones).
+void apply_initial_velocities(const model::Model& model, const NodeIndex& node_index,
+                              State& state);
+
+// f_ext at time t: nodal loads and body forces (-m a_base, as LS-DYNA *LOAD_BODY).
+void compute_external_forces(const Boundary& boundary, double t, State& state);
+
+// Before the velocity update: fixed DOFs get a = 0, prescribed accelerations (VAD 1) their
+// value at t^n, so that v^{n+1/2} = v^{n-1/2} + dt_avg a^n honours them.
+void constrain_accelerations(const Boundary& boundary, double t_n, State& state);
+
+// After the velocity update: fixed DOFs get v = 0; prescribed velocity (VAD 0) is sampled at
+// the mid-step t^n + dt/2; prescribed displacement (VAD 2) gives the velocity that lands the
+// node exactly on u(t^n + dt) at the end of the step.
+void constrain_velocities(const Boundary& boundary, double t_n, double dt, State& state);
+
+}  // namespace rf::solver

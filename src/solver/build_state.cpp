@@ -1,0 +1,191 @@
+#include "solver/build_state.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <map>
+
+#include "model/error.hpp"
+
+namespace rf::solver {
+
+namespace {
+
+InputErrorContext context_of(const model::SourceLocation& where, const char* field) {
+  InputErrorContext c;
+  c.file = where.file;
+  c.line = where.line;
+  c.keyword = where.keyword;
+  c.field = field ? field : "";
+  return c;
+}
+
+element::HourglassSettings resolve_hourglass(const model::Model& model, const model::Part& part) {
+  element::HourglassSettings hg;
+  hg.ihq = model.hourglass_control.ihq;
+  hg.qm = model.hourglass_control.qh;
+  if (part.hgid != 0) {
+    const auto it = model.hourglass.find(part.hgid);
+    if (it == model.hourglass.end()) {
+      throw InputError(context_of(part.where, "HGID"),
+                       fmt::format("part {} refers to *HOURGLASS {}, which is not defined",
+                                   part.id, part.hgid));
+    }
+    if (it->second.ihq != 0) hg.ihq = it->second.ihq;
+    if (it->second.qm > 0.0) hg.qm = it->second.qm;
+  }
+  if (hg.ihq < 1 || hg.ihq > 6) {
+    throw InputError(context_of(part.where, "HGID"),
+                     fmt::format("hourglass type IHQ={} for part {} is not supported (1-6)",
+                                 hg.ihq, part.id));
+  }
+  return hg;
+}
+
+}  // namespace
+
+NodeIndex::NodeIndex(const model::Model& model) {
+  index_.reserve(model.nodes.size());
+  for (std::size_t i = 0; i < model.nodes.size(); ++i) {
+    index_.emplace(model.nodes[i].id, static_cast<std::int32_t>(i));
+  }
+}
+
+std::int32_t NodeIndex::at(model::Id id, const model::SourceLocation& where,
+                           const char* field) const {
+  const auto it = index_.find(id);
+  if (it == index_.end()) {
+    throw InputError(context_of(where, field), fmt::format("node {} is not defined", id));
+  }
+  return it->second;
+}
+
+State build_state(const model::Model& model, const NodeIndex& node_index) {
+  State state;
+  NodalState& nodes = state.nodes;
+  const std::size_t n = model.nodes.size();
+  nodes.id.resize(n);
+  nodes.x0.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    nodes.id[i] = model.nodes[i].id;
+    nodes.x0.x[i] = model.nodes[i].x[0];
+    nodes.x0.y[i] = model.nodes[i].x[1];
+    nodes.x0.z[i] = model.nodes[i].x[2];
+  }
+  nodes.x = nodes.x0;
+  nodes.v.resize(n);
+  nodes.a.resize(n);
+  nodes.f_int.resize(n);
+  nodes.f_ext.resize(n);
+  nodes.mass.assign(n, 0.0);
+
+  // Group elements by part in part-ID order; input order is kept within a part so that
+  // results do not depend on how the deck interleaves parts.
+  std::map<model::Id, std::vector<std::size_t>> elements_of_part;
+  for (std::size_t e = 0; e < model.solids.size(); ++e) {
+    elements_of_part[model.solids[e].pid].push_back(e);
+  }
+
+  for (const auto& [pid, element_indices] : elements_of_part) {
+    const auto& first = model.solids[element_indices.front()];
+    const auto part_it = model.parts.find(pid);
+    if (part_it == model.parts.end()) {
+      throw InputError(context_of(first.where, "PID"),
+                       fmt::format("element {} refers to part {}, which is not defined",
+                                   first.id, pid));
+    }
+    const model::Part& part = part_it->second;
+    const auto sec_it = model.solid_sections.find(part.secid);
+    if (sec_it == model.solid_sections.end()) {
+      throw InputError(context_of(part.where, "SECID"),
+                       fmt::format("part {} refers to *SECTION_SOLID {}, which is not defined",
+                                   pid, part.secid));
+    }
+    const auto mat_it = model.materials.find(part.mid);
+    if (mat_it == model.materials.end()) {
+      throw InputError(context_of(part.where, "MID"),
+                       fmt::format("part {} refers to material {}, which is not defined", pid,
+                                   part.mid));
+    }
+    const model::Material& mat = mat_it->second;
+    if (mat.kind != model::MaterialKind::Elastic) {
+      throw InputError(context_of(mat.where, "MID"),
+                       fmt::format("part {} uses {} (material {}), which this version does not "
+                                   "simulate yet",
+                                   pid, mat.keyword, mat.id));
+    }
+
+    element::HexBlock block;
+    block.part_id = pid;
+    block.part_index = static_cast<int>(state.parts.size());
+    block.elform = sec_it->second.elform;
+    block.hourglass = resolve_hourglass(model, part);
+    block.material = material::make_elastic(mat.rho, mat.e, mat.pr);
+    block.element_id.reserve(element_indices.size());
+    block.conn.reserve(element_indices.size() * 8);
+    for (const std::size_t e : element_indices) {
+      const auto& solid = model.solids[e];
+      block.element_id.push_back(solid.id);
+      for (int k = 0; k < 8; ++k) {
+        block.conn.push_back(node_index.at(solid.nodes[k], solid.where, "N"));
+      }
+    }
+    state.parts.push_back(PartInfo{pid, part.title, block.elform,
+                                   static_cast<std::int64_t>(block.size())});
+    state.hex_blocks.push_back(std::move(block));
+  }
+
+  const element::NodalView view{nodes.x.x.data(), nodes.x.y.data(), nodes.x.z.data(),
+                                nodes.v.x.data(), nodes.v.y.data(), nodes.v.z.data()};
+  for (auto& block : state.hex_blocks) {
+    element::initialize_hex_block(block, view);
+    element::add_hex_lumped_mass(block, nodes.mass);
+  }
+
+  // Node -> element-slot incidence, counted then filled (CSR).
+  NodeIncidence& inc = state.incidence;
+  inc.offset.assign(n + 1, 0);
+  for (const auto& block : state.hex_blocks) {
+    for (const std::int32_t node : block.conn) ++inc.offset[node + 1];
+  }
+  for (std::size_t i = 0; i < n; ++i) inc.offset[i + 1] += inc.offset[i];
+  inc.slot.resize(inc.offset[n]);
+  inc.block.resize(inc.offset[n]);
+  std::vector<std::int64_t> fill(inc.offset.begin(), inc.offset.end() - 1);
+  for (std::size_t b = 0; b < state.hex_blocks.size(); ++b) {
+    const auto& conn = state.hex_blocks[b].conn;
+    for (std::size_t k = 0; k < conn.size(); ++k) {
+      const std::int64_t pos = fill[conn[k]]++;
+      inc.slot[pos] = static_cast<std::int64_t>(k) * 3;  // element*24 + local*3
+      inc.block[pos] = static_cast<std::int32_t>(b);
+    }
+  }
+  return state;
+}
+
+void assemble_internal_forces(State& state) {
+  NodalState& nodes = state.nodes;
+  const NodeIncidence& inc = state.incidence;
+  const std::int64_t n = static_cast<std::int64_t>(nodes.size());
+  // Gather pointers once; the loop then touches only contiguous arrays.
+  std::vector<const double*>& forces = state.block_force_pointers;
+  forces.resize(state.hex_blocks.size());
+  for (std::size_t b = 0; b < state.hex_blocks.size(); ++b) {
+    forces[b] = state.hex_blocks[b].force.data();
+  }
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    double fx = 0.0, fy = 0.0, fz = 0.0;
+    for (std::int64_t k = inc.offset[i]; k < inc.offset[i + 1]; ++k) {
+      const double* f = forces[inc.block[k]] + inc.slot[k];
+      fx += f[0];
+      fy += f[1];
+      fz += f[2];
+    }
+    nodes.f_int.x[i] = fx;
+    nodes.f_int.y[i] = fy;
+    nodes.f_int.z[i] = fz;
+  }
+}
+
+}  // namespace rf::solver

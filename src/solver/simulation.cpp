@@ -1,0 +1,367 @@
+#include "solver/simulation.hpp"
+
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "model/curve.hpp"
+#include "model/error.hpp"
+
+namespace rf::solver {
+
+namespace {
+
+// Sums of nodal quantities over fixed-size chunks, combined in chunk order: the result is
+// the same for any number of threads (floating-point addition is not associative).
+constexpr std::int64_t kReductionChunk = 2048;
+
+template <std::size_t N, class Body>
+std::array<double, N> deterministic_sum(std::int64_t n, std::vector<double>& scratch,
+                                        const Body& body) {
+  const std::int64_t chunks = (n + kReductionChunk - 1) / kReductionChunk;
+  scratch.assign(static_cast<std::size_t>(chunks) * N, 0.0);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t c = 0; c < chunks; ++c) {
+    std::array<double, N> acc{};
+    const std::int64_t end = std::min(n, (c + 1) * kReductionChunk);
+    for (std::int64_t i = c * kReductionChunk; i < end; ++i) body(i, acc);
+    for (std::size_t k = 0; k < N; ++k) scratch[c * N + k] = acc[k];
+  }
+  std::array<double, N> total{};
+  for (std::int64_t c = 0; c < chunks; ++c) {
+    for (std::size_t k = 0; k < N; ++k) total[k] += scratch[c * N + k];
+  }
+  return total;
+}
+
+element::NodalView view_of(const NodalState& nodes) {
+  return {nodes.x.x.data(), nodes.x.y.data(), nodes.x.z.data(),
+          nodes.v.x.data(), nodes.v.y.data(), nodes.v.z.data()};
+}
+
+double default_interval(double configured, double end_time, double rows) {
+  return configured > 0.0 ? configured : end_time / rows;
+}
+
+}  // namespace
+
+Simulation::Simulation(const model::Model& model, SimulationOptions options)
+    : model_(model),
+      options_(std::move(options)),
+      node_index_(model),
+      state_(build_state(model, node_index_)),
+      boundary_(resolve_boundary(model, node_index_, state_)) {
+  for (const auto& block : state_.hex_blocks) element_count_ += block.size();
+  end_time_ = model.termination.endtim;
+  end_cycle_ = model.termination.endcyc;
+  if (end_time_ <= 0.0 && end_cycle_ <= 0) {
+    throw InputError({}, "*CONTROL_TERMINATION is missing or ENDTIM is not positive: nothing "
+                         "says when the analysis ends");
+  }
+  if (element_count_ == 0) {
+    throw InputError({}, "the model has no elements to simulate");
+  }
+  for (std::size_t i = 0; i < state_.nodes.size(); ++i) {
+    if (state_.nodes.mass[i] <= 0.0 && !(boundary_.fixed[i] == 7)) {
+      // A node without mass cannot be integrated; it is held where it is.
+      boundary_.fixed[i] = 7;
+      boundary_.constrained_nodes.push_back(static_cast<std::int32_t>(i));
+    }
+  }
+  std::sort(boundary_.constrained_nodes.begin(), boundary_.constrained_nodes.end());
+  boundary_.constrained_nodes.erase(
+      std::unique(boundary_.constrained_nodes.begin(), boundary_.constrained_nodes.end()),
+      boundary_.constrained_nodes.end());
+
+  if (!options_.output_directory.empty()) {
+    std::filesystem::create_directories(options_.output_directory);
+    const double span = end_time_ > 0.0 ? end_time_ : 1.0;
+    glstat_schedule_.interval = default_interval(model.output.glstat_dt, span, 1000.0);
+    glstat_ = std::make_unique<output::GlstatWriter>(options_.output_directory / "glstat.csv");
+    if (!model.output.history_nodes.empty()) {
+      std::vector<std::int32_t> dense;
+      for (const auto id : model.output.history_nodes) {
+        dense.push_back(node_index_.at(id, {}, "NID"));
+      }
+      nodout_schedule_.interval = default_interval(model.output.nodout_dt, span, 1000.0);
+      nodout_ = std::make_unique<output::NodoutWriter>(options_.output_directory / "nodout.csv",
+                                                       std::move(dense));
+    }
+    if (options_.write_fields) {
+      d3plot_schedule_.interval = default_interval(model.output.d3plot_dt, span, 20.0);
+      fields_ = std::make_unique<output::FieldWriter>(options_.output_directory);
+    }
+  }
+  initialize();
+}
+
+Simulation::~Simulation() = default;
+
+void Simulation::initialize() {
+  apply_initial_velocities(model_, node_index_, state_);
+  v_previous_ = state_.nodes.v;
+  state_.time = 0.0;
+  compute_internal_forces();
+  compute_external_forces();
+  check_breakdown();
+  // Initial kinetic energy and momenta at t = 0 (v^0 plays the role of v^{-1/2}).
+  const NodalState& nodes = state_.nodes;
+  const auto sums = deterministic_sum<7>(
+      static_cast<std::int64_t>(nodes.size()), reduction_scratch_,
+      [&](std::int64_t i, std::array<double, 7>& acc) {
+        const double m = nodes.mass[i];
+        const double vx = nodes.v.x[i], vy = nodes.v.y[i], vz = nodes.v.z[i];
+        const double x = nodes.x.x[i], y = nodes.x.y[i], z = nodes.x.z[i];
+        acc[0] += 0.5 * m * (vx * vx + vy * vy + vz * vz);
+        acc[1] += m * vx;
+        acc[2] += m * vy;
+        acc[3] += m * vz;
+        acc[4] += m * (y * vz - z * vy);
+        acc[5] += m * (z * vx - x * vz);
+        acc[6] += m * (x * vy - y * vx);
+      });
+  energy_.kinetic = sums[0];
+  energy_.initial_total = sums[0];
+  for (int k = 0; k < 3; ++k) {
+    energy_.momentum[k] = sums[1 + k];
+    energy_.angular_momentum[k] = sums[4 + k];
+  }
+  state_.dt_prev = 0.0;
+  select_time_step();
+  initial_dt_ = state_.dt;
+  dt_average_ = 0.5 * state_.dt;  // first half step: v^{1/2} = v^0 + dt/2 a^0
+}
+
+// One explicit cycle, from t^n (forces known) to t^{n+1} (forces known).
+void Simulation::cycle() {
+  update_velocities();
+  write_output_if_due(false);
+  const bool end_reached = (end_time_ > 0.0 && state_.time >= end_time_ * (1.0 - 1e-12)) ||
+                           (end_cycle_ > 0 && state_.cycle >= end_cycle_);
+  if (end_reached) {
+    write_output_if_due(true);
+    finished_ = true;
+    return;
+  }
+  update_positions();
+  compute_internal_forces();
+  compute_external_forces();
+  check_breakdown();
+  select_time_step();
+  ++state_.cycle;
+}
+
+void Simulation::run(const std::function<void(const Simulation&)>& on_progress) {
+  try {
+    while (!finished_) {
+      cycle();
+      if (on_progress) on_progress(*this);
+    }
+  } catch (const SolverError&) {
+    // Leave the state at detection readable: one more frame and glstat row.
+    write_output_now();
+    if (fields_) fields_->write_collection();
+    throw;
+  }
+  if (glstat_) glstat_->flush();
+  if (nodout_) nodout_->flush();
+}
+
+void Simulation::update_velocities() {
+  NodalState& nodes = state_.nodes;
+  const std::int64_t n = static_cast<std::int64_t>(nodes.size());
+  const double dt_avg = dt_average_;
+  // a^n = M^-1 (f_ext - f_int) for every node with mass.
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const double m = nodes.mass[i];
+    const double inv_m = m > 0.0 ? 1.0 / m : 0.0;
+    nodes.a.x[i] = (nodes.f_ext.x[i] - nodes.f_int.x[i]) * inv_m;
+    nodes.a.y[i] = (nodes.f_ext.y[i] - nodes.f_int.y[i]) * inv_m;
+    nodes.a.z[i] = (nodes.f_ext.z[i] - nodes.f_int.z[i]) * inv_m;
+  }
+  constrain_accelerations(boundary_, state_.time, state_);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    v_previous_.x[i] = nodes.v.x[i];
+    v_previous_.y[i] = nodes.v.y[i];
+    v_previous_.z[i] = nodes.v.z[i];
+    nodes.v.x[i] += dt_avg * nodes.a.x[i];
+    nodes.v.y[i] += dt_avg * nodes.a.y[i];
+    nodes.v.z[i] += dt_avg * nodes.a.z[i];
+  }
+  constrain_velocities(boundary_, state_.time, state_.dt, state_);
+
+  // Energy and momenta at n+1/2: d = dt_avg (v^{n-1/2} + v^{n+1/2}) / 2 per DOF.
+  const Vec3Array& vp = v_previous_;
+  const auto sums = deterministic_sum<9>(
+      n, reduction_scratch_, [&](std::int64_t i, std::array<double, 9>& acc) {
+        const double m = nodes.mass[i];
+        const double vx = nodes.v.x[i], vy = nodes.v.y[i], vz = nodes.v.z[i];
+        const double dx = 0.5 * dt_avg * (vp.x[i] + vx);
+        const double dy = 0.5 * dt_avg * (vp.y[i] + vy);
+        const double dz = 0.5 * dt_avg * (vp.z[i] + vz);
+        const double x = nodes.x.x[i], y = nodes.x.y[i], z = nodes.x.z[i];
+        acc[0] += 0.5 * m * (vx * vx + vy * vy + vz * vz);
+        acc[1] += nodes.f_int.x[i] * dx + nodes.f_int.y[i] * dy + nodes.f_int.z[i] * dz;
+        acc[2] += nodes.f_ext.x[i] * dx + nodes.f_ext.y[i] * dy + nodes.f_ext.z[i] * dz;
+        acc[3] += m * vx;
+        acc[4] += m * vy;
+        acc[5] += m * vz;
+        // x^n x v^{n+1/2} equals x^{n+1} x v^{n+1/2}: exactly conserved by the scheme when
+        // the internal forces have no resultant moment.
+        acc[6] += m * (y * vz - z * vy);
+        acc[7] += m * (z * vx - x * vz);
+        acc[8] += m * (x * vy - y * vx);
+      });
+  // Reactions of constrained DOFs: r = m (v+ - v-)/dt_avg - (f_ext - f_int).
+  double reaction_work = 0.0;
+  if (dt_avg > 0.0) {
+    for (const auto i : boundary_.constrained_nodes) {
+      const double m = nodes.mass[i];
+      const double dvx = nodes.v.x[i] - vp.x[i];
+      const double dvy = nodes.v.y[i] - vp.y[i];
+      const double dvz = nodes.v.z[i] - vp.z[i];
+      const double rx = m * dvx / dt_avg - (nodes.f_ext.x[i] - nodes.f_int.x[i]);
+      const double ry = m * dvy / dt_avg - (nodes.f_ext.y[i] - nodes.f_int.y[i]);
+      const double rz = m * dvz / dt_avg - (nodes.f_ext.z[i] - nodes.f_int.z[i]);
+      reaction_work += 0.5 * dt_avg *
+                       (rx * (vp.x[i] + nodes.v.x[i]) + ry * (vp.y[i] + nodes.v.y[i]) +
+                        rz * (vp.z[i] + nodes.v.z[i]));
+    }
+  }
+  energy_.kinetic = sums[0];
+  energy_.internal_work += sums[1];
+  energy_.external_work += sums[2] + reaction_work;
+  for (int k = 0; k < 3; ++k) {
+    energy_.momentum[k] = sums[3 + k];
+    energy_.angular_momentum[k] = sums[6 + k];
+  }
+  if (!std::isfinite(sums[0])) {
+    // Find the first offending node for the message (rare path).
+    for (std::int64_t i = 0; i < n; ++i) {
+      if (!std::isfinite(nodes.v.x[i] + nodes.v.y[i] + nodes.v.z[i])) {
+        throw SolverError(fmt::format("non-finite velocity at node {} at time {:.6g} (cycle {})",
+                                      nodes.id[i], state_.time, state_.cycle));
+      }
+    }
+  }
+}
+
+void Simulation::write_output_if_due(bool force) {
+  const double t = state_.time;
+  if (force || glstat_schedule_.due(t) || nodout_schedule_.due(t) || d3plot_schedule_.due(t)) {
+    if (glstat_ && (force || glstat_schedule_.due(t))) {
+      output::GlstatRow row;
+      row.time = t;
+      row.dt = state_.dt;
+      row.cycle = state_.cycle;
+      row.kinetic_energy = energy_.kinetic;
+      row.internal_energy = energy_.internal();
+      row.hourglass_energy = energy_.hourglass;
+      row.external_work = energy_.external_work;
+      row.total_energy = energy_.total();
+      row.energy_ratio = energy_.ratio();
+      for (int k = 0; k < 3; ++k) {
+        row.momentum[k] = energy_.momentum[k];
+        row.angular_momentum[k] = energy_.angular_momentum[k];
+      }
+      glstat_->write(row);
+      glstat_schedule_.advance(t);
+    }
+    if (nodout_ && (force || nodout_schedule_.due(t))) {
+      nodout_->write(state_);  // TODO(merge): full-step velocity
+      nodout_schedule_.advance(t);
+    }
+    if (fields_ && (force || d3plot_schedule_.due(t))) {
+      fields_->write_frame(state_);
+      d3plot_schedule_.advance(t);
+    }
+  }
+}
+
+void Simulation::write_output_now() { write_output_if_due(true); }
+
+void Simulation::update_positions() {
+  NodalState& nodes = state_.nodes;
+  const std::int64_t n = static_cast<std::int64_t>(nodes.size());
+  const double dt = state_.dt;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    nodes.x.x[i] += dt * nodes.v.x[i];
+    nodes.x.y[i] += dt * nodes.v.y[i];
+    nodes.x.z[i] += dt * nodes.v.z[i];
+  }
+  state_.time += dt;
+}
+
+void Simulation::compute_internal_forces() {
+  const element::NodalView view = view_of(state_.nodes);
+  element_dt_ = std::numeric_limits<double>::infinity();
+  for (auto& block : state_.hex_blocks) {
+    const element::KernelResult r = element::compute_hex_forces(block, view, state_.dt);
+    energy_.hourglass += r.hourglass_work;
+    if (r.failed && breakdown_message_.empty()) {
+      breakdown_message_ = fmt::format(
+          "element {} of part {} has non-positive volume {:.6g} (or a non-finite force) at "
+          "time {:.6g} (cycle {})",
+          block.element_id[r.failed_element], block.part_id, r.failed_volume, state_.time,
+          state_.cycle);
+    }
+    if (r.min_dt < element_dt_) {
+      element_dt_ = r.min_dt;
+      if (r.min_dt_element >= 0) controlling_element_ = block.element_id[r.min_dt_element];
+    }
+  }
+  assemble_internal_forces(state_);
+}
+
+void Simulation::compute_external_forces() {
+  solver::compute_external_forces(boundary_, state_.time, state_);
+}
+
+void Simulation::check_breakdown() {
+  if (!breakdown_message_.empty()) throw SolverError(breakdown_message_);
+}
+
+void Simulation::select_time_step() {
+  const auto& control = model_.timestep;
+  const double tssfac = control.tssfac > 0.0 ? control.tssfac : 0.9;
+  double dt = tssfac * element_dt_;
+  if (control.lctm != 0) {
+    const auto it = model_.curves.find(control.lctm);
+    if (it == model_.curves.end()) {
+      throw InputError({.keyword = "*CONTROL_TIMESTEP", .field = "LCTM"},
+                       fmt::format("LCTM refers to load curve {}, which is not defined",
+                                   control.lctm));
+    }
+    dt = std::min(dt, model::evaluate(it->second, state_.time));
+  }
+  if (state_.cycle == 0 && control.dtinit > 0.0) dt = std::min(dt, control.dtinit);
+  if (!std::isfinite(dt) || dt <= 0.0) {
+    throw SolverError(fmt::format("no valid time step at time {:.6g}: element {} gives {:.6g}",
+                                  state_.time, controlling_element_, element_dt_));
+  }
+  if (initial_dt_ > 0.0) {
+    const double dtmin_fraction = model_.termination.dtmin > 0.0 ? model_.termination.dtmin : 1e-6;
+    if (dt < dtmin_fraction * initial_dt_) {
+      throw SolverError(fmt::format(
+          "time step collapsed to {:.6g} (initial {:.6g}) at time {:.6g}, controlled by "
+          "element {}",
+          dt, initial_dt_, state_.time, controlling_element_));
+    }
+  }
+  // Land exactly on the termination time.
+  if (end_time_ > 0.0 && state_.time + dt > end_time_ && end_time_ - state_.time > 1e-3 * dt) {
+    dt = end_time_ - state_.time;
+  }
+  state_.dt_prev = state_.dt;
+  state_.dt = dt;
+  dt_average_ = 0.5 * (state_.dt_prev + state_.dt);
+}
+
+}  // namespace rf::solver

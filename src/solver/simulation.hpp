@@ -1,0 +1,117 @@
+// The explicit transient analysis: central-difference time integration with lumped mass and
+// a variable, stability-limited time step (Belytschko, Liu & Moran, Nonlinear Finite Elements,
+// section 6.2). One Simulation owns the state of one run.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "model/model.hpp"
+#include "output/writers.hpp"
+#include "solver/boundary.hpp"
+#include "solver/build_state.hpp"
+#include "solver/state.hpp"
+
+namespace rf::solver {
+
+// Energy bookkeeping. Kinetic energy and the work terms are evaluated at half steps so that
+// the discrete balance of the central-difference scheme holds to round-off:
+//   KE^{n+1/2} - KE^{n-1/2} = sum (f_ext^n - f_int^n + r^n) . d^n,
+//   d^n = dt_avg^n (v^{n-1/2} + v^{n+1/2}) / 2,
+// with r the reactions of fixed and prescribed DOFs (see docs/theory.md).
+struct EnergyAccount {
+  double kinetic = 0.0;
+  double internal_work = 0.0;   // work of internal forces, hourglass included
+  double hourglass = 0.0;       // hourglass part of internal_work
+  double external_work = 0.0;   // loads, body forces and reactions
+  double initial_total = 0.0;
+  double momentum[3] = {0, 0, 0};
+  double angular_momentum[3] = {0, 0, 0};
+
+  double internal() const { return internal_work - hourglass; }
+  double total() const { return kinetic + internal_work; }
+  double ratio() const {
+    const double reference = initial_total + external_work;
+    return reference != 0.0 ? total() / reference : 1.0;
+  }
+};
+
+struct SimulationOptions {
+  std::filesystem::path output_directory;  // empty: no files written
+  bool write_fields = true;                // d3plot VTU frames
+};
+
+class Simulation {
+ public:
+  Simulation(const model::Model& model, SimulationOptions options);
+  ~Simulation();
+
+  // One explicit cycle (see the definition: the whole cycle on one screen).
+  void cycle();
+  bool finished() const { return finished_; }
+
+  // Runs to termination. `on_progress` is called every cycle with this object; it decides
+  // itself how often to print. Throws rf::SolverError on breakdown after writing the state.
+  void run(const std::function<void(const Simulation&)>& on_progress = {});
+
+  const State& state() const { return state_; }
+  State& mutable_state() { return state_; }
+  const EnergyAccount& energy() const { return energy_; }
+  double end_time() const { return end_time_; }
+  std::int64_t element_count() const { return element_count_; }
+  // User ID and part of the element that controls the step (for messages and progress).
+  model::Id controlling_element() const { return controlling_element_; }
+
+ private:
+  // The phases of a cycle, in order.
+  void update_velocities();          // a^n -> v^{n+1/2}, constraints, energy at n+1/2
+  void write_output_if_due(bool force);
+  void update_positions();           // x^{n+1} = x^n + dt v^{n+1/2}
+  void compute_internal_forces();    // element kernels at n+1, assembly, element time step
+  void compute_external_forces();    // loads at t^{n+1}
+  void select_time_step();           // dt^{n+3/2}
+
+  void initialize();
+  void check_breakdown();
+  void write_output_now();
+
+  const model::Model& model_;
+  SimulationOptions options_;
+  NodeIndex node_index_;
+  State state_;
+  Boundary boundary_;
+  EnergyAccount energy_;
+  Vec3Array v_previous_;  // v^{n-1/2}, kept for the energy balance and full-step velocities
+
+  double end_time_ = 0.0;
+  std::int64_t end_cycle_ = 0;
+  double element_dt_ = 0.0;  // min critical element step (without TSSFAC) at the last evaluation
+  double initial_dt_ = 0.0;
+  double dt_average_ = 0.0;  // (dt^{n-1/2} + dt^{n+1/2}) / 2
+  std::int64_t element_count_ = 0;
+  model::Id controlling_element_ = 0;
+  bool finished_ = false;
+
+  // Breakdown detected by a kernel or the velocity update (reported by check_breakdown()).
+  std::string breakdown_message_;
+
+  struct OutputSchedule {
+    double interval = 0.0;
+    double next = 0.0;
+    bool due(double t) const { return interval > 0.0 && t >= next * (1.0 - 1e-12); }
+    void advance(double t) {
+      while (next <= t * (1.0 + 1e-12)) next += interval;
+    }
+  };
+  OutputSchedule glstat_schedule_, nodout_schedule_, d3plot_schedule_;
+  std::unique_ptr<output::GlstatWriter> glstat_;
+  std::unique_ptr<output::NodoutWriter> nodout_;
+  std::unique_ptr<output::FieldWriter> fields_;
+  std::vector<double> reduction_scratch_;
+};
+
+}  // namespace rf::solver

@@ -1,0 +1,112 @@
+// Writes small LS-DYNA decks for verification tests: a structured box of hexahedra plus
+// whatever keyword text a test appends. Free (comma) format keeps the generator short.
+#pragma once
+
+#include <fmt/format.h>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "io/keyword/reader.hpp"
+#include "solver/simulation.hpp"
+
+namespace rf::test {
+
+struct BoxMesh {
+  int nx = 1, ny = 1, nz = 1;
+  double lx = 1.0, ly = 1.0, lz = 1.0;
+  // Optional map from reference to actual coordinates (mesh distortion).
+  std::function<void(double&, double&, double&)> distort;
+
+  int node_id(int i, int j, int k) const { return 1 + i + (nx + 1) * (j + (ny + 1) * k); }
+  int node_count() const { return (nx + 1) * (ny + 1) * (nz + 1); }
+  int element_count() const { return nx * ny * nz; }
+
+  void coordinates(int i, int j, int k, double& x, double& y, double& z) const {
+    x = lx * i / nx;
+    y = ly * j / ny;
+    z = lz * k / nz;
+    if (distort) distort(x, y, z);
+  }
+
+  std::string keyword_text(int pid = 1) const {
+    std::string s = "*NODE\n";
+    for (int k = 0; k <= nz; ++k)
+      for (int j = 0; j <= ny; ++j)
+        for (int i = 0; i <= nx; ++i) {
+          double x, y, z;
+          coordinates(i, j, k, x, y, z);
+          s += fmt::format("{},{:.17g},{:.17g},{:.17g}\n", node_id(i, j, k), x, y, z);
+        }
+    s += "*ELEMENT_SOLID\n";
+    int eid = 0;
+    for (int k = 0; k < nz; ++k)
+      for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) {
+          s += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", ++eid, pid, node_id(i, j, k),
+                           node_id(i + 1, j, k), node_id(i + 1, j + 1, k), node_id(i, j + 1, k),
+                           node_id(i, j, k + 1), node_id(i + 1, j, k + 1),
+                           node_id(i + 1, j + 1, k + 1), node_id(i, j + 1, k + 1));
+        }
+    return s;
+  }
+
+  // Node IDs of the face i == const (or j, k) for sets.
+  std::vector<int> face_x(int i) const {
+    std::vector<int> ids;
+    for (int k = 0; k <= nz; ++k)
+      for (int j = 0; j <= ny; ++j) ids.push_back(node_id(i, j, k));
+    return ids;
+  }
+};
+
+inline std::string node_set(int sid, const std::vector<int>& ids) {
+  std::string s = fmt::format("*SET_NODE_LIST\n{}\n", sid);
+  for (std::size_t c = 0; c < ids.size(); c += 8) {
+    for (std::size_t k = c; k < std::min(ids.size(), c + 8); ++k) {
+      s += fmt::format("{}{}", k == c ? "" : ",", ids[k]);
+    }
+    s += "\n";
+  }
+  return s;
+}
+
+// Part 1 with section, elastic material and hourglass type.
+inline std::string elastic_part(double rho, double e, double nu, int elform, int ihq,
+                                double qm = 0.1) {
+  return fmt::format(
+      "*PART\npart 1\n1,1,1,0,1\n*SECTION_SOLID\n1,{}\n*MAT_ELASTIC\n1,{:.17g},{:.17g},{:.17g}\n"
+      "*HOURGLASS\n1,{},{}\n",
+      elform, rho, e, nu, ihq, qm);
+}
+
+inline model::Model read(const std::string& text) {
+  return io::read_deck_text(text, "verification.k");
+}
+
+// Strain energy of linear elastic elements from their stresses: sum V/2 sigma : C^-1 : sigma.
+// Independent of the force computation, so comparing it with the work balance checks that
+// the element forces are consistent with the element stresses.
+inline double elastic_strain_energy(const solver::State& state) {
+  double energy = 0.0;
+  for (const auto& block : state.hex_blocks) {
+    const double e = block.material.young, nu = block.material.poisson;
+    const double g = block.material.shear;
+    const int points = block.points_per_element();
+    for (std::size_t el = 0; el < block.size(); ++el) {
+      double density = 0.0;
+      for (int p = 0; p < points; ++p) {
+        const double* s = &block.stress[(el * points + p) * 6];
+        const double normal = s[0] * s[0] + s[1] * s[1] + s[2] * s[2] -
+                              2.0 * nu * (s[0] * s[1] + s[1] * s[2] + s[2] * s[0]);
+        const double shear = s[3] * s[3] + s[4] * s[4] + s[5] * s[5];
+        density += 0.5 * (normal / e + shear / g);
+      }
+      energy += density / points * block.volume[el];
+    }
+  }
+  return energy;
+}
+
+}  // namespace rf::test
