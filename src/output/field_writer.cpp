@@ -61,6 +61,8 @@ struct AppendedArray {
   const void* data;
   std::uint64_t bytes;
   std::uint64_t offset = 0;  // filled when the layout is computed
+  // Optional component labels (ParaView shows them instead of 0..n-1).
+  std::vector<std::string_view> component_names = {};
 };
 
 void append_data_array(fmt::memory_buffer& xml, const AppendedArray& a, std::string_view indent) {
@@ -68,6 +70,9 @@ void append_data_array(fmt::memory_buffer& xml, const AppendedArray& a, std::str
                  a.name);
   if (a.components != 1) {
     fmt::format_to(std::back_inserter(xml), " NumberOfComponents=\"{}\"", a.components);
+  }
+  for (std::size_t c = 0; c < a.component_names.size(); ++c) {
+    fmt::format_to(std::back_inserter(xml), " ComponentName{}=\"{}\"", c, a.component_names[c]);
   }
   fmt::format_to(std::back_inserter(xml), " format=\"appended\" offset=\"{}\"/>\n", a.offset);
 }
@@ -277,7 +282,13 @@ void FieldWriter::write_frame(const solver::State& state) {
       {"displacement", "Float64", 3, displacement.data(), bytes_of(displacement)},
       {"velocity", "Float64", 3, velocity.data(), bytes_of(velocity)},
       {"node_id", "Int64", 1, node_id.data(), bytes_of(node_id)},
-      {"stress", "Float64", 6, stress.data(), bytes_of(stress)},
+      {"stress",
+       "Float64",
+       6,
+       stress.data(),
+       bytes_of(stress),
+       0,
+       {"xx", "yy", "zz", "xy", "yz", "zx"}},
       {"effective_stress", "Float64", 1, effective_stress.data(), bytes_of(effective_stress)},
       {"part_id", "Int64", 1, part_id.data(), bytes_of(part_id)},
       {"element_id", "Int64", 1, element_id.data(), bytes_of(element_id)},

@@ -407,6 +407,8 @@ TEST(OutputField, VtuDecodesToTheStateAndCellsAreValid) {
   const auto part = decode<std::int64_t>(file, doc, cell_data.data_array("part_id"), "Int64");
   const auto element = decode<std::int64_t>(file, doc, cell_data.data_array("element_id"), "Int64");
   EXPECT_EQ(cell_data.data_array("stress").attributes.at("NumberOfComponents"), "6");
+  EXPECT_EQ(cell_data.data_array("stress").attributes.at("ComponentName0"), "xx");
+  EXPECT_EQ(cell_data.data_array("stress").attributes.at("ComponentName5"), "zx");
   EXPECT_EQ(part, (std::vector<std::int64_t>{10, 10, 20, 20, 20}));
   EXPECT_EQ(element, (std::vector<std::int64_t>{1, 2, 30000000001LL, 4, 5}));
   ASSERT_EQ(stress.size(), 30u);
