@@ -2,10 +2,12 @@
 // by adding columns at the end.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "solver/state.hpp"
@@ -18,11 +20,11 @@ struct GlstatRow {
   double dt = 0.0;
   std::int64_t cycle = 0;
   double kinetic_energy = 0.0;
-  double internal_energy = 0.0;   // elastic strain energy (excludes hourglass)
+  double internal_energy = 0.0;  // elastic strain energy (excludes hourglass)
   double hourglass_energy = 0.0;
-  double external_work = 0.0;     // loads + prescribed motion + SPC reactions
-  double total_energy = 0.0;      // kinetic + internal + hourglass
-  double energy_ratio = 1.0;      // total / (initial total + external work)
+  double external_work = 0.0;  // loads + prescribed motion + SPC reactions
+  double total_energy = 0.0;   // kinetic + internal + hourglass
+  double energy_ratio = 1.0;   // total / (initial total + external work)
   double momentum[3] = {0, 0, 0};
   double angular_momentum[3] = {0, 0, 0};  // about the global origin
 };
@@ -38,13 +40,27 @@ class CsvFile {
   CsvFile(CsvFile&& other) noexcept;
   CsvFile& operator=(CsvFile&& other) noexcept;
   ~CsvFile();
+  // Appends line and a newline.
   void write_line(const std::string& line);
+  // Appends text verbatim (one or more complete lines, each ending in '\n'); lets a writer
+  // format a whole output time into one buffer and hand it over in a single call.
+  void write_text(std::string_view text);
   void flush();
   bool is_open() const { return file_ != nullptr; }
+  const std::filesystem::path& path() const { return path_; }
 
  private:
+  void close() noexcept;
   std::FILE* file_ = nullptr;
+  std::filesystem::path path_;
 };
+
+// Column headers, exactly as written (docs/output.md).
+inline constexpr std::string_view kGlstatHeader =
+    "time,dt,cycle,kinetic_energy,internal_energy,hourglass_energy,external_work,total_energy,"
+    "energy_ratio,momentum_x,momentum_y,momentum_z,angular_momentum_x,angular_momentum_y,"
+    "angular_momentum_z";
+inline constexpr std::string_view kNodoutHeader = "time,node,x,y,z,vx,vy,vz,ax,ay,az";
 
 class GlstatWriter {
  public:
@@ -68,9 +84,29 @@ class NodoutWriter {
   std::vector<std::int32_t> nodes_;
 };
 
-// d3plot.pvd + d3plot_NNNN.vtu (VTK XML UnstructuredGrid, ASCII or appended raw binary) per frame:
-// point data displacement, velocity; cell data stress (6 components, Voigt xx,yy,zz,xy,yz,zx),
-// effective_stress (von Mises), part_id, element_id.
+// VTK linear cell types used for solids.
+enum class VtkCellType : std::uint8_t { kTetra = 10, kHexahedron = 12, kWedge = 13, kPyramid = 14 };
+
+// A solid element as VTK wants it: cell type and the distinct nodes in VTK order.
+struct VtkCell {
+  VtkCellType type = VtkCellType::kHexahedron;
+  int node_count = 8;
+  std::array<std::int32_t, 8> nodes{};
+};
+
+// Maps an 8-node LS-DYNA solid connectivity (possibly degenerate by repeated nodes) to a
+// VTK cell: N1..N8 all distinct -> hexahedron; N1 N2 N3 N4 N4 N4 N4 N4 or
+// N1 N2 N3 N3 N4 N4 N4 N4 -> tetra; N1 N2 N3 N4 N5 N5 N6 N6 -> wedge; N1 N2 N3 N4 N5 N5 N5 N5
+// -> pyramid. Any other repetition is kept as a (degenerate) hexahedron.
+VtkCell vtk_cell_from_solid(const std::int32_t* conn8);
+
+// Von Mises stress of a Voigt stress (xx,yy,zz,xy,yz,zx).
+double von_mises(const double* voigt6);
+
+// d3plot.pvd + d3plot_NNNN.vtu (VTK XML UnstructuredGrid, appended raw binary, Float64/Int64)
+// per frame: point data displacement, velocity, node_id; cell data stress (6 components, Voigt
+// xx,yy,zz,xy,yz,zx, mean over integration points), effective_stress (von Mises), part_id,
+// element_id. Creates the directory if needed.
 class FieldWriter {
  public:
   explicit FieldWriter(const std::filesystem::path& directory, std::string stem = "d3plot");
