@@ -10,6 +10,24 @@
 
 namespace rf::element {
 
+// SIGN CONVENTION. block.force holds INTERNAL nodal forces f_int = integral B^T sigma dV (plus
+// hourglass resisting forces), and the solver forms a = (f_ext - f_int) / m. A stretched element
+// (sigma_xx > 0) therefore has f_int pointing OUTWARD at its nodes, and -f_int pulls the nodes
+// inward; hourglass forces likewise have the sign of the hourglass velocity they resist.
+//
+// Degenerate hexahedra use LS-DYNA's connectivity conventions: tetrahedron n1 n2 n3 n4 n4 n4 n4
+// n4, pyramid n1 n2 n3 n4 n5 n5 n5 n5, pentahedron/wedge n1 n2 n3 n4 n5 n5 n6 n6. See
+// hex_block.cpp for how each is treated.
+
+// Shape of an element as detected from its connectivity by initialize_hex_block.
+enum class HexShape : std::uint8_t {
+  kHexahedron = 0,
+  kWedge = 1,        // 6 distinct nodes
+  kPyramid = 2,      // 5 distinct nodes
+  kTetrahedron = 3,  // 4 distinct nodes
+  kOtherDegenerate = 4,
+};
+
 // Read-only view of the nodal arrays a kernel needs (struct-of-arrays, dense indices).
 struct NodalView {
   const double* x;  // current coordinates x^{n+1}
@@ -45,6 +63,8 @@ struct HexBlock {
   std::vector<double> volume;   // current volume
   // Element nodal forces of the last evaluation, 24 per element (node-major: f0x,f0y,f0z,...).
   std::vector<double> force;
+  // Shape detected from the connectivity (initialize_hex_block), one per element.
+  std::vector<HexShape> shape;
 
   std::size_t size() const { return element_id.size(); }
   int points_per_element() const { return elform == 2 ? 8 : 1; }
@@ -74,5 +94,8 @@ KernelResult hex_critical_timestep(const HexBlock& block, const NodalView& nodes
 
 // Lumped mass: rho * V0 / 8 to each node (degenerate hexes: per distinct node, see docs).
 void add_hex_lumped_mass(const HexBlock& block, std::vector<double>& nodal_mass);
+
+// Number of distinct nodes of an 8-entry connectivity (8 for a proper hexahedron).
+int distinct_node_count(const std::int32_t* conn8);
 
 }  // namespace rf::element
