@@ -101,7 +101,13 @@ void GlstatWriter::write(const GlstatRow& row) {
 NodoutWriter::NodoutWriter(const std::filesystem::path& path, std::vector<std::int32_t> dense_nodes)
     : csv_(path, std::string(kNodoutHeader)), nodes_(std::move(dense_nodes)) {}
 
-void NodoutWriter::write(const solver::State& state) {
+void NodoutWriter::write(const solver::State& state) { write_rows(state, nullptr); }
+
+void NodoutWriter::write(const solver::State& state, const solver::Vec3Array& v_previous) {
+  write_rows(state, &v_previous);
+}
+
+void NodoutWriter::write_rows(const solver::State& state, const solver::Vec3Array* v_previous) {
   const solver::NodalState& n = state.nodes;
   fmt::memory_buffer rows;
   for (std::int32_t i : nodes_) {
@@ -111,8 +117,13 @@ void NodoutWriter::write(const solver::State& state) {
     }
     append_number(rows, state.time);
     fmt::format_to(std::back_inserter(rows), ",{}", n.id[i]);
-    const double values[] = {n.x.x[i], n.x.y[i], n.x.z[i], n.v.x[i], n.v.y[i],
-                             n.v.z[i], n.a.x[i], n.a.y[i], n.a.z[i]};
+    double vx = n.v.x[i], vy = n.v.y[i], vz = n.v.z[i];
+    if (v_previous) {
+      vx = 0.5 * (vx + v_previous->x[i]);
+      vy = 0.5 * (vy + v_previous->y[i]);
+      vz = 0.5 * (vz + v_previous->z[i]);
+    }
+    const double values[] = {n.x.x[i], n.x.y[i], n.x.z[i], vx, vy, vz, n.a.x[i], n.a.y[i], n.a.z[i]};
     for (double value : values) {
       rows.push_back(',');
       append_number(rows, value);

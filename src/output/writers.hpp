@@ -77,9 +77,13 @@ class NodoutWriter {
  public:
   NodoutWriter(const std::filesystem::path& path, std::vector<std::int32_t> dense_nodes);
   void write(const solver::State& state);
+  // Writes the full-step velocity v^n = (v^{n-1/2} + v^{n+1/2}) / 2, the solver's best
+  // estimate at the output time, from the previous half-step velocity and state.nodes.v.
+  void write(const solver::State& state, const solver::Vec3Array& v_previous);
   void flush() { csv_.flush(); }
 
  private:
+  void write_rows(const solver::State& state, const solver::Vec3Array* v_previous);
   CsvFile csv_;
   std::vector<std::int32_t> nodes_;
 };

@@ -274,7 +274,7 @@ void Simulation::write_output_if_due(bool force) {
       glstat_schedule_.advance(t);
     }
     if (nodout_ && (force || nodout_schedule_.due(t))) {
-      nodout_->write(state_);  // TODO(merge): full-step velocity
+      nodout_->write(state_, v_previous_);
       nodout_schedule_.advance(t);
     }
     if (fields_ && (force || d3plot_schedule_.due(t))) {
