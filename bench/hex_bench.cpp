@@ -36,9 +36,9 @@ Block make_block(int n, int elform, int ihq) {
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
         b.block.element_id.push_back(static_cast<rf::model::Id>(b.block.element_id.size() + 1));
-        for (auto c : {id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k),
-                       id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1),
-                       id(i, j + 1, k + 1)})
+        for (auto c :
+             {id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k), id(i, j, k + 1),
+              id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1)})
           b.block.conn.push_back(c);
       }
   b.block.material = rf::material::make_elastic(7800.0, 2.0e11, 0.3);
@@ -62,10 +62,18 @@ void run(benchmark::State& state, int elform, int ihq) {
       elements * 1e-9, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
-void BM_HexElform1Ihq1(benchmark::State& s) { run(s, 1, 1); }
-void BM_HexElform1Ihq2(benchmark::State& s) { run(s, 1, 2); }
-void BM_HexElform1Ihq6(benchmark::State& s) { run(s, 1, 6); }
-void BM_HexElform2(benchmark::State& s) { run(s, 2, 0); }
+void BM_HexElform1Ihq1(benchmark::State& s) {
+  run(s, 1, 1);
+}
+void BM_HexElform1Ihq2(benchmark::State& s) {
+  run(s, 1, 2);
+}
+void BM_HexElform1Ihq6(benchmark::State& s) {
+  run(s, 1, 6);
+}
+void BM_HexElform2(benchmark::State& s) {
+  run(s, 2, 0);
+}
 
 BENCHMARK(BM_HexElform1Ihq1)->Arg(20)->Arg(40)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_HexElform1Ihq2)->Arg(20)->Arg(40)->Unit(benchmark::kMillisecond);

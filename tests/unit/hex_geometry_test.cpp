@@ -119,8 +119,8 @@ TEST(HexGeometry, DegenerateTetrahedron) {
     m.x[i] += eps * m.x[i];
   }
   ASSERT_FALSE(rf::element::compute_hex_forces(m.block, m.view(), dt).failed);
-  const double sxx = (m.block.material.lambda + 2 * m.block.material.shear) * eps /
-                     (1.0 + 0.5 * eps);
+  const double sxx =
+      (m.block.material.lambda + 2 * m.block.material.shear) * eps / (1.0 + 0.5 * eps);
   EXPECT_NEAR(m.block.stress[0], sxx, 1e-9 * sxx);
   double fsum = 0.0;
   for (int k = 0; k < 8; ++k) fsum += m.block.force[3 * k];

@@ -99,8 +99,7 @@ TEST_P(PrestressRotation, StressRotatesObjectively) {
   const Eigen::Matrix3d expected = R * sigma0 * R.transpose();
   for (int g = 0; g < points; ++g) {
     const Eigen::Matrix3d sigma = to_matrix(&m.block.stress[6 * g]);
-    const Eigen::Vector3d p =
-        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(sigma).eigenvalues();
+    const Eigen::Vector3d p = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(sigma).eigenvalues();
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(p[k], p0[k], 1e-10 * p0.cwiseAbs().maxCoeff());
     EXPECT_LT((sigma - expected).norm(), 1e-9 * sigma0.norm());
   }

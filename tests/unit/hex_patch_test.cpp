@@ -67,8 +67,7 @@ TEST_P(Patch, LinearFieldGivesExactConstantStressAndEquilibrium) {
   EXPECT_NEAR(r.hourglass_work, 0.0, 1e-20);
 
   // Exact rate on the mid-step configuration x_mid = (I + eps G / 2) X.
-  const Eigen::Matrix3d Lmid =
-      (eps * G) * (Eigen::Matrix3d::Identity() + 0.5 * eps * G).inverse();
+  const Eigen::Matrix3d Lmid = (eps * G) * (Eigen::Matrix3d::Identity() + 0.5 * eps * G).inverse();
   const Eigen::Matrix3d D = 0.5 * (Lmid + Lmid.transpose());
   const double d[6] = {D(0, 0), D(1, 1), D(2, 2), D(0, 1), D(1, 2), D(2, 0)};
   const auto expected = rf::test::elastic_stress(m.block.material, d);

@@ -54,7 +54,7 @@ inline HexMesh single_hex(const double corners[8][3]) {
 inline const double kUnitCube[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
                                        {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
 // A generally distorted (non-parallelepiped, warped faces) but valid hexahedron.
-inline const double kDistorted[8][3] = {{0.0, 0.0, 0.0},    {1.2, 0.1, -0.1}, {1.3, 1.1, 0.2},
+inline const double kDistorted[8][3] = {{0.0, 0.0, 0.0},    {1.2, 0.1, -0.1},  {1.3, 1.1, 0.2},
                                         {-0.1, 0.9, 0.05},  {0.1, -0.05, 1.0}, {1.0, 0.2, 1.3},
                                         {1.15, 1.25, 0.95}, {0.05, 1.0, 1.1}};
 
@@ -62,9 +62,12 @@ inline const double kDistorted[8][3] = {{0.0, 0.0, 0.0},    {1.2, 0.1, -0.1}, {1
 inline std::array<double, 6> elastic_stress(const material::ElasticConstants& c,
                                             const double eps[6]) {
   const double tr = eps[0] + eps[1] + eps[2];
-  return {c.lambda * tr + 2 * c.shear * eps[0], c.lambda * tr + 2 * c.shear * eps[1],
-          c.lambda * tr + 2 * c.shear * eps[2], 2 * c.shear * eps[3],
-          2 * c.shear * eps[4],                 2 * c.shear * eps[5]};
+  return {c.lambda * tr + 2 * c.shear * eps[0],
+          c.lambda * tr + 2 * c.shear * eps[1],
+          c.lambda * tr + 2 * c.shear * eps[2],
+          2 * c.shear * eps[3],
+          2 * c.shear * eps[4],
+          2 * c.shear * eps[5]};
 }
 
 }  // namespace rf::test
