@@ -31,8 +31,9 @@
 //           stiffness derived for the rectangular element from the assumed strain field
 //           (parasitic shear removed, Poisson-locking-free bending -> uniaxial E):
 //             bilinear mode in directions k,l (missing m), velocity along k:  E V / (192 a_k^2)
-//             same mode, velocity along the missing direction m (twist):  mu V (1/a_k^2 + 1/a_l^2)/192
-//             trilinear mode xi.eta.zeta, velocity along j: V (E/a_j^2 + mu sum_{n!=j} 1/a_n^2)/576
+//             same mode, velocity along the missing direction m (twist):  mu V (1/a_k^2 +
+//             1/a_l^2)/192 trilinear mode xi.eta.zeta, velocity along j: V (E/a_j^2 + mu sum_{n!=j}
+//             1/a_n^2)/576
 //           times QM. With QM = 1 a rectangular element in pure bending stores exactly
 //           E I kappa^2 L / 2 (the exact beam energy, any nu). The coupling terms between modes
 //           of B-B's full ASQBI matrix are not included (may be stiff in plate twisting).
@@ -280,8 +281,8 @@ inline void hourglass_forces(const HexBlock& block, const hex::Geometry& g, cons
   }
   for (int i = 0; i < 3; ++i)
     for (int n = 0; n < 8; ++n)
-      f[i][n] += Q[0][i] * gam[0][n] + Q[1][i] * gam[1][n] + Q[2][i] * gam[2][n] +
-                 Q[3][i] * gam[3][n];
+      f[i][n] +=
+          Q[0][i] * gam[0][n] + Q[1][i] * gam[1][n] + Q[2][i] * gam[2][n] + Q[3][i] * gam[3][n];
 }
 
 inline bool finite_forces(const double f[3][8]) {
@@ -331,8 +332,7 @@ void elform1_element(HexBlock& block, std::size_t e, const NodalView& nv, double
   material::elastic_jaumann_update(block.material, d, w, dt, sig);
 
   // f_iI = sigma_ij dV/dx_jI  (= V sigma_ij b_jI).
-  const double sxx = sig[0], syy = sig[1], szz = sig[2], sxy = sig[3], syz = sig[4],
-               szx = sig[5];
+  const double sxx = sig[0], syy = sig[1], szz = sig[2], sxy = sig[3], syz = sig[4], szx = sig[5];
   for (int n = 0; n < 8; ++n) {
     const double bx = g.b[0][n], by = g.b[1][n], bz = g.b[2][n];
     f[0][n] = sxx * bx + sxy * by + szx * bz;
@@ -458,9 +458,10 @@ int distinct_node_count(const std::int32_t* c) {
 void initialize_hex_block(HexBlock& block, const NodalView& nodes) {
   const std::size_t n = block.size();
   if (block.conn.size() != 8 * n)
-    throw SolverError(fmt::format("part {}: hexahedron block has {} elements but {} connectivity "
-                                  "entries (expected 8 per element)",
-                                  block.part_id, n, block.conn.size()));
+    throw SolverError(
+        fmt::format("part {}: hexahedron block has {} elements but {} connectivity "
+                    "entries (expected 8 per element)",
+                    block.part_id, n, block.conn.size()));
   block.stress.assign(6 * static_cast<std::size_t>(block.points_per_element()) * n, 0.0);
   block.hourglass_state.assign(12 * n, 0.0);
   block.force.assign(24 * n, 0.0);

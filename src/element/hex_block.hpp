@@ -47,7 +47,8 @@ struct HourglassSettings {
 struct HexBlock {
   model::Id part_id = 0;
   int part_index = 0;
-  int elform = 1;  // 1: one-point + hourglass; 2: selective-reduced (2x2x2 deviatoric, 1pt volumetric)
+  int elform =
+      1;  // 1: one-point + hourglass; 2: selective-reduced (2x2x2 deviatoric, 1pt volumetric)
   HourglassSettings hourglass;
   material::ElasticConstants material;
 
@@ -72,10 +73,10 @@ struct HexBlock {
 
 // What one pass of a kernel over a block reports back to the solver.
 struct KernelResult {
-  double hourglass_work = 0.0;      // work done by hourglass forces this step (energy units)
-  double min_dt = 1e300;            // smallest critical step over the block (no TSSFAC)
-  std::int64_t min_dt_element = -1; // index within the block
-  bool failed = false;              // negative/zero volume or non-finite result
+  double hourglass_work = 0.0;       // work done by hourglass forces this step (energy units)
+  double min_dt = 1e300;             // smallest critical step over the block (no TSSFAC)
+  std::int64_t min_dt_element = -1;  // index within the block
+  bool failed = false;               // negative/zero volume or non-finite result
   std::int64_t failed_element = -1;
   double failed_volume = 0.0;
 };

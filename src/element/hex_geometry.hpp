@@ -28,11 +28,10 @@ inline constexpr double kZeta[8] = {-1, -1, -1, -1, 1, 1, 1, 1};
 
 // Hourglass base vectors (Flanagan-Belytschko's Gamma): eta.zeta, zeta.xi, xi.eta, xi.eta.zeta
 // evaluated at the nodes. They are orthogonal to each other and to 1, xi, eta, zeta.
-inline constexpr double kHourglassBase[4][8] = {
-    {1, 1, -1, -1, -1, -1, 1, 1},   // eta zeta
-    {1, -1, -1, 1, -1, 1, 1, -1},   // zeta xi
-    {1, -1, 1, -1, 1, -1, 1, -1},   // xi eta
-    {-1, 1, -1, 1, 1, -1, 1, -1}};  // xi eta zeta
+inline constexpr double kHourglassBase[4][8] = {{1, 1, -1, -1, -1, -1, 1, 1},   // eta zeta
+                                                {1, -1, -1, 1, -1, 1, 1, -1},   // zeta xi
+                                                {1, -1, 1, -1, 1, -1, 1, -1},   // xi eta
+                                                {-1, 1, -1, 1, 1, -1, 1, -1}};  // xi eta zeta
 
 // Faces as node quadruples (0-based), outward normal by the right-hand rule.
 inline constexpr int kFaces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
@@ -61,13 +60,13 @@ inline void base_vectors(const double x[3][8], double a[8][3]) {
     const double s01 = p[0] + p[1], d10 = p[1] - p[0], s23 = p[2] + p[3], d23 = p[2] - p[3];
     const double s45 = p[4] + p[5], d54 = p[5] - p[4], s67 = p[6] + p[7], d67 = p[6] - p[7];
     a[0][i] = s01 + s23 + s45 + s67;
-    a[1][i] = d10 + d23 + d54 + d67;            // xi
-    a[2][i] = -s01 + s23 - s45 + s67;           // eta
-    a[3][i] = -s01 - s23 + s45 + s67;           // zeta
-    a[4][i] = s01 - s23 - s45 + s67;            // eta zeta
-    a[5][i] = -d10 - d23 + d54 + d67;           // zeta xi
-    a[6][i] = -d10 + d23 - d54 + d67;           // xi eta
-    a[7][i] = d10 - d23 - d54 + d67;            // xi eta zeta
+    a[1][i] = d10 + d23 + d54 + d67;   // xi
+    a[2][i] = -s01 + s23 - s45 + s67;  // eta
+    a[3][i] = -s01 - s23 + s45 + s67;  // zeta
+    a[4][i] = s01 - s23 - s45 + s67;   // eta zeta
+    a[5][i] = -d10 - d23 + d54 + d67;  // zeta xi
+    a[6][i] = -d10 + d23 - d54 + d67;  // xi eta
+    a[7][i] = d10 - d23 - d54 + d67;   // xi eta zeta
   }
 }
 
@@ -105,12 +104,11 @@ inline void compute_geometry(const double x[3][8], Geometry& g) {
   }
   g.volume = k64 * dot(A1, c23) + k192 * (dot(A6, c24) + dot(A5, c43) + dot(A1, c65));
   for (int i = 0; i < 3; ++i) {
-    const double g1 = G[1][i], g2 = G[2][i], g3 = G[3][i], g4 = G[4][i], g5 = G[5][i],
-                 g6 = G[6][i];
+    const double g1 = G[1][i], g2 = G[2][i], g3 = G[3][i], g4 = G[4][i], g5 = G[5][i], g6 = G[6][i];
     for (int n = 0; n < 8; ++n) {
       const double xi = kXi[n], eta = kEta[n], zeta = kZeta[n];
-      g.b[i][n] = g1 * xi + g2 * eta + g3 * zeta + g4 * (eta * zeta) + g5 * (zeta * xi) +
-                  g6 * (xi * eta);
+      g.b[i][n] =
+          g1 * xi + g2 * eta + g3 * zeta + g4 * (eta * zeta) + g5 * (zeta * xi) + g6 * (xi * eta);
     }
   }
 }
@@ -124,8 +122,7 @@ inline double hex_volume(const double x[3][8]) {
   cross(a[2], a[4], c24);
   cross(a[4], a[3], c43);
   cross(a[6], a[5], c65);
-  return dot(a[1], c23) / 64.0 +
-         (dot(a[6], c24) + dot(a[5], c43) + dot(a[1], c65)) / 192.0;
+  return dot(a[1], c23) / 64.0 + (dot(a[6], c24) + dot(a[5], c43) + dot(a[1], c65)) / 192.0;
 }
 
 // Largest face area squared. Each face area is half the norm of the cross product of its
