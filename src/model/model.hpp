@@ -64,6 +64,11 @@ struct Material {
   double rho = 0.0;
   double e = 0.0;
   double pr = 0.0;
+  // *MAT_RIGID card 2: CMO 1 constrains the body globally with CON1 (translations) and
+  // CON2 (rotations), codes 0..7 as on *NODE TC/RC. Zero for elastic materials.
+  double cmo = 0.0;
+  double con1 = 0.0;
+  double con2 = 0.0;
   SourceLocation where;
 };
 

@@ -1,0 +1,243 @@
+// Control, output, parameters and file structure.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "io/keyword/handlers.hpp"
+#include "io/keyword/number.hpp"
+
+namespace rf::io::handlers {
+
+namespace {
+
+const Layout kEightByTen = uniform_layout(8, 10);
+
+// Control cards are optional in LS-DYNA: an absent card means all defaults.
+std::optional<Card> single_card(const Block& block, CardCursor& cursor) {
+  auto card = cursor.next_optional(1, kEightByTen);
+  return card;
+}
+
+double non_negative(const Card& card, std::size_t i, const char* name, double fallback) {
+  const double v = card.real(i, name, fallback);
+  if (v < 0.0) throw card.error(name, fmt::format("value {} must not be negative", v));
+  return v;
+}
+
+}  // namespace
+
+void control_termination(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  auto& t = context.model.termination;
+  if (const auto card = single_card(block, cursor)) {
+    t.endtim = non_negative(*card, 0, "ENDTIM", 0.0);
+    t.endcyc = card->flag(1, "ENDCYC", 0);
+    if (t.endcyc < 0) throw card->error("ENDCYC", "value must not be negative");
+    t.dtmin = non_negative(*card, 2, "DTMIN", 0.0);
+    if (card->real(3, "ENDENG", 0.0) != 0.0 || card->real(4, "ENDMAS", 0.0) != 0.0) {
+      context.warn(card->location(), "ENDENG/ENDMAS ignored: only ENDTIM, ENDCYC and DTMIN "
+                                     "end a run");
+    }
+  }
+  warn_unread_lines(block, cursor, context);
+}
+
+void control_timestep(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  auto& ts = context.model.timestep;
+  if (const auto card = single_card(block, cursor)) {
+    ts.dtinit = non_negative(*card, 0, "DTINIT", 0.0);
+    ts.tssfac = card->real(1, "TSSFAC", 0.9);
+    if (ts.tssfac == 0.0) ts.tssfac = 0.9;  // LS-DYNA: 0 means the default
+    if (ts.tssfac < 0.0 || ts.tssfac > 1.0) {
+      throw card->error("TSSFAC", fmt::format("value {} must lie in (0, 1]", ts.tssfac));
+    }
+    ts.dt2ms = card->real(4, "DT2MS", 0.0);
+    if (ts.dt2ms != 0.0) {
+      throw card->error("DT2MS", fmt::format("value {}: mass scaling is not supported (leave "
+                                             "DT2MS blank or 0)",
+                                             ts.dt2ms));
+    }
+    ts.lctm = card->id(5, "LCTM");
+    if (ts.lctm < 0) throw card->error("LCTM", "curve ID must not be negative");
+    context.lctm_where = card->location();
+    // ISDO and TSLIMT concern shells; ERODE and MS1ST concern erosion and mass scaling.
+  }
+  warn_unread_lines(block, cursor, context);
+}
+
+void control_hourglass(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  auto& h = context.model.hourglass_control;
+  if (const auto card = single_card(block, cursor)) {
+    h.ihq = card->flag(0, "IHQ", 1);
+    if (h.ihq == 0) h.ihq = 1;
+    if (h.ihq < 1 || h.ihq > 10) {
+      throw card->error("IHQ", fmt::format("value {} is not a hourglass type 1..10", h.ihq));
+    }
+    h.qh = non_negative(*card, 1, "QH", 0.1);
+  }
+  warn_unread_lines(block, cursor, context);
+}
+
+void database_ascii(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  double dt = 0.0;
+  if (const auto card = single_card(block, cursor)) {
+    dt = non_negative(*card, 0, "DT", 0.0);
+    if (card->id(2, "LCUR") != 0) {
+      context.warn(card->location(), "LCUR ignored: output intervals come from DT");
+    }
+  }
+  if (block.base == "*DATABASE_GLSTAT") context.model.output.glstat_dt = dt;
+  else context.model.output.nodout_dt = dt;
+  warn_unread_lines(block, cursor, context);
+}
+
+void database_binary_d3plot(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  if (const auto card = single_card(block, cursor)) {
+    context.model.output.d3plot_dt = non_negative(*card, 0, "DT", 0.0);
+    if (card->id(1, "LCDT") != 0) {
+      context.warn(card->location(), "LCDT ignored: d3plot intervals come from DT or NPLTC");
+    }
+    context.d3plot_npltc = card->flag(3, "NPLTC", 0);
+    if (context.d3plot_npltc < 0) throw card->error("NPLTC", "value must not be negative");
+  }
+  // Card 2 (IOOPT and others) does not affect what is written here.
+  while (cursor.next_optional(2, kEightByTen)) {
+  }
+}
+
+void database_history_node(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  const bool sets = block.base.ends_with("_SET");
+  const char* field = sets ? "NSID" : "NID";
+  int n = 0;
+  while (true) {
+    cursor.skip_blank_lines();
+    if (cursor.at_end()) break;
+    const Card card = cursor.next(++n, kEightByTen, field);
+    for (std::size_t i = 0; i < card.field_count(); ++i) {
+      const model::Id id = card.id(i, field);
+      if (id < 0) throw card.error(field, fmt::format("ID {} must not be negative", id));
+      if (id == 0) continue;
+      if (sets) context.history_node_sets.push_back({id, card.location()});
+      else {
+        context.model.output.history_nodes.push_back(id);
+        context.history_nodes.push_back({id, card.location()});
+      }
+    }
+  }
+}
+
+namespace {
+
+// A parameter name field: a type letter (R, I or C) then the name, with or without blanks
+// between them ("R rho", "Rrho").
+std::pair<char, std::string> split_parameter_name(const Card& card, std::string_view field,
+                                                  const char* name) {
+  if (field.size() < 2) {
+    throw card.error(name, fmt::format("'{}' is not a type letter (R, I or C) followed by a "
+                                       "name",
+                                       field));
+  }
+  const char type = static_cast<char>(std::toupper(static_cast<unsigned char>(field[0])));
+  if (type != 'R' && type != 'I' && type != 'C') {
+    throw card.error(name, fmt::format("type letter '{}' is not R, I or C", field[0]));
+  }
+  const std::string parameter(trim(field.substr(1)));
+  if (parameter.empty()) throw card.error(name, "the parameter name is missing");
+  for (char c : parameter) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u <= 32 || u >= 127 || c == '&' || c == ',') {
+      throw card.error(name, "the parameter name contains a blank or non-printable character");
+    }
+  }
+  return {type, parameter};
+}
+
+}  // namespace
+
+void parameter(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  static const char* const kNames[] = {"PRMR1", "PRMR2", "PRMR3", "PRMR4"};
+  static const char* const kValues[] = {"VAL1", "VAL2", "VAL3", "VAL4"};
+  int n = 0;
+  while (true) {
+    cursor.skip_blank_lines();
+    if (cursor.at_end()) break;
+    const Card card = cursor.next(++n, kEightByTen, "PRMR1 VAL1");
+    for (std::size_t pair = 0; pair < 4; ++pair) {
+      const std::string_view name_field = card.text(2 * pair);
+      if (name_field.empty()) continue;
+      const auto [type, name] = split_parameter_name(card, name_field, kNames[pair]);
+      if (type == 'C') {
+        context.parameters.define_text(name, std::string(card.text(2 * pair + 1)));
+        continue;
+      }
+      double value = type == 'I'
+                         ? static_cast<double>(card.integer(2 * pair + 1, kValues[pair], 0))
+                         : card.real(2 * pair + 1, kValues[pair], 0.0);
+      context.parameters.define(name, value);
+    }
+  }
+}
+
+void parameter_expression(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  int n = 0;
+  while (true) {
+    cursor.skip_blank_lines();
+    if (cursor.at_end()) break;
+    // The expression may itself contain commas (min(a,b)), so free format splits only at
+    // the first comma; fixed format has the name in columns 1-10 and the rest after it.
+    const Card card = cursor.next(++n, Layout{10}, "PRMR EXPRESSION");
+    const DataLine& line = block.lines[block.lines.size() - cursor.remaining() - 1];
+    std::string_view name_field, expression;
+    if (const auto comma = line.text.find(','); comma != std::string_view::npos) {
+      name_field = trim(line.text.substr(0, comma));
+      expression = trim(line.text.substr(comma + 1));
+    } else {
+      name_field = trim(line.text.substr(0, std::min<std::size_t>(10, line.text.size())));
+      expression = line.text.size() > 10 ? trim(line.text.substr(10)) : std::string_view{};
+    }
+    const auto [type, name] = split_parameter_name(card, name_field, "PRMR");
+    if (type == 'C') throw card.error("PRMR", "text (C) parameters cannot be expressions");
+    if (expression.empty()) throw card.error("EXPRESSION", "the expression is missing");
+    double value = 0.0;
+    try {
+      value = context.parameters.evaluate(std::string(expression));
+    } catch (const std::runtime_error& e) {
+      throw card.error("EXPRESSION", fmt::format("cannot evaluate '{}': {}",
+                                                 std::string(expression.substr(0, 80)),
+                                                 e.what()));
+    }
+    if (type == 'I') value = std::trunc(value);
+    context.parameters.define(name, value);
+  }
+}
+
+void title(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  const std::string text = cursor.next_text(1, "TITLE", false);
+  if (context.model.title.empty()) context.model.title = text;
+}
+
+void include(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  int n = 0;
+  while (true) {
+    cursor.skip_blank_lines();
+    if (cursor.at_end()) break;
+    const Card card = cursor.next(++n, Layout{80}, "FILENAME");
+    const DataLine& line = block.lines[block.lines.size() - cursor.remaining() - 1];
+    context.include(std::string(trim(line.text)), card);
+  }
+  if (n == 0) throw block_error(block, 1, "FILENAME", "the file name card is missing");
+}
+
+void ignore(const Block&, ReaderContext&) {}
+
+}  // namespace rf::io::handlers

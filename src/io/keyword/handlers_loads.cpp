@@ -1,0 +1,355 @@
+// Boundary conditions, loads, initial conditions and load curves.
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "io/keyword/handlers.hpp"
+#include "io/keyword/number.hpp"
+
+namespace rf::io::handlers {
+
+namespace {
+
+const Layout kEightByTen = uniform_layout(8, 10);
+
+// The _ID option adds one card (ID, HEADING) before the data cards; its content names the
+// condition in LS-DYNA output only. Returns the number of the first data card.
+int skip_id_card(const Block& block, CardCursor& cursor) {
+  if (!block.has_option("ID")) return 1;
+  cursor.next(1, Layout{10, 70}, "ID HEADING");
+  return 2;
+}
+
+model::Target node_or_set(const Block& block) {
+  return block.base.ends_with("_SET") ? model::Target::NodeSet : model::Target::Node;
+}
+
+int translational_dof(const Card& card, const char* field, int dof, const char* extra) {
+  if (dof < 1 || dof > 3) {
+    throw card.error(field, fmt::format("value {} is not supported (supported: 1, 2, 3 for x, "
+                                        "y, z){}",
+                                        dof, extra));
+  }
+  return dof;
+}
+
+}  // namespace
+
+void boundary_spc(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  const int n = skip_id_card(block, cursor);
+  const model::Target target = node_or_set(block);
+  const char* id_field = target == model::Target::Node ? "NID" : "NSID";
+  static const char* const kDof[] = {"DOFX", "DOFY", "DOFZ", "DOFRX", "DOFRY", "DOFRZ"};
+  bool any = false;
+  while (true) {
+    cursor.skip_blank_lines();
+    if (cursor.at_end()) break;
+    const Card card = cursor.next(n, kEightByTen, "NID CID DOFX DOFY DOFZ DOFRX DOFRY DOFRZ");
+    model::Spc spc;
+    spc.target = target;
+    spc.id = card.id(0, id_field);
+    if (spc.id <= 0) throw card.error(id_field, "a positive ID is required");
+    spc.cid = card.id(1, "CID");
+    if (spc.cid != 0) {
+      throw card.error("CID", "local coordinate systems are not supported (leave CID blank)");
+    }
+    for (std::size_t k = 0; k < 6; ++k) {
+      const int v = card.flag(2 + k, kDof[k], 0);
+      if (v != 0 && v != 1) {
+        throw card.error(kDof[k], fmt::format("value {} is not 0 (free) or 1 (fixed)", v));
+      }
+      (k < 3 ? spc.fix[k] : spc.fix_rot[k - 3]) = (v == 1);
+    }
+    spc.where = card.location();
+    context.model.spcs.push_back(spc);
+    any = true;
+  }
+  if (!any) throw block_error(block, n, id_field, "no constraint card follows the keyword");
+}
+
+void boundary_prescribed_motion(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  const int n = skip_id_card(block, cursor);
+  const model::Target target = node_or_set(block);
+  const char* id_field = target == model::Target::Node ? "NID" : "NSID";
+  bool any = false;
+  while (true) {
+    cursor.skip_blank_lines();
+    if (cursor.at_end()) break;
+    const Card card = cursor.next(n, kEightByTen, "NID DOF VAD LCID SF VID DEATH BIRTH");
+    model::PrescribedMotion m;
+    m.target = target;
+    m.id = card.id(0, id_field);
+    if (m.id <= 0) throw card.error(id_field, "a positive ID is required");
+    const int dof = card.flag(1, "DOF", 0);
+    if (dof == 4 || dof == -4) {
+      throw card.error("DOF", "motion along a vector (DOF 4 with VID) is not supported; "
+                              "use DOF 1, 2 or 3");
+    }
+    m.dof = translational_dof(card, "DOF", dof, "");
+    m.vad = card.flag(2, "VAD", 0);
+    if (m.vad < 0 || m.vad > 2) {
+      throw card.error("VAD", fmt::format("value {} is not supported (supported: 0 velocity, "
+                                          "1 acceleration, 2 displacement)",
+                                          m.vad));
+    }
+    m.lcid = card.id(3, "LCID");
+    if (m.lcid <= 0) throw card.error("LCID", "a load curve ID is required");
+    m.sf = card.real(4, "SF", 1.0);
+    m.vid = card.id(5, "VID");
+    if (m.vid < 0) {
+      throw card.error("VID", "local coordinate systems (negative VID) are not supported");
+    }
+    m.death = card.real(6, "DEATH", 1e28);
+    if (m.death == 0.0) m.death = 1e28;  // LS-DYNA: 0 means never removed
+    m.birth = card.real(7, "BIRTH", 0.0);
+    if (m.death <= m.birth) {
+      throw card.error("DEATH", fmt::format("death time {} is not after birth time {}", m.death,
+                                            m.birth));
+    }
+    m.where = card.location();
+    context.model.prescribed_motions.push_back(m);
+    any = true;
+  }
+  if (!any) throw block_error(block, n, id_field, "no motion card follows the keyword");
+}
+
+void define_curve(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  int n = 1;
+  if (block.has_option("TITLE")) {
+    cursor.next_text(1, "title");
+    n = 2;
+  }
+  const Card head = cursor.next(n, kEightByTen, "LCID SIDR SFA SFO OFFA OFFO DATTYP");
+  model::Curve c;
+  c.id = head.id(0, "LCID");
+  if (c.id <= 0) throw head.error("LCID", "a positive curve ID is required");
+  c.sidr = head.flag(1, "SIDR", 0);
+  if (c.sidr < 0 || c.sidr > 2) {
+    throw head.error("SIDR", fmt::format("value {} is not 0, 1 or 2", c.sidr));
+  }
+  c.sfa = head.real(2, "SFA", 1.0);
+  c.sfo = head.real(3, "SFO", 1.0);
+  if (c.sfa == 0.0) c.sfa = 1.0;  // LS-DYNA: 0 means the default 1
+  if (c.sfo == 0.0) c.sfo = 1.0;
+  c.offa = head.real(4, "OFFA", 0.0);
+  c.offo = head.real(5, "OFFO", 0.0);
+  const int dattyp = head.flag(6, "DATTYP", 0);
+  if (dattyp != 0) {
+    throw head.error("DATTYP", fmt::format("value {} is not supported (supported: 0, an "
+                                           "ordinary time or abscissa curve)",
+                                           dattyp));
+  }
+  c.where = head.location();
+  static const Layout kPoint{20, 20};
+  while (true) {
+    cursor.skip_blank_lines();
+    if (cursor.at_end()) break;
+    const Card point = cursor.next(++n, kPoint, "A1 O1");
+    const double a = point.real(0, "A1", 0.0);
+    const double o = point.real(1, "O1", 0.0);
+    if (!c.abscissa.empty() && a < c.abscissa.back()) {
+      throw point.error("A1", fmt::format("abscissa {} is smaller than the previous one {}; "
+                                          "points must be in increasing order",
+                                          a, c.abscissa.back()));
+    }
+    c.abscissa.push_back(a);
+    c.ordinate.push_back(o);
+  }
+  if (c.abscissa.empty()) throw head.error("LCID", "the curve has no points");
+  if (const auto it = context.model.curves.find(c.id); it != context.model.curves.end()) {
+    throw head.error("LCID", fmt::format("curve {} is already defined at {}:{}", c.id,
+                                         it->second.where.file, it->second.where.line));
+  }
+  context.model.curves.emplace(c.id, std::move(c));
+}
+
+namespace {
+
+void reject_rotation(const Card& card, std::size_t first, const char* const names[3]) {
+  for (std::size_t k = 0; k < 3; ++k) {
+    if (card.real(first + k, names[k], 0.0) != 0.0) {
+      throw card.error(names[k], "initial rotational velocities are not supported; use "
+                                 "*INITIAL_VELOCITY_GENERATION for a spinning body");
+    }
+  }
+}
+
+}  // namespace
+
+void initial_velocity(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  int n = 1;
+  while (true) {
+    cursor.skip_blank_lines();
+    if (cursor.at_end()) break;
+    const Card head = cursor.next(n, kEightByTen, "NSID NSIDEX BOXID IRIGID ICID");
+    const model::Id nsid = head.id(0, "NSID");
+    const model::Id nsidex = head.id(1, "NSIDEX");
+    if (nsid < 0) throw head.error("NSID", "node set ID must not be negative");
+    if (nsidex < 0) throw head.error("NSIDEX", "node set ID must not be negative");
+    if (head.id(2, "BOXID") != 0) throw head.error("BOXID", "boxes are not supported");
+    const int irigid = head.flag(3, "IRIGID", 0);
+    if (irigid < -1 || irigid > 1) {
+      throw head.error("IRIGID", fmt::format("value {} is not -1, 0 or 1", irigid));
+    }
+    if (head.id(4, "ICID") != 0) {
+      throw head.error("ICID", "local coordinate systems are not supported");
+    }
+    static const char* const kRot[] = {"VXR", "VYR", "VZR"};
+    static const char* const kRotEx[] = {"VXRE", "VYRE", "VZRE"};
+    const Card velocity = cursor.next(n + 1, kEightByTen, "VX VY VZ VXR VYR VZR");
+    reject_rotation(velocity, 3, kRot);
+    model::InitialVelocity v;
+    v.target = nsid == 0 ? model::Target::All : model::Target::NodeSet;
+    v.id = nsid;
+    v.v = {velocity.real(0, "VX", 0.0), velocity.real(1, "VY", 0.0),
+           velocity.real(2, "VZ", 0.0)};
+    v.where = head.location();
+    context.model.initial_velocities.push_back(v);
+    n += 2;
+    if (nsidex != 0) {
+      context.exemptions.push_back(
+          {context.model.initial_velocities.size() - 1, nsidex, head.location()});
+      const Card exempt = cursor.next(n, kEightByTen, "VXE VYE VZE VXRE VYRE VZRE");
+      reject_rotation(exempt, 3, kRotEx);
+      model::InitialVelocity ve;
+      ve.target = model::Target::NodeSet;
+      ve.id = nsidex;
+      ve.v = {exempt.real(0, "VXE", 0.0), exempt.real(1, "VYE", 0.0),
+              exempt.real(2, "VZE", 0.0)};
+      ve.where = exempt.location();
+      context.model.initial_velocities.push_back(ve);
+      ++n;
+    }
+  }
+  if (n == 1) throw block_error(block, 1, "NSID", "card 1 (NSID NSIDEX BOXID ...) is missing");
+}
+
+void initial_velocity_node(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  static const char* const kRot[] = {"VXR", "VYR", "VZR"};
+  while (true) {
+    cursor.skip_blank_lines();
+    if (cursor.at_end()) break;
+    const Card card = cursor.next(1, kEightByTen, "NID VX VY VZ VXR VYR VZR ICID");
+    model::InitialVelocity v;
+    v.target = model::Target::Node;
+    v.id = card.id(0, "NID");
+    if (v.id <= 0) throw card.error("NID", "a positive node ID is required");
+    v.v = {card.real(1, "VX", 0.0), card.real(2, "VY", 0.0), card.real(3, "VZ", 0.0)};
+    reject_rotation(card, 4, kRot);
+    if (card.id(7, "ICID") != 0) {
+      throw card.error("ICID", "local coordinate systems are not supported");
+    }
+    v.where = card.location();
+    context.model.initial_velocities.push_back(v);
+  }
+}
+
+void initial_velocity_generation(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  int n = 1;
+  do {
+    const Card c1 = cursor.next(n, kEightByTen, "ID STYP OMEGA VX VY VZ IVATN ICID");
+    model::InitialVelocity v;
+    const model::Id id = c1.id(0, "ID");
+    const int styp = c1.flag(1, "STYP", 0);
+    if (id < 0) throw c1.error("ID", "the set or part ID must not be negative");
+    switch (styp) {
+      case 1:
+        v.target = id == 0 ? model::Target::All : model::Target::PartSet;
+        break;
+      case 2:
+        v.target = id == 0 ? model::Target::All : model::Target::Part;
+        break;
+      case 3:
+        v.target = id == 0 ? model::Target::All : model::Target::NodeSet;
+        break;
+      default:
+        throw c1.error("STYP", fmt::format("value {} is not supported (supported: 1 part set, "
+                                           "2 part, 3 node set)",
+                                           styp));
+    }
+    v.id = id;
+    v.omega = c1.real(2, "OMEGA", 0.0);
+    v.v = {c1.real(3, "VX", 0.0), c1.real(4, "VY", 0.0), c1.real(5, "VZ", 0.0)};
+    if (c1.flag(6, "IVATN", 0) != 0) {
+      throw c1.error("IVATN", "velocities of constrained (slave) parts are not supported");
+    }
+    if (c1.id(7, "ICID") != 0) throw c1.error("ICID", "local coordinate systems are not supported");
+    v.where = c1.location();
+    // Card 2 is only needed for a rotation, but LS-DYNA decks always carry it.
+    std::optional<Card> c2;
+    if (v.omega != 0.0) {
+      c2.emplace(cursor.next(n + 1, kEightByTen, "XC YC ZC NX NY NZ PHASE"));
+    } else if (!cursor.at_end()) {
+      c2.emplace(cursor.next(n + 1, kEightByTen, "XC YC ZC NX NY NZ PHASE"));
+    }
+    if (c2) {
+      v.point = {c2->real(0, "XC", 0.0), c2->real(1, "YC", 0.0), c2->real(2, "ZC", 0.0)};
+      v.axis = {c2->real(3, "NX", 0.0), c2->real(4, "NY", 0.0), c2->real(5, "NZ", 0.0)};
+      const double length =
+          std::sqrt(v.axis[0] * v.axis[0] + v.axis[1] * v.axis[1] + v.axis[2] * v.axis[2]);
+      if (v.omega != 0.0 && !(length > 0.0 && std::isfinite(length))) {
+        throw c2->error("NX", "a rotation (OMEGA nonzero) needs a nonzero axis NX NY NZ");
+      }
+      if (length > 0.0 && std::isfinite(length)) {
+        for (double& a : v.axis) a /= length;
+      }
+    }
+    context.model.initial_velocities.push_back(v);
+    n += 2;
+    cursor.skip_blank_lines();
+  } while (!cursor.at_end());
+}
+
+void load_node(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  const model::Target target = node_or_set(block);
+  const char* id_field = target == model::Target::Node ? "NID" : "NSID";
+  bool any = false;
+  while (true) {
+    cursor.skip_blank_lines();
+    if (cursor.at_end()) break;
+    const Card card = cursor.next(1, kEightByTen, "NID DOF LCID SF CID M1 M2 M3");
+    model::NodalLoad load;
+    load.target = target;
+    load.id = card.id(0, id_field);
+    if (load.id <= 0) throw card.error(id_field, "a positive ID is required");
+    load.dof = translational_dof(card, "DOF", card.flag(1, "DOF", 0),
+                                 "; moments and follower forces are not supported");
+    load.lcid = card.id(2, "LCID");
+    if (load.lcid <= 0) throw card.error("LCID", "a load curve ID is required");
+    load.sf = card.real(3, "SF", 1.0);
+    if (card.id(4, "CID") != 0) {
+      throw card.error("CID", "local coordinate systems are not supported");
+    }
+    load.where = card.location();
+    context.model.nodal_loads.push_back(load);
+    any = true;
+  }
+  if (!any) throw block_error(block, 1, id_field, "no load card follows the keyword");
+}
+
+void load_body(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  const Card card = cursor.next(1, kEightByTen, "LCID SF LCIDDR XC YC ZC CID");
+  model::BodyLoad load;
+  const char axis = block.base.back();
+  load.direction = axis - 'X';
+  load.lcid = card.id(0, "LCID");
+  if (load.lcid <= 0) throw card.error("LCID", "a load curve ID is required");
+  load.sf = card.real(1, "SF", 1.0);
+  if (card.id(2, "LCIDDR") != 0) {
+    context.warn(card.location(), "LCIDDR ignored: dynamic relaxation is not supported");
+  }
+  if (card.id(6, "CID") != 0) throw card.error("CID", "local coordinate systems are not supported");
+  load.where = card.location();
+  context.model.body_loads.push_back(load);
+  warn_unread_lines(block, cursor, context);
+}
+
+}  // namespace rf::io::handlers

@@ -1,0 +1,350 @@
+// Mesh, parts, sections, materials and sets.
+#include <fmt/format.h>
+
+#include "io/keyword/handlers.hpp"
+#include "io/keyword/number.hpp"
+
+namespace rf::io::handlers {
+
+namespace {
+
+const Layout kEightByTen = uniform_layout(8, 10);
+
+// Reads the title card of a _TITLE option, if present.
+std::string read_title(const Block& block, CardCursor& cursor) {
+  if (!block.has_option("TITLE")) return {};
+  return cursor.next_text(1, "title");
+}
+
+template <typename Map>
+void check_unique(const Map& map, model::Id id, const Card& card, const char* field,
+                  const char* what) {
+  if (const auto it = map.find(id); it != map.end()) {
+    const auto& w = it->second.where;
+    throw card.error(field, fmt::format("{} {} is already defined at {}:{} ({})", what, id,
+                                        w.file, w.line, w.keyword));
+  }
+}
+
+model::Id positive_id(const Card& card, std::size_t i, const char* field, const char* what) {
+  const model::Id id = card.id(i, field);
+  if (id <= 0) throw card.error(field, fmt::format("{} ID must be a positive integer", what));
+  return id;
+}
+
+bool only_blank_lines_left(const CardCursor& cursor, const Block& block) {
+  for (std::size_t i = block.lines.size() - cursor.remaining(); i < block.lines.size(); ++i) {
+    if (!trim(block.lines[i].text).empty()) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+void node(const Block& block, ReaderContext& context) {
+  static const Layout layout{8, 16, 16, 16, 8, 8};
+  CardCursor cursor(block, context.parameters);
+  auto& nodes = context.model.nodes;
+  while (true) {
+    cursor.skip_blank_lines();
+    if (cursor.at_end()) break;
+    const Card card = cursor.next(1, layout, "NID X Y Z TC RC");
+    model::Node n;
+    n.id = positive_id(card, 0, "NID", "node");
+    n.x = {card.real(1, "X", 0.0), card.real(2, "Y", 0.0), card.real(3, "Z", 0.0)};
+    n.tc = card.flag(4, "TC", 0);
+    n.rc = card.flag(5, "RC", 0);
+    if (n.tc < 0 || n.tc > 7) throw card.error("TC", fmt::format("value {} is not 0..7", n.tc));
+    if (n.rc < 0 || n.rc > 7) throw card.error("RC", fmt::format("value {} is not 0..7", n.rc));
+    const auto [it, inserted] = context.node_origin.try_emplace(
+        n.id, std::pair{context.current_file_index, card.line_number()});
+    if (!inserted) {
+      throw card.error("NID", fmt::format("node {} is already defined at {}", n.id,
+                                          context.origin_text(it->second)));
+    }
+    nodes.push_back(n);
+  }
+}
+
+void element_solid(const Block& block, ReaderContext& context) {
+  static const Layout layout = uniform_layout(10, 8);
+  static const char* const kNodeFields[] = {"N1", "N2", "N3", "N4", "N5",
+                                            "N6", "N7", "N8", "N9", "N10"};
+  CardCursor cursor(block, context.parameters);
+  while (true) {
+    cursor.skip_blank_lines();
+    if (cursor.at_end()) break;
+    const Card first = cursor.next(1, layout, "EID PID N1..N8");
+    model::SolidElement e;
+    e.id = positive_id(first, 0, "EID", "element");
+    e.pid = first.id(1, "PID");
+    e.where = first.location();
+    // The current manual puts EID PID on card 1 and the nodes on card 2; older decks put
+    // all ten fields on one line. A card 1 with nothing after PID means the two-card form.
+    bool nodes_on_first = false;
+    for (std::size_t i = 2; i < first.field_count(); ++i) nodes_on_first |= !first.blank(i);
+    std::optional<Card> second;
+    if (!nodes_on_first) second.emplace(cursor.next(2, layout, "N1..N8"));
+    const Card& nodes = second ? *second : first;
+    const std::size_t offset = second ? 0 : 2;
+    for (std::size_t k = 0; k < 8; ++k) {
+      e.nodes[k] = nodes.id(offset + k, kNodeFields[k]);
+      if (e.nodes[k] <= 0) {
+        throw nodes.error(kNodeFields[k],
+                          "an 8-node solid needs 8 positive node IDs (repeat node IDs for "
+                          "wedges, pyramids and tetrahedra)");
+      }
+    }
+    if (second) {
+      for (std::size_t k = 8; k < 10; ++k) {
+        if (nodes.id(k, kNodeFields[k]) != 0) {
+          throw nodes.error(kNodeFields[k], "10-node solids are not supported");
+        }
+      }
+      e.where.line = first.line_number();
+    }
+    const auto [it, inserted] = context.element_origin.try_emplace(
+        e.id, std::pair{context.current_file_index, first.line_number()});
+    if (!inserted) {
+      throw first.error("EID", fmt::format("element {} is already defined at {}", e.id,
+                                           context.origin_text(it->second)));
+    }
+    context.model.solids.push_back(e);
+  }
+}
+
+void part(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  int card_number = 1;
+  do {
+    const std::string heading = cursor.next_text(card_number, "HEADING");
+    const Card card = cursor.next(card_number + 1, kEightByTen,
+                                  "PID SECID MID EOSID HGID GRAV ADPOPT TMID");
+    model::Part p;
+    p.id = positive_id(card, 0, "PID", "part");
+    p.title = heading;
+    p.secid = card.id(1, "SECID");
+    p.mid = card.id(2, "MID");
+    p.eosid = card.id(3, "EOSID");
+    p.hgid = card.id(4, "HGID");
+    p.where = card.location();
+    if (p.eosid != 0) {
+      throw card.error("EOSID", "equations of state are not supported (leave EOSID blank)");
+    }
+    check_unique(context.model.parts, p.id, card, "PID", "part");
+    context.model.parts.emplace(p.id, std::move(p));
+    card_number += 2;
+  } while (!only_blank_lines_left(cursor, block));
+}
+
+void section_solid(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  do {
+    read_title(block, cursor);
+    const int card_number = block.has_option("TITLE") ? 2 : 1;
+    const Card card = cursor.next(card_number, kEightByTen, "SECID ELFORM AET");
+    model::SectionSolid s;
+    s.id = positive_id(card, 0, "SECID", "section");
+    s.elform = card.flag(1, "ELFORM", 1);
+    if (s.elform == 0) s.elform = 1;  // LS-DYNA: 0 means the default formulation 1
+    if (s.elform != 1 && s.elform != 2) {
+      throw card.error("ELFORM",
+                       fmt::format("value {} is not supported (supported: 1, 2)", s.elform));
+    }
+    s.where = card.location();
+    check_unique(context.model.solid_sections, s.id, card, "SECID", "section");
+    context.model.solid_sections.emplace(s.id, std::move(s));
+  } while (!only_blank_lines_left(cursor, block));
+}
+
+namespace {
+
+void check_elastic_constants(const Card& card, const model::Material& m) {
+  if (!(m.rho > 0.0)) {
+    throw card.error("RO", fmt::format("density {} must be positive", m.rho));
+  }
+  if (!(m.e > 0.0)) {
+    throw card.error("E", fmt::format("Young's modulus {} must be positive", m.e));
+  }
+  if (!(m.pr > -1.0 && m.pr < 0.5)) {
+    throw card.error("PR", fmt::format("Poisson's ratio {} must lie in (-1, 0.5)", m.pr));
+  }
+}
+
+void add_material(ReaderContext& context, const Card& card, model::Material m) {
+  check_unique(context.model.materials, m.id, card, "MID", "material");
+  context.model.materials.emplace(m.id, std::move(m));
+}
+
+}  // namespace
+
+void mat_elastic(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  read_title(block, cursor);
+  const int n = block.has_option("TITLE") ? 2 : 1;
+  const Card card = cursor.next(n, kEightByTen, "MID RO E PR DA DB K");
+  model::Material m;
+  m.id = positive_id(card, 0, "MID", "material");
+  m.kind = model::MaterialKind::Elastic;
+  m.keyword = block.keyword;
+  m.rho = card.real(1, "RO", 0.0);
+  m.e = card.real(2, "E", 0.0);
+  m.pr = card.real(3, "PR", 0.0);
+  m.where = card.location();
+  check_elastic_constants(card, m);
+  // DA and DB damp beams only; they do not change a solid's response.
+  if (card.real(4, "DA", 0.0) != 0.0 || card.real(5, "DB", 0.0) != 0.0) {
+    context.warn(card.location(), "DA/DB (beam damping) are ignored for solid elements");
+  }
+  if (card.real(6, "K", 0.0) != 0.0) {
+    throw card.error("K", "the bulk modulus K belongs to the fluid option, which is not "
+                          "supported (leave K blank)");
+  }
+  add_material(context, card, std::move(m));
+  warn_unread_lines(block, cursor, context);
+}
+
+void mat_rigid(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  read_title(block, cursor);
+  const int n = block.has_option("TITLE") ? 2 : 1;
+  const Card card = cursor.next(n, kEightByTen, "MID RO E PR N COUPLE M ALIAS");
+  model::Material m;
+  m.id = positive_id(card, 0, "MID", "material");
+  m.kind = model::MaterialKind::Rigid;
+  m.keyword = block.keyword;
+  m.rho = card.real(1, "RO", 0.0);
+  m.e = card.real(2, "E", 0.0);
+  m.pr = card.real(3, "PR", 0.0);
+  m.where = card.location();
+  check_elastic_constants(card, m);
+  if (const auto constraints = cursor.next_optional(n + 1, kEightByTen)) {
+    m.cmo = constraints->real(0, "CMO", 0.0);
+    m.con1 = constraints->real(1, "CON1", 0.0);
+    m.con2 = constraints->real(2, "CON2", 0.0);
+    if (m.cmo != 0.0 && m.cmo != 1.0) {
+      const char* why = m.cmo == -1.0 ? "local constraint directions (CMO -1) are not supported"
+                                      : "value must be 0 or 1";
+      throw constraints->error("CMO", fmt::format("CMO {}: {}", m.cmo, why));
+    }
+    for (const auto& [value, name] : {std::pair{m.con1, "CON1"}, std::pair{m.con2, "CON2"}}) {
+      if (value < 0.0 || value > 7.0 || value != static_cast<int>(value)) {
+        throw constraints->error(name, fmt::format("value {} is not a code 0..7", value));
+      }
+    }
+  }
+  if (cursor.next_optional(n + 2, kEightByTen)) {
+    // Card 3 (LCO or A1..V3) only orients output for rigid bodies; nothing to keep.
+  }
+  add_material(context, card, std::move(m));
+  warn_unread_lines(block, cursor, context);
+}
+
+void hourglass(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  do {
+    read_title(block, cursor);
+    const int n = block.has_option("TITLE") ? 2 : 1;
+    const Card card = cursor.next(n, kEightByTen, "HGID IHQ QM IBQ Q1 Q2 QB QW");
+    model::Hourglass h;
+    h.id = positive_id(card, 0, "HGID", "hourglass");
+    h.ihq = card.flag(1, "IHQ", 0);
+    h.qm = card.real(2, "QM", 0.1);
+    h.q1 = card.real(4, "Q1", 1.5);
+    h.q2 = card.real(5, "Q2", 0.06);
+    h.qb = card.real(6, "QB", h.qm);
+    h.qw = card.real(7, "QW", h.qm);
+    h.where = card.location();
+    if (h.ihq < 0 || h.ihq > 10) {
+      throw card.error("IHQ", fmt::format("value {} is not a hourglass type 0..10", h.ihq));
+    }
+    if (h.qm < 0.0) throw card.error("QM", fmt::format("value {} must not be negative", h.qm));
+    check_unique(context.model.hourglass, h.id, card, "HGID", "hourglass");
+    context.model.hourglass.emplace(h.id, std::move(h));
+  } while (!only_blank_lines_left(cursor, block));
+}
+
+namespace {
+
+// Shared by node and part lists: card 1 SID DA1..DA4 SOLVER, then eight IDs per card.
+template <typename Set>
+Set read_id_list(const Block& block, ReaderContext& context, const char* id_field,
+                 std::vector<model::Id>& ids) {
+  CardCursor cursor(block, context.parameters);
+  read_title(block, cursor);
+  int n = block.has_option("TITLE") ? 2 : 1;
+  const Card head = cursor.next(n, kEightByTen, "SID DA1 DA2 DA3 DA4 SOLVER");
+  Set set;
+  set.id = positive_id(head, 0, "SID", "set");
+  set.where = head.location();
+  while (true) {
+    cursor.skip_blank_lines();
+    if (cursor.at_end()) break;
+    const Card card = cursor.next(++n, kEightByTen, id_field);
+    for (std::size_t i = 0; i < card.field_count(); ++i) {
+      const model::Id id = card.id(i, id_field);
+      if (id < 0) throw card.error(id_field, fmt::format("ID {} must not be negative", id));
+      if (id != 0) ids.push_back(id);
+    }
+  }
+  return set;
+}
+
+}  // namespace
+
+void set_node_list(const Block& block, ReaderContext& context) {
+  std::vector<model::Id> ids;
+  auto set = read_id_list<model::NodeSet>(block, context, "NID", ids);
+  set.nodes = std::move(ids);
+  if (const auto it = context.model.node_sets.find(set.id); it != context.model.node_sets.end()) {
+    throw located_error(set.where, "SID",
+                        fmt::format("node set {} is already defined at {}:{}", set.id,
+                                    it->second.where.file, it->second.where.line));
+  }
+  context.model.node_sets.emplace(set.id, std::move(set));
+}
+
+void set_part_list(const Block& block, ReaderContext& context) {
+  std::vector<model::Id> ids;
+  auto set = read_id_list<model::PartSet>(block, context, "PID", ids);
+  set.parts = std::move(ids);
+  if (const auto it = context.model.part_sets.find(set.id); it != context.model.part_sets.end()) {
+    throw located_error(set.where, "SID",
+                        fmt::format("part set {} is already defined at {}:{}", set.id,
+                                    it->second.where.file, it->second.where.line));
+  }
+  context.model.part_sets.emplace(set.id, std::move(set));
+}
+
+void set_segment(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  read_title(block, cursor);
+  int n = block.has_option("TITLE") ? 2 : 1;
+  const Card head = cursor.next(n, kEightByTen, "SID DA1 DA2 DA3 DA4 SOLVER");
+  model::SegmentSet set;
+  set.id = positive_id(head, 0, "SID", "segment set");
+  set.where = head.location();
+  static const char* const kFields[] = {"N1", "N2", "N3", "N4"};
+  while (true) {
+    cursor.skip_blank_lines();
+    if (cursor.at_end()) break;
+    const Card card = cursor.next(++n, kEightByTen, "N1 N2 N3 N4");
+    std::array<model::Id, 4> segment{};
+    for (std::size_t k = 0; k < 4; ++k) {
+      segment[k] = card.id(k, kFields[k]);
+      if (segment[k] < 0 || (k < 3 && segment[k] == 0)) {
+        throw card.error(kFields[k], fmt::format("node ID {} is not valid", segment[k]));
+      }
+    }
+    if (segment[3] == 0) segment[3] = segment[2];  // triangle: N4 repeats N3
+    set.segments.push_back(segment);
+  }
+  if (const auto it = context.model.segment_sets.find(set.id);
+      it != context.model.segment_sets.end()) {
+    throw head.error("SID", fmt::format("segment set {} is already defined at {}:{}", set.id,
+                                        it->second.where.file, it->second.where.line));
+  }
+  context.model.segment_sets.emplace(set.id, std::move(set));
+}
+
+}  // namespace rf::io::handlers

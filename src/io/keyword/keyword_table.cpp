@@ -1,0 +1,79 @@
+// Registered keywords. Adding a keyword: write a handler, list it here, document it in
+// docs/keywords.md.
+#include "io/keyword/handlers.hpp"
+
+namespace rf::io {
+
+namespace {
+
+const std::vector<KeywordEntry>& table() {
+  using namespace handlers;
+  static const std::vector<KeywordEntry> entries{
+      {"*NODE", node, {}},
+      {"*ELEMENT_SOLID", element_solid, {}},
+      {"*PART", part, {}},
+      {"*SECTION_SOLID", section_solid, {"TITLE"}},
+      {"*MAT_ELASTIC", mat_elastic, {"TITLE"}},
+      {"*MAT_001", mat_elastic, {"TITLE"}},
+      {"*MAT_RIGID", mat_rigid, {"TITLE"}},
+      {"*MAT_020", mat_rigid, {"TITLE"}},
+      {"*HOURGLASS", hourglass, {"TITLE"}},
+      {"*SET_NODE", set_node_list, {"TITLE"}},
+      {"*SET_NODE_LIST", set_node_list, {"TITLE"}},
+      {"*SET_PART", set_part_list, {"TITLE"}},
+      {"*SET_PART_LIST", set_part_list, {"TITLE"}},
+      {"*SET_SEGMENT", set_segment, {"TITLE"}},
+      {"*BOUNDARY_SPC_NODE", boundary_spc, {"ID"}},
+      {"*BOUNDARY_SPC_SET", boundary_spc, {"ID"}},
+      {"*BOUNDARY_PRESCRIBED_MOTION_NODE", boundary_prescribed_motion, {"ID"}},
+      {"*BOUNDARY_PRESCRIBED_MOTION_SET", boundary_prescribed_motion, {"ID"}},
+      {"*DEFINE_CURVE", define_curve, {"TITLE"}},
+      {"*INITIAL_VELOCITY", initial_velocity, {}},
+      {"*INITIAL_VELOCITY_NODE", initial_velocity_node, {}},
+      {"*INITIAL_VELOCITY_GENERATION", initial_velocity_generation, {}},
+      {"*LOAD_NODE_POINT", load_node, {}},
+      {"*LOAD_NODE_SET", load_node, {}},
+      {"*LOAD_BODY_X", load_body, {}},
+      {"*LOAD_BODY_Y", load_body, {}},
+      {"*LOAD_BODY_Z", load_body, {}},
+      {"*CONTROL_TERMINATION", control_termination, {}},
+      {"*CONTROL_TIMESTEP", control_timestep, {}},
+      {"*CONTROL_HOURGLASS", control_hourglass, {}},
+      {"*DATABASE_GLSTAT", database_ascii, {}},
+      {"*DATABASE_NODOUT", database_ascii, {}},
+      {"*DATABASE_BINARY_D3PLOT", database_binary_d3plot, {}},
+      {"*DATABASE_HISTORY_NODE", database_history_node, {}},
+      {"*DATABASE_HISTORY_NODE_SET", database_history_node, {}},
+      {"*PARAMETER", parameter, {"NOECHO"}},
+      {"*PARAMETER_EXPRESSION", parameter_expression, {"NOECHO"}},
+      {"*TITLE", title, {}},
+      {"*INCLUDE", include, {}},
+      {"*KEYWORD", ignore, {}},  // format switches are applied while splitting
+      {"*COMMENT", ignore, {}},
+  };
+  return entries;
+}
+
+}  // namespace
+
+const KeywordEntry* find_keyword(std::string_view keyword, std::vector<std::string>& options) {
+  const KeywordEntry* best = nullptr;
+  for (const auto& entry : table()) {
+    if (!keyword.starts_with(entry.name)) continue;
+    if (keyword.size() > entry.name.size() && keyword[entry.name.size()] != '_') continue;
+    if (!best || entry.name.size() > best->name.size()) best = &entry;
+  }
+  options.clear();
+  if (!best) return nullptr;
+  std::string_view rest = keyword.substr(best->name.size());
+  while (!rest.empty()) {
+    rest.remove_prefix(1);  // the '_'
+    const auto next = rest.find('_');
+    options.emplace_back(rest.substr(0, next));
+    if (next == std::string_view::npos) break;
+    rest.remove_prefix(next);
+  }
+  return best;
+}
+
+}  // namespace rf::io

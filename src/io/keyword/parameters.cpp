@@ -1,0 +1,106 @@
+#include "io/keyword/parameters.hpp"
+
+#include <muParser.h>
+
+#include <cctype>
+#include <cmath>
+#include <numbers>
+#include <set>
+#include <stdexcept>
+
+namespace rf::io {
+
+std::string to_upper(std::string_view text) {
+  std::string out(text);
+  for (char& c : out) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return out;
+}
+
+namespace {
+// muparser accepts letters, digits and '_' in names; other deck names simply cannot be
+// used inside expressions.
+bool is_identifier(const std::string& name) {
+  if (name.empty() || std::isdigit(static_cast<unsigned char>(name[0]))) return false;
+  for (char c : name) {
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_') return false;
+  }
+  return true;
+}
+}  // namespace
+
+ParameterTable::ParameterTable(const std::map<std::string, double>& overrides) {
+  for (const auto& [name, value] : overrides) {
+    overrides_[to_upper(name)] = value;
+    override_names_[to_upper(name)] = name;
+  }
+}
+
+double ParameterTable::define(const std::string& name, double value) {
+  const std::string key = to_upper(name);
+  if (const auto it = overrides_.find(key); it != overrides_.end()) value = it->second;
+  auto [it, inserted] = by_key_.try_emplace(key, Entry{name, value, std::nullopt});
+  if (!inserted) {
+    it->second.value = value;
+    it->second.text.reset();
+  }
+  return value;
+}
+
+void ParameterTable::define_text(const std::string& name, const std::string& value) {
+  const std::string key = to_upper(name);
+  by_key_[key] = Entry{name, 0.0, value};
+}
+
+std::optional<double> ParameterTable::find(std::string_view name) const {
+  const auto it = by_key_.find(to_upper(name));
+  if (it == by_key_.end() || it->second.text) return std::nullopt;
+  return it->second.value;
+}
+
+bool ParameterTable::contains(std::string_view name) const {
+  return by_key_.count(to_upper(name)) > 0;
+}
+
+double ParameterTable::evaluate(const std::string& expression) const {
+  try {
+    mu::Parser parser;
+    parser.DefineConst("pi", std::numbers::pi);
+    parser.DefineConst("PI", std::numbers::pi);
+    for (const auto& [key, entry] : by_key_) {
+      if (entry.text) continue;
+      // Deck names are case-insensitive but muparser's are not: offer the name as written
+      // plus its upper- and lower-case spellings.
+      std::string lower = key;
+      for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      std::set<std::string> spellings{entry.name, key, lower};
+      for (const std::string& spelling : spellings) {
+        if (spelling == "pi" || spelling == "PI" || !is_identifier(spelling)) continue;
+        parser.DefineConst(spelling, entry.value);
+      }
+    }
+    parser.SetExpr(expression);
+    const double value = parser.Eval();
+    if (!std::isfinite(value)) throw std::runtime_error("the result is not a finite number");
+    return value;
+  } catch (const mu::Parser::exception_type& e) {
+    throw std::runtime_error(e.GetMsg());
+  }
+}
+
+std::map<std::string, double> ParameterTable::values() const {
+  std::map<std::string, double> out;
+  for (const auto& [key, entry] : by_key_) {
+    if (!entry.text) out[entry.name] = entry.value;
+  }
+  return out;
+}
+
+std::map<std::string, double> ParameterTable::unused_overrides() const {
+  std::map<std::string, double> out;
+  for (const auto& [key, value] : overrides_) {
+    if (!by_key_.count(key)) out[override_names_.at(key)] = value;
+  }
+  return out;
+}
+
+}  // namespace rf::io
