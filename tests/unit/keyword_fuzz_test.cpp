@@ -28,7 +28,9 @@ std::string join_lines(const std::vector<std::string>& lines) {
 }
 
 std::string mutate(const std::string& original, std::mt19937_64& rng) {
-  auto pick = [&](std::size_t n) { return n == 0 ? 0 : std::uniform_int_distribution<std::size_t>(0, n - 1)(rng); };
+  auto pick = [&](std::size_t n) {
+    return n == 0 ? 0 : std::uniform_int_distribution<std::size_t>(0, n - 1)(rng);
+  };
   std::string text = original;
   const int edits = 1 + static_cast<int>(pick(4));
   for (int e = 0; e < edits; ++e) {
@@ -58,12 +60,11 @@ std::string mutate(const std::string& original, std::mt19937_64& rng) {
         }
         break;
       case 4:  // insert random bytes, NUL and high bytes included
-        {
-          std::string junk(1 + pick(16), '\0');
-          for (char& c : junk) c = static_cast<char>(pick(256));
-          text.insert(pick(text.size() + 1), junk);
-        }
-        break;
+      {
+        std::string junk(1 + pick(16), '\0');
+        for (char& c : junk) c = static_cast<char>(pick(256));
+        text.insert(pick(text.size() + 1), junk);
+      } break;
       case 5: {  // swap two lines
         auto lines = split_lines(text);
         if (lines.size() > 1) std::swap(lines[pick(lines.size())], lines[pick(lines.size())]);
@@ -72,8 +73,8 @@ std::string mutate(const std::string& original, std::mt19937_64& rng) {
       }
       case 6:  // huge or odd numbers
         if (!text.empty()) {
-          static const char* const numbers[] = {"1e308", "9999999999999999999", "-1e-320",
-                                                "1.5", "&x", "-&", "nan", "1+", "--1"};
+          static const char* const numbers[] = {
+              "1e308", "9999999999999999999", "-1e-320", "1.5", "&x", "-&", "nan", "1+", "--1"};
           text.insert(pick(text.size() + 1), numbers[pick(std::size(numbers))]);
         }
         break;
