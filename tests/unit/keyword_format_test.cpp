@@ -139,7 +139,7 @@ TEST(KeywordFormat, FixedFormatValuesAreReadAsWritten) {
   EXPECT_DOUBLE_EQ(m.materials.at(2).con1, 4.0);
   EXPECT_DOUBLE_EQ(m.hourglass.at(1).qb, 0.05);  // QB defaults to QM
   EXPECT_EQ(m.node_sets.at(1).nodes, (std::vector<rf::model::Id>{1, 2, 3, 4}));  // zero dropped
-  EXPECT_DOUBLE_EQ(m.curves.at(1).sfa, 1.0);  // SFA 0 means 1
+  EXPECT_DOUBLE_EQ(m.curves.at(1).sfa, 1.0);                                     // SFA 0 means 1
   EXPECT_DOUBLE_EQ(m.curves.at(1).sfo, 2.0);
   EXPECT_DOUBLE_EQ(m.curves.at(1).abscissa[1], 1.0e-3);
   ASSERT_EQ(m.prescribed_motions.size(), 2u);
@@ -154,7 +154,7 @@ TEST(KeywordFormat, FixedFormatValuesAreReadAsWritten) {
   EXPECT_DOUBLE_EQ(m.initial_velocities[0].omega, 10.0);
   EXPECT_DOUBLE_EQ(m.initial_velocities[0].axis[2], 1.0);
   EXPECT_EQ(m.body_loads.at(0).direction, 2);
-  EXPECT_DOUBLE_EQ(m.timestep.tssfac, 0.9);  // TSSFAC 0 means 0.9
+  EXPECT_DOUBLE_EQ(m.timestep.tssfac, 0.9);           // TSSFAC 0 means 0.9
   EXPECT_DOUBLE_EQ(m.output.d3plot_dt, 1.0e-3 / 50);  // NPLTC resolved against ENDTIM
   EXPECT_DOUBLE_EQ(m.output.nodout_dt, 2.0e-5);
   EXPECT_EQ(m.output.history_nodes, (std::vector<rf::model::Id>{12, 9}));

@@ -58,13 +58,13 @@ TEST(KeywordParameter, UnusedOverrideWarns) {
 
 TEST(KeywordParameter, IntegerFieldRejectsFractionalParameter) {
   const std::string message = rf::test::input_error_of(
-      "*PARAMETER\nR  id       1.5\n*NODE\n    &id             0.0             0.0             0.0\n");
+      "*PARAMETER\nR  id       1.5\n*NODE\n    &id             0.0             0.0             "
+      "0.0\n");
   EXPECT_NE(message.find("bar.k:4: *NODE card 1 field NID"), std::string::npos) << message;
 }
 
 TEST(KeywordParameter, BadExpressionNamesTheExpression) {
-  const std::string message =
-      rf::test::input_error_of("*PARAMETER_EXPRESSION\nR x       2*(3+\n");
+  const std::string message = rf::test::input_error_of("*PARAMETER_EXPRESSION\nR x       2*(3+\n");
   EXPECT_NE(message.find("bar.k:2: *PARAMETER_EXPRESSION card 1 field EXPRESSION"),
             std::string::npos)
       << message;

@@ -45,8 +45,10 @@ std::string quoted(std::string_view text) {
   std::string out = "'";
   for (char c : text.substr(0, 40)) {
     const auto u = static_cast<unsigned char>(c);
-    if (u >= 32 && u < 127) out += c;
-    else out += fmt::format("\\x{:02x}", u);
+    if (u >= 32 && u < 127)
+      out += c;
+    else
+      out += fmt::format("\\x{:02x}", u);
   }
   if (text.size() > 40) out += "...";
   return out + "'";
@@ -83,7 +85,9 @@ Card::Card(const Block& block, const DataLine& line, int card_number, const Layo
   }
 }
 
-std::size_t Card::field_count() const { return fields_.size(); }
+std::size_t Card::field_count() const {
+  return fields_.size();
+}
 
 std::string_view Card::text(std::size_t i) const {
   return i < fields_.size() ? fields_[i] : std::string_view{};
@@ -93,7 +97,9 @@ InputError Card::error(const char* field, const std::string& message) const {
   return InputError({block_.file, line_.number, block_.keyword, card_number_, field}, message);
 }
 
-model::SourceLocation Card::location() const { return {block_.file, line_.number, block_.keyword}; }
+model::SourceLocation Card::location() const {
+  return {block_.file, line_.number, block_.keyword};
+}
 
 std::optional<double> Card::substituted(std::string_view text, const char* name) const {
   bool negate = false;
@@ -110,8 +116,8 @@ std::optional<double> Card::substituted(std::string_view text, const char* name)
   const auto value = parameters_.find(text);
   if (!value) {
     if (parameters_.contains(text)) {
-      throw error(name, fmt::format("parameter {} is a text parameter, a number is needed",
-                                    quoted(text)));
+      throw error(
+          name, fmt::format("parameter {} is a text parameter, a number is needed", quoted(text)));
     }
     throw error(name, fmt::format("parameter {} is not defined (define it with *PARAMETER "
                                   "before it is used)",

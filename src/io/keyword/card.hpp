@@ -47,7 +47,9 @@ struct Block {
 
 // Widths of the fields of a card in standard format.
 using Layout = std::vector<int>;
-inline Layout uniform_layout(int count, int width) { return Layout(count, width); }
+inline Layout uniform_layout(int count, int width) {
+  return Layout(count, width);
+}
 
 class Card {
  public:

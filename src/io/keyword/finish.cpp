@@ -19,8 +19,8 @@ void warn_unread_lines(const Block& block, CardCursor& cursor, ReaderContext& co
   if (cursor.at_end()) return;
   const DataLine* line = cursor.peek();
   context.warn({block.file, line->number, block.keyword},
-               fmt::format("{} data line(s) after the last card of {} ignored",
-                           cursor.remaining(), block.keyword));
+               fmt::format("{} data line(s) after the last card of {} ignored", cursor.remaining(),
+                           block.keyword));
 }
 
 namespace {
@@ -34,11 +34,12 @@ void check_curve(const model::Model& m, Id lcid, const model::SourceLocation& wh
   }
 }
 
-void check_target(const model::Model& m, const std::unordered_set<Id>& nodes,
-                  model::Target target, Id id, const model::SourceLocation& where) {
+void check_target(const model::Model& m, const std::unordered_set<Id>& nodes, model::Target target,
+                  Id id, const model::SourceLocation& where) {
   switch (target) {
     case model::Target::Node:
-      if (!nodes.count(id)) throw located_error(where, "NID", fmt::format("node {} is not defined", id));
+      if (!nodes.count(id))
+        throw located_error(where, "NID", fmt::format("node {} is not defined", id));
       break;
     case model::Target::NodeSet:
       if (!m.node_sets.count(id)) {
@@ -46,7 +47,8 @@ void check_target(const model::Model& m, const std::unordered_set<Id>& nodes,
       }
       break;
     case model::Target::Part:
-      if (!m.parts.count(id)) throw located_error(where, "ID", fmt::format("part {} is not defined", id));
+      if (!m.parts.count(id))
+        throw located_error(where, "ID", fmt::format("part {} is not defined", id));
       break;
     case model::Target::PartSet:
       if (!m.part_sets.count(id)) {
@@ -90,15 +92,15 @@ void finish_model(ReaderContext& context) {
   static const char* const kNodeFields[] = {"N1", "N2", "N3", "N4", "N5", "N6", "N7", "N8"};
   for (const auto& e : m.solids) {
     if (!m.parts.count(e.pid)) {
-      throw located_error(e.where, "PID",
-                          fmt::format("element {} refers to part {}, which is not defined", e.id,
-                                      e.pid));
+      throw located_error(
+          e.where, "PID",
+          fmt::format("element {} refers to part {}, which is not defined", e.id, e.pid));
     }
     for (std::size_t k = 0; k < 8; ++k) {
       if (!nodes.count(e.nodes[k])) {
-        throw located_error(e.where, kNodeFields[k],
-                            fmt::format("element {} refers to node {}, which is not defined",
-                                        e.id, e.nodes[k]));
+        throw located_error(
+            e.where, kNodeFields[k],
+            fmt::format("element {} refers to node {}, which is not defined", e.id, e.nodes[k]));
       }
     }
   }
@@ -124,9 +126,9 @@ void finish_model(ReaderContext& context) {
                                         : ""));
     }
     if (p.hgid != 0 && !m.hourglass.count(p.hgid)) {
-      throw located_error(p.where, "HGID",
-                          fmt::format("part {} refers to *HOURGLASS {}, which is not defined", id,
-                                      p.hgid));
+      throw located_error(
+          p.where, "HGID",
+          fmt::format("part {} refers to *HOURGLASS {}, which is not defined", id, p.hgid));
     }
   }
   for (const auto& [id, set] : m.node_sets) {
@@ -149,9 +151,9 @@ void finish_model(ReaderContext& context) {
     for (const auto& segment : set.segments) {
       for (Id n : segment) {
         if (!nodes.count(n)) {
-          throw located_error(set.where, "N1",
-                              fmt::format("segment set {} uses node {}, which is not defined", id,
-                                          n));
+          throw located_error(
+              set.where, "N1",
+              fmt::format("segment set {} uses node {}, which is not defined", id, n));
         }
       }
     }

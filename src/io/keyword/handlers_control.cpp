@@ -36,8 +36,9 @@ void control_termination(const Block& block, ReaderContext& context) {
     if (t.endcyc < 0) throw card->error("ENDCYC", "value must not be negative");
     t.dtmin = non_negative(*card, 2, "DTMIN", 0.0);
     if (card->real(3, "ENDENG", 0.0) != 0.0 || card->real(4, "ENDMAS", 0.0) != 0.0) {
-      context.warn(card->location(), "ENDENG/ENDMAS ignored: only ENDTIM, ENDCYC and DTMIN "
-                                     "end a run");
+      context.warn(card->location(),
+                   "ENDENG/ENDMAS ignored: only ENDTIM, ENDCYC and DTMIN "
+                   "end a run");
     }
   }
   warn_unread_lines(block, cursor, context);
@@ -90,8 +91,10 @@ void database_ascii(const Block& block, ReaderContext& context) {
       context.warn(card->location(), "LCUR ignored: output intervals come from DT");
     }
   }
-  if (block.base == "*DATABASE_GLSTAT") context.model.output.glstat_dt = dt;
-  else context.model.output.nodout_dt = dt;
+  if (block.base == "*DATABASE_GLSTAT")
+    context.model.output.glstat_dt = dt;
+  else
+    context.model.output.nodout_dt = dt;
   warn_unread_lines(block, cursor, context);
 }
 
@@ -123,7 +126,8 @@ void database_history_node(const Block& block, ReaderContext& context) {
       const model::Id id = card.id(i, field);
       if (id < 0) throw card.error(field, fmt::format("ID {} must not be negative", id));
       if (id == 0) continue;
-      if (sets) context.history_node_sets.push_back({id, card.location()});
+      if (sets)
+        context.history_node_sets.push_back({id, card.location()});
       else {
         context.model.output.history_nodes.push_back(id);
         context.history_nodes.push_back({id, card.location()});
@@ -177,9 +181,8 @@ void parameter(const Block& block, ReaderContext& context) {
         context.parameters.define_text(name, std::string(card.text(2 * pair + 1)));
         continue;
       }
-      double value = type == 'I'
-                         ? static_cast<double>(card.integer(2 * pair + 1, kValues[pair], 0))
-                         : card.real(2 * pair + 1, kValues[pair], 0.0);
+      double value = type == 'I' ? static_cast<double>(card.integer(2 * pair + 1, kValues[pair], 0))
+                                 : card.real(2 * pair + 1, kValues[pair], 0.0);
       context.parameters.define(name, value);
     }
   }
@@ -211,8 +214,7 @@ void parameter_expression(const Block& block, ReaderContext& context) {
       value = context.parameters.evaluate(std::string(expression));
     } catch (const std::runtime_error& e) {
       throw card.error("EXPRESSION", fmt::format("cannot evaluate '{}': {}",
-                                                 std::string(expression.substr(0, 80)),
-                                                 e.what()));
+                                                 std::string(expression.substr(0, 80)), e.what()));
     }
     if (type == 'I') value = std::trunc(value);
     context.parameters.define(name, value);

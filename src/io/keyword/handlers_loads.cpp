@@ -84,8 +84,9 @@ void boundary_prescribed_motion(const Block& block, ReaderContext& context) {
     if (m.id <= 0) throw card.error(id_field, "a positive ID is required");
     const int dof = card.flag(1, "DOF", 0);
     if (dof == 4 || dof == -4) {
-      throw card.error("DOF", "motion along a vector (DOF 4 with VID) is not supported; "
-                              "use DOF 1, 2 or 3");
+      throw card.error("DOF",
+                       "motion along a vector (DOF 4 with VID) is not supported; "
+                       "use DOF 1, 2 or 3");
     }
     m.dof = translational_dof(card, "DOF", dof, "");
     m.vad = card.flag(2, "VAD", 0);
@@ -105,8 +106,8 @@ void boundary_prescribed_motion(const Block& block, ReaderContext& context) {
     if (m.death == 0.0) m.death = 1e28;  // LS-DYNA: 0 means never removed
     m.birth = card.real(7, "BIRTH", 0.0);
     if (m.death <= m.birth) {
-      throw card.error("DEATH", fmt::format("death time {} is not after birth time {}", m.death,
-                                            m.birth));
+      throw card.error("DEATH",
+                       fmt::format("death time {} is not after birth time {}", m.death, m.birth));
     }
     m.where = card.location();
     context.model.prescribed_motions.push_back(m);
@@ -171,8 +172,9 @@ namespace {
 void reject_rotation(const Card& card, std::size_t first, const char* const names[3]) {
   for (std::size_t k = 0; k < 3; ++k) {
     if (card.real(first + k, names[k], 0.0) != 0.0) {
-      throw card.error(names[k], "initial rotational velocities are not supported; use "
-                                 "*INITIAL_VELOCITY_GENERATION for a spinning body");
+      throw card.error(names[k],
+                       "initial rotational velocities are not supported; use "
+                       "*INITIAL_VELOCITY_GENERATION for a spinning body");
     }
   }
 }
@@ -205,8 +207,7 @@ void initial_velocity(const Block& block, ReaderContext& context) {
     model::InitialVelocity v;
     v.target = nsid == 0 ? model::Target::All : model::Target::NodeSet;
     v.id = nsid;
-    v.v = {velocity.real(0, "VX", 0.0), velocity.real(1, "VY", 0.0),
-           velocity.real(2, "VZ", 0.0)};
+    v.v = {velocity.real(0, "VX", 0.0), velocity.real(1, "VY", 0.0), velocity.real(2, "VZ", 0.0)};
     v.where = head.location();
     context.model.initial_velocities.push_back(v);
     n += 2;
@@ -218,8 +219,7 @@ void initial_velocity(const Block& block, ReaderContext& context) {
       model::InitialVelocity ve;
       ve.target = model::Target::NodeSet;
       ve.id = nsidex;
-      ve.v = {exempt.real(0, "VXE", 0.0), exempt.real(1, "VYE", 0.0),
-              exempt.real(2, "VZE", 0.0)};
+      ve.v = {exempt.real(0, "VXE", 0.0), exempt.real(1, "VYE", 0.0), exempt.real(2, "VZE", 0.0)};
       ve.where = exempt.location();
       context.model.initial_velocities.push_back(ve);
       ++n;

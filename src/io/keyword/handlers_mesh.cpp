@@ -21,8 +21,8 @@ void check_unique(const Map& map, model::Id id, const Card& card, const char* fi
                   const char* what) {
   if (const auto it = map.find(id); it != map.end()) {
     const auto& w = it->second.where;
-    throw card.error(field, fmt::format("{} {} is already defined at {}:{} ({})", what, id,
-                                        w.file, w.line, w.keyword));
+    throw card.error(field, fmt::format("{} {} is already defined at {}:{} ({})", what, id, w.file,
+                                        w.line, w.keyword));
   }
 }
 
@@ -118,8 +118,8 @@ void part(const Block& block, ReaderContext& context) {
   int card_number = 1;
   do {
     const std::string heading = cursor.next_text(card_number, "HEADING");
-    const Card card = cursor.next(card_number + 1, kEightByTen,
-                                  "PID SECID MID EOSID HGID GRAV ADPOPT TMID");
+    const Card card =
+        cursor.next(card_number + 1, kEightByTen, "PID SECID MID EOSID HGID GRAV ADPOPT TMID");
     model::Part p;
     p.id = positive_id(card, 0, "PID", "part");
     p.title = heading;
@@ -197,8 +197,9 @@ void mat_elastic(const Block& block, ReaderContext& context) {
     context.warn(card.location(), "DA/DB (beam damping) are ignored for solid elements");
   }
   if (card.real(6, "K", 0.0) != 0.0) {
-    throw card.error("K", "the bulk modulus K belongs to the fluid option, which is not "
-                          "supported (leave K blank)");
+    throw card.error("K",
+                     "the bulk modulus K belongs to the fluid option, which is not "
+                     "supported (leave K blank)");
   }
   add_material(context, card, std::move(m));
   warn_unread_lines(block, cursor, context);

@@ -47,8 +47,10 @@ std::size_t normalize(std::string_view text, std::array<char, kMaxNumberLength +
         has_exponent_letter = true;
         out[n++] = 'e';
       }
-      if (c == '-') out[n++] = c;
-      else if (!at_start) out[n++] = c;  // from_chars accepts '+' only in the exponent
+      if (c == '-')
+        out[n++] = c;
+      else if (!at_start)
+        out[n++] = c;  // from_chars accepts '+' only in the exponent
     } else {
       return 0;
     }

@@ -36,7 +36,7 @@ class ParameterTable {
     double value = 0.0;
     std::optional<std::string> text;  // C-type parameters
   };
-  std::map<std::string, Entry> by_key_;  // key: upper-case name
+  std::map<std::string, Entry> by_key_;      // key: upper-case name
   std::map<std::string, double> overrides_;  // key: upper-case name
   std::map<std::string, std::string> override_names_;
 };

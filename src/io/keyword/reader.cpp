@@ -24,8 +24,8 @@ constexpr int kMaxIncludeDepth = 64;
 class DeckReader {
  public:
   DeckReader(model::Model& model, const ReadOptions& options)
-      : parameters_(options.parameter_overrides),
-        context_{model, parameters_, {}, {}, {}, 0, 0, {}, {}, {}, {}} {
+      : parameters_(options.parameter_overrides), context_{model, parameters_, {}, {}, {}, 0,
+                                                           0,     {},          {}, {}, {}} {
     context_.include = [this](const std::string& filename, const Card& card) {
       include(filename, card);
     };
@@ -177,8 +177,8 @@ class DeckReader {
       }
     }
     if (static_cast<int>(open_files_.size()) >= kMaxIncludeDepth) {
-      throw card.error("FILENAME", fmt::format("includes are nested more than {} deep",
-                                               kMaxIncludeDepth));
+      throw card.error("FILENAME",
+                       fmt::format("includes are nested more than {} deep", kMaxIncludeDepth));
     }
     std::ifstream in(path, std::ios::binary);
     if (!in) throw card.error("FILENAME", fmt::format("cannot open '{}'", path.string()));
