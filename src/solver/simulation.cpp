@@ -252,35 +252,38 @@ void Simulation::update_velocities() {
   }
 }
 
+// `force` writes every file that has not yet written this cycle (termination, breakdown).
 void Simulation::write_output_if_due(bool force) {
   const double t = state_.time;
-  if (force || glstat_schedule_.due(t) || nodout_schedule_.due(t) || d3plot_schedule_.due(t)) {
-    if (glstat_ && (force || glstat_schedule_.due(t))) {
-      output::GlstatRow row;
-      row.time = t;
-      row.dt = state_.dt;
-      row.cycle = state_.cycle;
-      row.kinetic_energy = energy_.kinetic;
-      row.internal_energy = energy_.internal();
-      row.hourglass_energy = energy_.hourglass;
-      row.external_work = energy_.external_work;
-      row.total_energy = energy_.total();
-      row.energy_ratio = energy_.ratio();
-      for (int k = 0; k < 3; ++k) {
-        row.momentum[k] = energy_.momentum[k];
-        row.angular_momentum[k] = energy_.angular_momentum[k];
-      }
-      glstat_->write(row);
-      glstat_schedule_.advance(t);
+  const std::int64_t cycle = state_.cycle;
+  auto wanted = [&](OutputSchedule& schedule) {
+    return schedule.last_cycle != cycle && (force || schedule.due(t));
+  };
+  if (glstat_ && wanted(glstat_schedule_)) {
+    output::GlstatRow row;
+    row.time = t;
+    row.dt = state_.dt;
+    row.cycle = cycle;
+    row.kinetic_energy = energy_.kinetic;
+    row.internal_energy = energy_.internal();
+    row.hourglass_energy = energy_.hourglass;
+    row.external_work = energy_.external_work;
+    row.total_energy = energy_.total();
+    row.energy_ratio = energy_.ratio();
+    for (int k = 0; k < 3; ++k) {
+      row.momentum[k] = energy_.momentum[k];
+      row.angular_momentum[k] = energy_.angular_momentum[k];
     }
-    if (nodout_ && (force || nodout_schedule_.due(t))) {
-      nodout_->write(state_, v_previous_);
-      nodout_schedule_.advance(t);
-    }
-    if (fields_ && (force || d3plot_schedule_.due(t))) {
-      fields_->write_frame(state_);
-      d3plot_schedule_.advance(t);
-    }
+    glstat_->write(row);
+    glstat_schedule_.mark_written(t, cycle);
+  }
+  if (nodout_ && wanted(nodout_schedule_)) {
+    nodout_->write(state_, v_previous_);
+    nodout_schedule_.mark_written(t, cycle);
+  }
+  if (fields_ && wanted(d3plot_schedule_)) {
+    fields_->write_frame(state_);
+    d3plot_schedule_.mark_written(t, cycle);
   }
 }
 

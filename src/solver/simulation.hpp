@@ -103,8 +103,12 @@ class Simulation {
     double interval = 0.0;
     double next = 0.0;
     bool due(double t) const { return interval > 0.0 && t >= next * (1.0 - 1e-12); }
-    void advance(double t) {
-      while (next <= t * (1.0 + 1e-12)) next += interval;
+    std::int64_t last_cycle = -1;
+    void mark_written(double t, std::int64_t cycle) {
+      last_cycle = cycle;
+      if (interval > 0.0) {
+        while (next <= t * (1.0 + 1e-12)) next += interval;
+      }
     }
   };
   OutputSchedule glstat_schedule_, nodout_schedule_, d3plot_schedule_;

@@ -21,7 +21,7 @@ std::string bar_deck(int elform, int ihq, double end_time) {
   deck += node_set(1, mesh.face_x(0));
   deck += "*BOUNDARY_PRESCRIBED_MOTION_SET\n1,1,0,1,1.0\n";
   deck += "*DEFINE_CURVE\n1\n0.0,1.0\n1.0,1.0\n";
-  deck += fmt::format("*CONTROL_TERMINATION\n{:.17g}\n*END\n", end_time);
+  deck += fmt::format("*CONTROL_TERMINATION\n{:.17g},\n*END\n", end_time);
   return deck;
 }
 
