@@ -49,12 +49,13 @@ double default_interval(double configured, double end_time, double rows) {
 
 }  // namespace
 
-Simulation::Simulation(const model::Model& model, SimulationOptions options)
-    : model_(model),
+Simulation::Simulation(model::Model model_in, SimulationOptions options)
+    : model_(std::move(model_in)),
       options_(std::move(options)),
-      node_index_(model),
-      state_(build_state(model, node_index_)),
-      boundary_(resolve_boundary(model, node_index_, state_)) {
+      node_index_(model_),
+      state_(build_state(model_, node_index_)),
+      boundary_(resolve_boundary(model_, node_index_, state_)) {
+  const model::Model& model = model_;
   for (const auto& block : state_.hex_blocks) element_count_ += block.size();
   end_time_ = model.termination.endtim;
   end_cycle_ = model.termination.endcyc;
@@ -240,6 +241,18 @@ void Simulation::update_velocities() {
   for (int k = 0; k < 3; ++k) {
     energy_.momentum[k] = sums[3 + k];
     energy_.angular_momentum[k] = sums[6 + k];
+  }
+  // An elastic body cannot give back more strain energy than it stored: internal work well
+  // below zero means a mode is growing without bound (the step exceeds the stability limit;
+  // L_e / c is exact for meshes, not for a few elements with free corners).
+  const double scale = energy_.initial_total + std::abs(energy_.external_work) + energy_.kinetic;
+  if (energy_.internal_work < -0.05 * scale && scale > 0.0) {
+    throw SolverError(fmt::format(
+        "numerical instability at time {:.6g} (cycle {}): internal energy {:.6g} is negative "
+        "while kinetic energy grew to {:.6g}; the time step is above the stability limit of "
+        "this mesh. Reduce TSSFAC on *CONTROL_TIMESTEP (free single elements or meshes of a "
+        "few elements across need TSSFAC <= 0.55)",
+        state_.time, state_.cycle, energy_.internal_work, energy_.kinetic));
   }
   if (!std::isfinite(sums[0])) {
     // Find the first offending node for the message (rare path).

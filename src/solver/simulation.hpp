@@ -47,8 +47,11 @@ struct SimulationOptions {
 
 class Simulation {
  public:
-  Simulation(const model::Model& model, SimulationOptions options);
+  // The simulation keeps its own copy of the model: boundary conditions refer to its curves.
+  Simulation(model::Model model, SimulationOptions options);
   ~Simulation();
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
 
   // One explicit cycle (see the definition: the whole cycle on one screen).
   void cycle();
@@ -79,7 +82,7 @@ class Simulation {
   void check_breakdown();
   void write_output_now();
 
-  const model::Model& model_;
+  const model::Model model_;
   SimulationOptions options_;
   NodeIndex node_index_;
   State state_;

@@ -11,10 +11,12 @@ namespace {
 
 constexpr double kRho = 7850.0, kE = 210e9;
 
-// Mildly distorted 4x4x4 block (0.1 m) so that the elements are not all parallelepipeds.
+// Mildly distorted 6x6x6 block (0.1 m) so that the elements are not all parallelepipeds.
+// (Blocks of four or fewer elements across are unstable at TSSFAC 0.9 with the LS-DYNA
+// characteristic length; see docs/theory.md.)
 BoxMesh distorted_block() {
   BoxMesh mesh;
-  mesh.nx = mesh.ny = mesh.nz = 4;
+  mesh.nx = mesh.ny = mesh.nz = 6;
   mesh.lx = mesh.ly = mesh.lz = 0.1;
   mesh.distort = [](double& x, double& y, double& z) {
     const double s = 0.004;
@@ -57,14 +59,16 @@ TEST_P(FreeVibrationEnergy, TotalEnergyFromStressesIsConserved) {
   const BoxMesh mesh = distorted_block();
   std::string deck = "*KEYWORD\n" + mesh.keyword_text() +
                      elastic_part(kRho, kE, 0.3, param.elform, param.ihq) +
-                     stretch_velocity(mesh, 50.0) + "*CONTROL_TERMINATION\n1.0e-3\n*END\n";
+                     stretch_velocity(mesh, 50.0) + "*CONTROL_TERMINATION\n5.0e-3\n*END\n";
   solver::Simulation sim(read(deck), {});
   const auto& nodes = sim.state().nodes;
   std::vector<double> vx_prev, vy_prev, vz_prev;
   double sigma_prev_energy = 0.0, hourglass_prev = 0.0;
   double e0 = -1.0, max_drift = 0.0;
   int steps = 0;
-  while (!sim.finished() && steps < 3000) {
+  // Stop short of the end: the last step is shortened to land on ENDTIM, and the shadow
+  // energy is only conserved for a (nearly) constant step.
+  while (sim.state().time < 0.9 * sim.end_time()) {
     sim.cycle();
     ++steps;
     if (!vx_prev.empty()) {
@@ -140,7 +144,11 @@ TEST(ConstantNodalForce, ImpulseAndExternalWork) {
   const double force = 1000.0;
   std::string deck = "*KEYWORD\n" + mesh.keyword_text() + elastic_part(kRho, kE, 0.3, 1, 6) +
                      fmt::format("*LOAD_NODE_POINT\n{},1,1,{}\n", mesh.node_id(2, 2, 2), force) +
-                     "*DEFINE_CURVE\n1\n0.0,1.0\n1.0,1.0\n*CONTROL_TERMINATION\n2.0e-4\n*END\n";
+                     "*DEFINE_CURVE\n1\n0.0,1.0\n1.0,1.0\n*CONTROL_TERMINATION\n2.0e-4\n"
+                     // A constant step (LCTM curve below the stable step): the sum of
+                     // half-step increments then telescopes to the node's travel exactly.
+                     "*CONTROL_TIMESTEP\n0.0,0.9,0,0.0,0.0,2\n*DEFINE_CURVE\n2\n0.0,5.0e-6\n1.0,5.0e-6\n"
+                     "*END\n";
   solver::Simulation sim(read(deck), {});
   const auto& nodes = sim.state().nodes;
   std::size_t loaded = 0;
@@ -153,10 +161,13 @@ TEST(ConstantNodalForce, ImpulseAndExternalWork) {
   EXPECT_NEAR(sim.energy().momentum[0], force * (t + 0.5 * sim.state().dt),
               1e-6 * force * t);
   EXPECT_NEAR(sim.energy().momentum[1], 0.0, 1e-9 * force * t);
-  // Work of the force up to the last half step: F (x^{n+1/2} - x0) with x^{n+1/2} from x^n and v.
-  const double x_half = nodes.x.x[loaded] + 0.5 * sim.state().dt * nodes.v.x[loaded];
-  EXPECT_NEAR(sim.energy().external_work, force * (x_half - x0),
-              1e-3 * force * (x_half - x0));
+  // Work of the force up to the last half step: F (x^{n+1/2} - x0) with x^{n+1/2} from x^n and
+  // v, less the first half step's F dt/4 v^{1/2} (the scheme starts from v^0 = 0).
+  const double dt = sim.state().dt;
+  const double v_half_first = 0.5 * dt * force / nodes.mass[loaded];
+  const double travel = nodes.x.x[loaded] + 0.5 * dt * nodes.v.x[loaded] - x0;
+  EXPECT_NEAR(sim.energy().external_work, force * (travel - 0.25 * dt * v_half_first),
+              1e-9 * force * travel);
 }
 
 // Prescribed motion and SPC reactions: a bar fixed at one end and stretched slowly at the
