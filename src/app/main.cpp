@@ -71,12 +71,16 @@ class ProgressPrinter {
     const double end = sim.end_time();
     const double t = sim.state().time;
     const double fraction = end > 0.0 ? std::min(1.0, t / end) : 0.0;
+    if (printed_final_) return;
     if (tty_) {
       if (now - last_ < std::chrono::milliseconds(250) && !sim.finished()) return;
     } else {
       if (fraction < next_fraction_ && !sim.finished()) return;
-      while (next_fraction_ <= fraction) next_fraction_ += 0.1;
+      while (next_fraction_ <= fraction + 1e-12) next_fraction_ += 0.1;
+      // The 100% line is printed once, when the run has finished.
+      if (fraction >= 1.0 - 1e-12 && !sim.finished()) return;
     }
+    printed_final_ = sim.finished();
     last_ = now;
     const double wall = std::chrono::duration<double>(now - start_).count();
     const double left = fraction > 0.0 ? wall * (1.0 - fraction) / fraction : 0.0;
@@ -99,6 +103,7 @@ class ProgressPrinter {
   Clock::time_point start_ = Clock::now();
   Clock::time_point last_{};
   double next_fraction_ = 0.0;
+  bool printed_final_ = false;
 };
 
 int command_check(const std::string& deck, const rf::io::ReadOptions& read_options) {
@@ -141,8 +146,7 @@ int command_run(const std::string& deck, std::string output_dir, int threads, bo
     throw;
   }
   for (const auto& w : model.warnings) {
-    summary.warnings.push_back(
-        fmt::format("{}:{}: {}: {}", w.where.file, w.where.line, w.where.keyword, w.message));
+    summary.warnings.push_back(rf::app::format_warning(w));
     if (!quiet) std::fprintf(stderr, "warning: %s\n", summary.warnings.back().c_str());
   }
 

@@ -74,13 +74,22 @@ void print_model_summary(const model::Model& model, std::FILE* out) {
   fmt::print(out, "time step: TSSFAC {:g}, first step {:.4g} (controlled by element {})\n",
              model.timestep.tssfac, state.dt, sim.controlling_element());
   fmt::print(out, "warnings: {}\n", model.warnings.size());
-  for (const auto& w : model.warnings) {
-    fmt::print(out, "  {}:{}: {}: {}\n", w.where.file, w.where.line, w.where.keyword, w.message);
-  }
+  for (const auto& w : model.warnings) fmt::print(out, "  {}\n", format_warning(w));
   if (!model.unknown_keywords.empty()) {
     fmt::print(out, "unknown keywords (ignored):\n");
     for (const auto& [kw, count] : model.unknown_keywords) fmt::print(out, "  {} x{}\n", kw, count);
   }
+}
+
+std::string format_warning(const model::Warning& warning) {
+  std::string text;
+  if (!warning.where.file.empty()) {
+    text += warning.where.file;
+    if (warning.where.line > 0) text += fmt::format(":{}", warning.where.line);
+    text += ": ";
+  }
+  if (!warning.where.keyword.empty()) text += warning.where.keyword + ": ";
+  return text + warning.message;
 }
 
 }  // namespace rf::app
