@@ -89,6 +89,8 @@ TEST_P(FreeVibrationEnergy, TotalEnergyFromStressesIsConserved) {
     hourglass_prev = sim.energy().hourglass;
   }
   ASSERT_GT(e0, 0.0);
+  std::printf("free vibration ELFORM %d IHQ %d: %d cycles, max energy drift %.3g of initial\n",
+              param.elform, param.ihq, steps, max_drift / e0);
   EXPECT_LT(max_drift / e0, 2e-3) << "energy drift over " << steps << " cycles";
   // The vibration must actually exchange energy, or the test proves nothing.
   EXPECT_GT(sigma_prev_energy, 0.01 * e0);
