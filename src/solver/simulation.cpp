@@ -166,6 +166,8 @@ void Simulation::run(const std::function<void(const Simulation&)>& on_progress) 
     // Leave the state at detection readable: one more frame and glstat row.
     write_output_now();
     if (fields_) fields_->write_collection();
+    if (glstat_) glstat_->flush();
+    if (nodout_) nodout_->flush();
     throw;
   }
   if (glstat_) glstat_->flush();
