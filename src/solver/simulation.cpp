@@ -252,9 +252,9 @@ void Simulation::update_velocities() {
     throw SolverError(fmt::format(
         "numerical instability at time {:.6g} (cycle {}): internal energy {:.6g} is negative "
         "while kinetic energy grew to {:.6g}; the time step is above the stability limit of "
-        "this mesh. Reduce TSSFAC on *CONTROL_TIMESTEP (free single elements or meshes of a "
-        "few elements across need TSSFAC <= 0.55)",
-        state_.time, state_.cycle, energy_.internal_work, energy_.kinetic));
+        "this mesh (smallest element step: element {}). Reduce TSSFAC on *CONTROL_TIMESTEP "
+        "(free single elements or meshes of a few elements across need TSSFAC <= 0.55)",
+        state_.time, state_.cycle, energy_.internal_work, energy_.kinetic, controlling_element_));
   }
   if (!std::isfinite(sums[0])) {
     // Find the first offending node for the message (rare path).
