@@ -7,19 +7,13 @@
 
 #include "model/curve.hpp"
 #include "model/error.hpp"
+#include "model/error_context.hpp"
 
 namespace rf::solver {
 
 namespace {
 
-InputErrorContext context_of(const model::SourceLocation& where, const char* field) {
-  InputErrorContext c;
-  c.file = where.file;
-  c.line = where.line;
-  c.keyword = where.keyword;
-  c.field = field ? field : "";
-  return c;
-}
+using model::context_of;
 
 ScaledCurve make_curve(const model::Model& model, model::Id lcid, double sf, double shift,
                        const model::SourceLocation& where) {

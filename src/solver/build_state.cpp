@@ -6,19 +6,13 @@
 #include <map>
 
 #include "model/error.hpp"
+#include "model/error_context.hpp"
 
 namespace rf::solver {
 
 namespace {
 
-InputErrorContext context_of(const model::SourceLocation& where, const char* field) {
-  InputErrorContext c;
-  c.file = where.file;
-  c.line = where.line;
-  c.keyword = where.keyword;
-  c.field = field ? field : "";
-  return c;
-}
+using model::context_of;
 
 element::HourglassSettings resolve_hourglass(const model::Model& model, const model::Part& part) {
   element::HourglassSettings hg;
