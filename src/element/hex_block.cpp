@@ -61,6 +61,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 
 #include "element/hex_geometry.hpp"
 #include "material/elastic_update.hpp"
@@ -218,22 +219,40 @@ struct Batch {
   std::size_t element(int l) const { return first + static_cast<std::size_t>(l < count ? l : count - 1); }
 };
 
+// Builds a vector from one value per lane: p[idx[l]]. The brace initialiser lets the compiler
+// assemble the lanes in registers (element-wise stores followed by a vector load would stall
+// store forwarding).
+template <class Index, std::size_t... L>
+inline Lanes load_lanes(const double* p, const Index* idx, std::index_sequence<L...>) {
+  return Lanes{p[idx[L]]...};
+}
+template <class Index>
+inline Lanes load_lanes(const double* p, const Index* idx) {
+  return load_lanes(p, idx, std::make_index_sequence<kLanes>{});
+}
+
 inline void gather_batch(const HexBlock& block, const NodalView& nv, Batch& b) {
+  std::int32_t node[8][kLanes];
   for (int l = 0; l < kLanes; ++l) {
     const std::size_t e = b.element(l);
     const int* slots = slot_map(block, e);
     b.slots[l] = slots;
     const std::int32_t* c = &block.conn[8 * e];
-    for (int k = 0; k < 8; ++k) {
-      const std::int32_t n = c[slots[k]];
-      b.x[0][k][l] = nv.x[n];
-      b.x[1][k][l] = nv.y[n];
-      b.x[2][k][l] = nv.z[n];
-      b.v[0][k][l] = nv.vx[n];
-      b.v[1][k][l] = nv.vy[n];
-      b.v[2][k][l] = nv.vz[n];
-    }
+    for (int k = 0; k < 8; ++k) node[k][l] = c[slots[k]];
   }
+  for (int k = 0; k < 8; ++k) {
+    b.x[0][k] = load_lanes(nv.x, node[k]);
+    b.x[1][k] = load_lanes(nv.y, node[k]);
+    b.x[2][k] = load_lanes(nv.z, node[k]);
+    b.v[0][k] = load_lanes(nv.vx, node[k]);
+    b.v[1][k] = load_lanes(nv.vy, node[k]);
+    b.v[2][k] = load_lanes(nv.vz, node[k]);
+  }
+}
+
+// Per-lane offsets into an element array with `stride` values per element.
+inline void lane_offsets(const Batch& b, std::size_t stride, std::size_t off[kLanes]) {
+  for (int l = 0; l < kLanes; ++l) off[l] = stride * b.element(l);
 }
 
 // Inputs of the hourglass forms and their results, all per lane.
@@ -276,11 +295,11 @@ template <bool kOrthogonal>
 void viscous_hourglass(const HexBlock& block, const Batch& b, double dt, HourglassTerms& h) {
   Lanes qdot[4][3];
   hourglass_velocities<kOrthogonal>(h, qdot);
-  Lanes v23, v0;
-  for (int l = 0; l < kLanes; ++l) {
-    v23[l] = std::cbrt(h.volume[l] * h.volume[l]);
-    v0[l] = block.volume0[b.element(l)];
-  }
+  Lanes v23;
+  for (int l = 0; l < kLanes; ++l) v23[l] = std::cbrt(h.volume[l] * h.volume[l]);
+  std::size_t off[kLanes];
+  lane_offsets(b, 1, off);
+  const Lanes v0 = load_lanes(block.volume0.data(), off);
   const Lanes density = block.material.rho * v0 / h.volume;
   const Lanes c = block.hourglass.qm * density * block.material.wave_speed * v23 * 0.25;
   Lanes wsum{};
@@ -410,20 +429,18 @@ void elform1_batch(HexBlock& block, std::size_t first, int count, const NodalVie
     }
   Lanes d[6], w[3], sig[6];
   material::split_velocity_gradient(L, d, w);
-  for (int l = 0; l < kLanes; ++l) {
-    const double* s = &block.stress[6 * b.element(l)];
-    for (int c = 0; c < 6; ++c) sig[c][l] = s[c];
-  }
+  std::size_t off[kLanes];
+  lane_offsets(b, 6, off);
+  for (int c = 0; c < 6; ++c) sig[c] = load_lanes(block.stress.data() + c, off);
   material::elastic_jaumann_update(block.material, d, w, dt, sig);
 
   HourglassTerms h{ax, av, g, vol, {w[0], w[1], w[2]}, {}, {}};
   Lanes state[4][3];
   if constexpr (kStateful) {
-    for (int l = 0; l < kLanes; ++l) {
-      const double* q = &block.hourglass_state[12 * b.element(l)];
-      for (int a = 0; a < 4; ++a)
-        for (int i = 0; i < 3; ++i) state[a][i][l] = q[3 * a + i];
-    }
+    lane_offsets(b, 12, off);
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < 3; ++i)
+        state[a][i] = load_lanes(block.hourglass_state.data() + 3 * a + i, off);
   }
   if constexpr (kForm == HourglassForm::kStiffnessFB)
     stiffness_hourglass(block, dt, state, h);
@@ -486,10 +503,15 @@ void elform1_batch(HexBlock& block, std::size_t first, int count, const NodalVie
     }
     part.hourglass_work += h.work[l];
     if (!std::isfinite(fsum[l])) part.record_failure(ie, vol[l]);
-    double fl[3][8];
-    for (int i = 0; i < 3; ++i)
-      for (int n = 0; n < 8; ++n) fl[i][n] = f[i][n][l];
-    scatter_forces(b.slots[l], fl, out);
+    if (b.slots[l] == kIdentitySlots) {
+      for (int n = 0; n < 8; ++n)
+        for (int i = 0; i < 3; ++i) out[3 * n + i] = f[i][n][l];
+    } else {
+      double fl[3][8];
+      for (int i = 0; i < 3; ++i)
+        for (int n = 0; n < 8; ++n) fl[i][n] = f[i][n][l];
+      scatter_forces(b.slots[l], fl, out);
+    }
     part.record_dt(elem_dt[l], ie);
   }
 }
