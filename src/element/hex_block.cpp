@@ -216,7 +216,9 @@ struct Batch {
   const int* slots[kLanes];
   Lanes x[3][8];  // x^{n+1}
   Lanes v[3][8];  // v^{n+1/2}
-  std::size_t element(int l) const { return first + static_cast<std::size_t>(l < count ? l : count - 1); }
+  std::size_t element(int l) const {
+    return first + static_cast<std::size_t>(l < count ? l : count - 1);
+  }
 };
 
 // Builds a vector from one value per lane: p[idx[l]]. The brace initialiser lets the compiler
@@ -469,8 +471,8 @@ void elform1_batch(HexBlock& block, std::size_t first, int count, const NodalVie
     viscous_hourglass<kOrthogonal>(block, b, dt, h);
 
   // Nodal forces f_iI = sum_k (P G_k)_i s_k(I) + sum_a Q_ai s_(4+a)(I), P = sigma - T.
-  const Lanes P0[3][3] = {{sig[0], sig[3], sig[5]}, {sig[3], sig[1], sig[4]},
-                          {sig[5], sig[4], sig[2]}};
+  const Lanes P0[3][3] = {
+      {sig[0], sig[3], sig[5]}, {sig[3], sig[1], sig[4]}, {sig[5], sig[4], sig[2]}};
   Lanes P[3][3];
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) P[i][j] = P0[i][j];
@@ -484,7 +486,8 @@ void elform1_batch(HexBlock& block, std::size_t first, int count, const NodalVie
   Lanes coef[8][3], f[3][8];
   for (int i = 0; i < 3; ++i) {
     coef[0][i] = Lanes{};
-    for (int k = 1; k <= 6; ++k) coef[k][i] = P[i][0] * g[k][0] + P[i][1] * g[k][1] + P[i][2] * g[k][2];
+    for (int k = 1; k <= 6; ++k)
+      coef[k][i] = P[i][0] * g[k][0] + P[i][1] * g[k][1] + P[i][2] * g[k][2];
     coef[7][i] = Lanes{};
     for (int a = 0; a < 4; ++a) coef[4 + a][i] += h.q[a][i];
   }
@@ -494,9 +497,9 @@ void elform1_batch(HexBlock& block, std::size_t first, int count, const NodalVie
   Lanes shape_factor;
   for (int l = 0; l < kLanes; ++l)
     shape_factor[l] = block.shape[b.element(l)] == HexShape::kTetrahedron ? 3.0 : 1.0;
-  const Lanes elem_dt = vol * shape_factor /
-                        (lane_sqrt(hex::max_face_area_squared_from_base(ax)) *
-                         block.material.wave_speed);
+  const Lanes elem_dt =
+      vol * shape_factor /
+      (lane_sqrt(hex::max_face_area_squared_from_base(ax)) * block.material.wave_speed);
   Lanes fsum{};
   for (int i = 0; i < 3; ++i)
     for (int n = 0; n < 8; ++n) fsum += f[i][n];

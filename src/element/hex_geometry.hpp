@@ -87,8 +87,7 @@ inline void volume_gradient(const T a[8][3], T G[7][3], T& volume) {
   const T* A4 = a[4];
   const T* A5 = a[5];
   const T* A6 = a[6];
-  T c23[3], c31[3], c12[3], c65[3], c46[3], c54[3], c62[3], c35[3], c43[3], c16[3], c24[3],
-      c51[3];
+  T c23[3], c31[3], c12[3], c65[3], c46[3], c54[3], c62[3], c35[3], c43[3], c16[3], c24[3], c51[3];
   cross(A2, A3, c23);
   cross(A3, A1, c31);
   cross(A1, A2, c12);
@@ -127,7 +126,8 @@ inline void expand_nodal(const T c[8][3], T f[3][8]) {
     const T tp = c[1][i] + c[6][i], tm = c[1][i] - c[6][i];
     const T rp = c[3][i] + c[4][i], rm = c[3][i] - c[4][i];
     const T zp = c[5][i] + c[7][i], zm = c[5][i] - c[7][i];
-    const T p[4] = {um - tm, um + tm, up + tp, up - tp};  // nodes (xi, eta) = (-,-) (+,-) (+,+) (-,+)
+    const T p[4] = {um - tm, um + tm, up + tp,
+                    up - tp};  // nodes (xi, eta) = (-,-) (+,-) (+,+) (-,+)
     const T r[4] = {rm - zm, rm + zm, rp + zp, rp - zp};
     for (int n = 0; n < 4; ++n) {
       f[i][n] = p[n] - r[n];

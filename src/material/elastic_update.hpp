@@ -32,7 +32,7 @@ inline void hughes_winget_rotate(const T w[3], double dt, T s[6]) {
   const T pp = p1 * p1 + p2 * p2 + p3 * p3;
   const T k = 2.0 / (1.0 + pp);
   const T q11 = 1.0 + k * (p1 * p1 - pp), q22 = 1.0 + k * (p2 * p2 - pp),
-               q33 = 1.0 + k * (p3 * p3 - pp);
+          q33 = 1.0 + k * (p3 * p3 - pp);
   const T q12 = k * (p1 * p2 - p3), q21 = k * (p1 * p2 + p3);
   const T q13 = k * (p1 * p3 + p2), q31 = k * (p1 * p3 - p2);
   const T q23 = k * (p2 * p3 - p1), q32 = k * (p2 * p3 + p1);

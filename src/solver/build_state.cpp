@@ -267,7 +267,9 @@ void assemble_by_elements(State& state) {
 
 void assemble_internal_forces(State& state) {
   const int threads = omp_get_max_threads();
-  if (state.assembly_plan.threads != threads) state.assembly_plan = make_assembly_plan(state, threads);
+  if (state.assembly_plan.threads != threads) {
+    state.assembly_plan = make_assembly_plan(state, threads);
+  }
   if (state.assembly_plan.use_csr)
     assemble_by_incidence(state);
   else

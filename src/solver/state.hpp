@@ -53,7 +53,7 @@ struct NodeIncidence {
 struct AssemblyPlan {
   int threads = 0;
   bool use_csr = false;
-  std::vector<std::int64_t> node_begin;                          // threads + 1
+  std::vector<std::int64_t> node_begin;                              // threads + 1
   std::vector<std::pair<std::int64_t, std::int64_t>> element_range;  // threads x blocks
 };
 
