@@ -45,7 +45,7 @@ w("*SET_NODE_LIST\n%10d\n" % 1)
 for c in range(0, len(bottom), 8):
     w("".join("%10d" % x for x in bottom[c:c + 8]) + "\n")
 w("*BOUNDARY_SPC_SET\n%10d%10d%10d%10d%10d\n" % (1, 0, 0, 0, 1))
-# All nodes at -10 m/s except the bottom face (NSIDEX = 1), which is at rest (card 3).
+# NSIDEX = 1 exempts the bottom face; its nodes get the card-3 velocity (zero).
 w("*INITIAL_VELOCITY\n%10d%10d\n%10.4g%10.4g%10.4g\n%10.4g%10.4g%10.4g\n"
   % (0, 1, 0.0, 0.0, -10.0, 0.0, 0.0, 0.0))
 w("*END\n")

@@ -58,8 +58,10 @@
 #include <fmt/format.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 
 #include "element/hex_geometry.hpp"
 #include "material/elastic_update.hpp"
@@ -121,16 +123,6 @@ inline double element_time_step(const double x[3][8], double volume, HexShape sh
   return length / wave_speed;
 }
 
-// Rotates a vector by the Cayley transform of the spin (same Q as the stress update).
-inline void rotate_vector(const double w[3], double dt, double u[3]) {
-  const double p[3] = {0.5 * dt * w[0], 0.5 * dt * w[1], 0.5 * dt * w[2]};
-  const double k = 2.0 / (1.0 + hex::dot(p, p));
-  double pu[3], ppu[3];
-  hex::cross(p, u, pu);
-  hex::cross(p, pu, ppu);
-  for (int i = 0; i < 3; ++i) u[i] += k * (pu[i] + ppu[i]);
-}
-
 struct alignas(64) Partial {
   double hourglass_work = 0.0;
   double min_dt = 1e300;
@@ -181,109 +173,384 @@ inline int thread_count() {
 }
 
 // --- ELFORM 1 -----------------------------------------------------------------------------
+//
+// Batched evaluation. kLanes consecutive elements are processed together, each quantity held in
+// a GCC vector with one element per lane, so that every arithmetic statement below is one SIMD
+// instruction across elements (an element's own 3-vectors are too short to vectorise). The lane
+// width follows the instruction set the file is compiled for; the generic x86-64 build uses SSE2.
+//
+// Everything is expressed through the base vectors A_k of hex_geometry.hpp instead of nodal
+// B-matrices. With b_jI = dV/dx_jI = sum_k G_kj s_k(I) (G_k = dV/dA_k) and the monomials s_k
+// orthogonal over the nodes (sum_I s_k(I) s_l(I) = 8 delta_kl):
+//   velocity gradient  V L_ij = sum_I v_iI b_jI = sum_k Av_ki G_kj        (Av_k = A_k of v)
+//   nodal forces       f_iI = sum_j P_ij b_jI = sum_k (P G_k)_i s_k(I)    (P = sigma - T below)
+//   FB hourglass       qdot_ai = sum_I v_iI gamma_aI = Av_(4+a)i - L_ij A_(4+a)j
+//                      sum_a Q_ai gamma_aI = sum_a Q_ai s_(4+a)(I) - T_ij b_jI,
+//                      T_ij = (1/V) sum_a Q_ai A_(4+a)j
+//   |b|^2              sum_jI b_jI^2 = 8 sum_k |G_k|^2
+// so the element never forms its 3 x 8 B arrays: the rate costs 54 multiply-adds on the mid-step
+// G and the forces 54 on the end-of-step G, plus one butterfly (expand_nodal) back to the nodes.
+// The mid-step base vectors are A_k(x) - dt/2 A_k(v) (base_vectors is linear). The formulation
+// (mid-step rate, end-of-step forces) is unchanged; only round-off differs from the per-node form.
 
-inline void hourglass_forces(const HexBlock& block, const hex::Geometry& g, const double v[3][8],
-                             const double w[3], double dt, double density, double* hg_state,
-                             double f[3][8], double& work) {
-  const int ihq = block.hourglass.ihq;
-  const double qm = block.hourglass.qm;
-  const material::ElasticConstants& m = block.material;
-  const double volume = g.volume;
+#if defined(__AVX512F__)
+constexpr int kLanes = 8;
+#elif defined(__AVX__)
+constexpr int kLanes = 4;
+#else
+constexpr int kLanes = 2;
+#endif
+using Lanes = double __attribute__((vector_size(kLanes * sizeof(double))));
 
-  double gam[4][8];
-  if (ihq == 1) {
+inline Lanes lane_sqrt(Lanes a) {
+  Lanes r;
+  for (int l = 0; l < kLanes; ++l) r[l] = std::sqrt(a[l]);
+  return r;
+}
+
+// Element indices, slot maps and gathered nodal data of one batch. Lanes past `count` (the tail
+// of the block) repeat the last element; their results are discarded.
+struct Batch {
+  std::size_t first = 0;
+  int count = 0;
+  const int* slots[kLanes];
+  Lanes x[3][8];  // x^{n+1}
+  Lanes v[3][8];  // v^{n+1/2}
+  std::size_t element(int l) const {
+    return first + static_cast<std::size_t>(l < count ? l : count - 1);
+  }
+};
+
+// Builds a vector from one value per lane: p[idx[l]]. The brace initialiser lets the compiler
+// assemble the lanes in registers (element-wise stores followed by a vector load would stall
+// store forwarding).
+template <class Index, std::size_t... L>
+inline Lanes load_lanes(const double* p, const Index* idx, std::index_sequence<L...>) {
+  return Lanes{p[idx[L]]...};
+}
+template <class Index>
+inline Lanes load_lanes(const double* p, const Index* idx) {
+  return load_lanes(p, idx, std::make_index_sequence<kLanes>{});
+}
+
+inline void gather_batch(const HexBlock& block, const NodalView& nv, Batch& b) {
+  std::int32_t node[8][kLanes];
+  for (int l = 0; l < kLanes; ++l) {
+    const std::size_t e = b.element(l);
+    const int* slots = slot_map(block, e);
+    b.slots[l] = slots;
+    const std::int32_t* c = &block.conn[8 * e];
+    for (int k = 0; k < 8; ++k) node[k][l] = c[slots[k]];
+  }
+  for (int k = 0; k < 8; ++k) {
+    b.x[0][k] = load_lanes(nv.x, node[k]);
+    b.x[1][k] = load_lanes(nv.y, node[k]);
+    b.x[2][k] = load_lanes(nv.z, node[k]);
+    b.v[0][k] = load_lanes(nv.vx, node[k]);
+    b.v[1][k] = load_lanes(nv.vy, node[k]);
+    b.v[2][k] = load_lanes(nv.vz, node[k]);
+  }
+}
+
+// Per-lane offsets into an element array with `stride` values per element.
+inline void lane_offsets(const Batch& b, std::size_t stride, std::size_t off[kLanes]) {
+  for (int l = 0; l < kLanes; ++l) off[l] = stride * b.element(l);
+}
+
+// Inputs of the hourglass forms and their results, all per lane.
+struct HourglassTerms {
+  const Lanes (*ax)[3];  // base vectors of x^{n+1}
+  const Lanes (*av)[3];  // base vectors of v^{n+1/2}
+  const Lanes (*g)[3];   // G_k = dV/dA_k at n+1
+  Lanes volume;          // V^{n+1}
+  Lanes w[3];            // mid-step spin
+  Lanes q[4][3];         // OUT: generalised hourglass forces Q_a, global frame
+  Lanes work;            // OUT: hourglass work this step
+};
+
+// Hourglass velocities qdot_a (mode-major). IHQ 1 projects on the plain Gamma_a; the other forms
+// on gamma_a, which removes the linear part through the end-of-step velocity gradient.
+template <bool kOrthogonal>
+inline void hourglass_velocities(const HourglassTerms& h, Lanes qdot[4][3]) {
+  if constexpr (!kOrthogonal) {
     for (int a = 0; a < 4; ++a)
-      for (int n = 0; n < 8; ++n) gam[a][n] = hex::kHourglassBase[a][n];
+      for (int i = 0; i < 3; ++i) qdot[a][i] = h.av[4 + a][i];
   } else {
-    // gamma_a = Gamma_a - (Gamma_a . x_i) b_i; Gamma_a . x_i is the A-vector of that mode.
-    const double inv_v = 1.0 / volume;
+    const Lanes inv_v = 1.0 / h.volume;
+    Lanes L[3][3];  // end-of-step velocity gradient
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        Lanes s = h.av[1][i] * h.g[1][j];
+        for (int k = 2; k <= 6; ++k) s += h.av[k][i] * h.g[k][j];
+        L[i][j] = s * inv_v;
+      }
     for (int a = 0; a < 4; ++a) {
-      const double* hx = g.a[4 + a];
-      for (int n = 0; n < 8; ++n)
-        gam[a][n] = hex::kHourglassBase[a][n] -
-                    inv_v * (hx[0] * g.b[0][n] + hx[1] * g.b[1][n] + hx[2] * g.b[2][n]);
+      const Lanes* hx = h.ax[4 + a];
+      for (int i = 0; i < 3; ++i)
+        qdot[a][i] = h.av[4 + a][i] - (L[i][0] * hx[0] + L[i][1] * hx[1] + L[i][2] * hx[2]);
     }
   }
-  double qdot[4][3];  // hourglass velocities, mode-major
+}
+
+// Cube root of the volume ratio J = V / V0 without a libm call per element (std::cbrt was ~10%
+// of a cycle). Start from the Taylor polynomial 1 + u/3 - u^2/9 (u = J - 1, error < 3% for
+// J in [1/2, 2]) and take three Halley steps y <- y (y^3 + 2J) / (2 y^3 + J), each of which cubes
+// the relative error: 3e-2 -> 1e-5 -> 1e-15 -> round-off. Lanes outside [1/2, 2] (strongly
+// compressed or expanded elements) fall back to std::cbrt.
+inline Lanes volume_ratio_cbrt(Lanes j) {
+  const Lanes u = j - 1.0;
+  Lanes y = 1.0 + u * (1.0 / 3.0) - u * u * (1.0 / 9.0);
+  for (int it = 0; it < 3; ++it) {
+    const Lanes y3 = y * y * y;
+    y = y * (y3 + 2.0 * j) / (2.0 * y3 + j);
+  }
+  for (int l = 0; l < kLanes; ++l)
+    if (!(j[l] >= 0.5 && j[l] <= 2.0)) y[l] = std::cbrt(j[l]);
+  return y;
+}
+
+// IHQ 1-3: viscous, Q = C qdot with C = QM rho c V^{2/3} / 4 and rho = rho0 V0 / V;
+// V^{2/3} = (V0^{1/3} J^{1/3})^2.
+template <bool kOrthogonal>
+void viscous_hourglass(const HexBlock& block, const Batch& b, double dt, HourglassTerms& h) {
+  Lanes qdot[4][3];
+  hourglass_velocities<kOrthogonal>(h, qdot);
+  std::size_t off[kLanes];
+  lane_offsets(b, 1, off);
+  const Lanes v0 = load_lanes(block.volume0.data(), off);
+  const Lanes r0 = load_lanes(block.volume0_cbrt.data(), off);
+  const Lanes inv_v = 1.0 / h.volume;
+  const Lanes r = r0 * volume_ratio_cbrt(h.volume / v0);
+  const Lanes density = block.material.rho * v0 * inv_v;
+  const Lanes c = block.hourglass.qm * density * block.material.wave_speed * (r * r) * 0.25;
+  Lanes wsum{};
   for (int a = 0; a < 4; ++a)
     for (int i = 0; i < 3; ++i) {
-      double s = 0.0;
-      for (int n = 0; n < 8; ++n) s += v[i][n] * gam[a][n];
-      qdot[a][i] = s;
+      h.q[a][i] = c * qdot[a][i];
+      wsum += h.q[a][i] * qdot[a][i];
     }
-
-  double Q[4][3];  // generalised hourglass forces, global frame
-  if (ihq <= 3) {
-    const double v23 = std::cbrt(volume * volume);
-    const double c = qm * density * m.wave_speed * v23 * 0.25;
-    double wsum = 0.0;
-    for (int a = 0; a < 4; ++a)
-      for (int i = 0; i < 3; ++i) {
-        Q[a][i] = c * qdot[a][i];
-        wsum += Q[a][i] * qdot[a][i];
-      }
-    work += wsum * dt;
-  } else if (ihq <= 5) {
-    double bb = 0.0;
-    for (int i = 0; i < 3; ++i)
-      for (int n = 0; n < 8; ++n) bb += g.b[i][n] * g.b[i][n];
-    const double k = qm * (m.lambda + 2.0 * m.shear) * bb / (8.0 * volume);
-    double wsum = 0.0;
-    for (int a = 0; a < 4; ++a) {
-      double* q = hg_state + 3 * a;
-      rotate_vector(w, dt, q);
-      for (int i = 0; i < 3; ++i) {
-        const double old = q[i];
-        q[i] = old + k * qdot[a][i] * dt;
-        Q[a][i] = q[i];
-        wsum += 0.5 * (old + q[i]) * qdot[a][i];
-      }
-    }
-    work += wsum * dt;
-  } else {
-    // Corotational frame.
-    double e[3][3];
-    double h[3];
-    for (int j = 0; j < 3; ++j) h[j] = 0.125 * std::sqrt(hex::dot(g.a[1 + j], g.a[1 + j]));
-    const double n1 = 1.0 / (8.0 * h[0]);
-    for (int i = 0; i < 3; ++i) e[0][i] = g.a[1][i] * n1;
-    const double p = hex::dot(g.a[2], e[0]);
-    for (int i = 0; i < 3; ++i) e[1][i] = g.a[2][i] - p * e[0][i];
-    const double n2 = 1.0 / std::sqrt(hex::dot(e[1], e[1]));
-    for (int i = 0; i < 3; ++i) e[1][i] *= n2;
-    hex::cross(e[0], e[1], e[2]);
-
-    const double E = m.young, mu = m.shear;
-    const double inv2[3] = {1.0 / (h[0] * h[0]), 1.0 / (h[1] * h[1]), 1.0 / (h[2] * h[2])};
-    const double bend = qm * volume / 192.0;
-    double K[4][3];
-    for (int a = 0; a < 3; ++a)
-      for (int j = 0; j < 3; ++j)
-        K[a][j] = j != a ? bend * E * inv2[j] : bend * mu * (inv2[0] + inv2[1] + inv2[2] - inv2[a]);
-    const double tri = qm * volume / 576.0;
-    for (int j = 0; j < 3; ++j)
-      K[3][j] = tri * (E * inv2[j] + mu * (inv2[0] + inv2[1] + inv2[2] - inv2[j]));
-
-    double wsum = 0.0;
-    for (int a = 0; a < 4; ++a) {
-      double* q = hg_state + 3 * a;
-      double ql[3];
-      for (int j = 0; j < 3; ++j) {
-        const double qd = hex::dot(e[j], qdot[a]);
-        const double old = q[j];
-        q[j] = old + K[a][j] * qd * dt;
-        wsum += 0.5 * (old + q[j]) * qd;
-        ql[j] = q[j];
-      }
-      for (int i = 0; i < 3; ++i) Q[a][i] = e[0][i] * ql[0] + e[1][i] * ql[1] + e[2][i] * ql[2];
-    }
-    work += wsum * dt;
-  }
-  for (int i = 0; i < 3; ++i)
-    for (int n = 0; n < 8; ++n)
-      f[i][n] +=
-          Q[0][i] * gam[0][n] + Q[1][i] * gam[1][n] + Q[2][i] * gam[2][n] + Q[3][i] * gam[3][n];
+  h.work = wsum * dt;
 }
+
+// IHQ 4,5: incremental stiffness, Q += K qdot dt with K = QM (lambda + 2 mu) b.b / (8 V), the
+// stored Q first rotated with the element spin. `state` holds the lanes' 12 values each.
+void stiffness_hourglass(const HexBlock& block, double dt, Lanes state[4][3], HourglassTerms& h) {
+  Lanes qdot[4][3];
+  hourglass_velocities<true>(h, qdot);
+  Lanes gg{};
+  for (int k = 1; k <= 6; ++k) gg += hex::dot(h.g[k], h.g[k]);
+  const material::ElasticConstants& m = block.material;
+  // b.b / 8 = sum_k |G_k|^2.
+  const Lanes stiff = block.hourglass.qm * (m.lambda + 2.0 * m.shear) * gg / h.volume;
+  // Cayley rotation of the stored forces, as rotate_vector.
+  Lanes p[3];
+  for (int i = 0; i < 3; ++i) p[i] = 0.5 * dt * h.w[i];
+  const Lanes kr = 2.0 / (1.0 + hex::dot(p, p));
+  Lanes wsum{};
+  for (int a = 0; a < 4; ++a) {
+    Lanes* q = state[a];
+    Lanes pu[3], ppu[3];
+    hex::cross(p, q, pu);
+    hex::cross(p, pu, ppu);
+    for (int i = 0; i < 3; ++i) q[i] += kr * (pu[i] + ppu[i]);
+    for (int i = 0; i < 3; ++i) {
+      const Lanes old = q[i];
+      q[i] = old + stiff * qdot[a][i] * dt;
+      h.q[a][i] = q[i];
+      wsum += 0.5 * (old + q[i]) * qdot[a][i];
+    }
+  }
+  h.work = wsum * dt;
+}
+
+// IHQ 6: Belytschko-Bindeman co-rotational stiffness (see the header comment). `state` holds the
+// generalised forces in the corotational frame.
+void corotational_hourglass(const HexBlock& block, double dt, Lanes state[4][3],
+                            HourglassTerms& h) {
+  Lanes qdot[4][3];
+  hourglass_velocities<true>(h, qdot);
+  const Lanes(*a)[3] = h.ax;
+  // Axes: e1 along A1, e2 = A2 orthogonalised, e3 = e1 x e2. Half-lengths h_j = |A_j| / 8 enter
+  // only squared: 1 / h_j^2 = 64 / |A_j|^2.
+  const Lanes len2[3] = {hex::dot(a[1], a[1]), hex::dot(a[2], a[2]), hex::dot(a[3], a[3])};
+  Lanes e[3][3];
+  const Lanes n1 = 1.0 / lane_sqrt(len2[0]);
+  for (int i = 0; i < 3; ++i) e[0][i] = a[1][i] * n1;
+  const Lanes pr = hex::dot(a[2], e[0]);
+  for (int i = 0; i < 3; ++i) e[1][i] = a[2][i] - pr * e[0][i];
+  const Lanes n2 = 1.0 / lane_sqrt(hex::dot(e[1], e[1]));
+  for (int i = 0; i < 3; ++i) e[1][i] *= n2;
+  hex::cross(e[0], e[1], e[2]);
+
+  const material::ElasticConstants& m = block.material;
+  const double E = m.young, mu = m.shear, qm = block.hourglass.qm;
+  const Lanes inv2[3] = {64.0 / len2[0], 64.0 / len2[1], 64.0 / len2[2]};
+  const Lanes inv_sum = inv2[0] + inv2[1] + inv2[2];
+  const Lanes bend = qm * h.volume * (1.0 / 192.0);
+  const Lanes tri = qm * h.volume * (1.0 / 576.0);
+  Lanes K[4][3];
+  for (int md = 0; md < 3; ++md)
+    for (int j = 0; j < 3; ++j)
+      K[md][j] = j != md ? bend * E * inv2[j] : bend * mu * (inv_sum - inv2[md]);
+  for (int j = 0; j < 3; ++j) K[3][j] = tri * (E * inv2[j] + mu * (inv_sum - inv2[j]));
+
+  Lanes wsum{};
+  for (int md = 0; md < 4; ++md) {
+    Lanes* q = state[md];
+    for (int j = 0; j < 3; ++j) {
+      const Lanes qd = hex::dot(e[j], qdot[md]);
+      const Lanes old = q[j];
+      q[j] = old + K[md][j] * qd * dt;
+      wsum += 0.5 * (old + q[j]) * qd;
+    }
+    for (int i = 0; i < 3; ++i) h.q[md][i] = e[0][i] * q[0] + e[1][i] * q[1] + e[2][i] * q[2];
+  }
+  h.work = wsum * dt;
+}
+
+// The hourglass forms the kernel is instantiated for (IHQ 3 == 2, IHQ 5 == 4).
+enum class HourglassForm { kViscousLsDyna, kViscousFB, kStiffnessFB, kBelytschkoBindeman };
+
+inline HourglassForm hourglass_form(int ihq) {
+  if (ihq == 1) return HourglassForm::kViscousLsDyna;
+  if (ihq <= 3) return HourglassForm::kViscousFB;
+  if (ihq <= 5) return HourglassForm::kStiffnessFB;
+  return HourglassForm::kBelytschkoBindeman;
+}
+
+template <HourglassForm kForm>
+void elform1_batch(HexBlock& block, std::size_t first, int count, const NodalView& nv, double dt,
+                   Partial& part) {
+  constexpr bool kStateful =
+      kForm == HourglassForm::kStiffnessFB || kForm == HourglassForm::kBelytschkoBindeman;
+  constexpr bool kOrthogonal = kForm != HourglassForm::kViscousLsDyna;
+  Batch b;
+  b.first = first;
+  b.count = count;
+  gather_batch(block, nv, b);
+
+  Lanes ax[8][3], av[8][3], am[8][3];
+  hex::base_vectors(b.x, ax);
+  hex::base_vectors(b.v, av);
+  const double half_dt = 0.5 * dt;
+  for (int k = 1; k <= 6; ++k)
+    for (int i = 0; i < 3; ++i) am[k][i] = ax[k][i] - half_dt * av[k][i];
+  Lanes gm[7][3], g[7][3], vm, vol;
+  hex::volume_gradient(am, gm, vm);
+  hex::volume_gradient(ax, g, vol);
+
+  // Rates on the mid-step configuration and the stress update.
+  Lanes L[9];
+  const Lanes inv_vm = 1.0 / vm;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      Lanes s = av[1][i] * gm[1][j];
+      for (int k = 2; k <= 6; ++k) s += av[k][i] * gm[k][j];
+      L[3 * i + j] = s * inv_vm;
+    }
+  Lanes d[6], w[3], sig[6];
+  material::split_velocity_gradient(L, d, w);
+  std::size_t off[kLanes];
+  lane_offsets(b, 6, off);
+  for (int c = 0; c < 6; ++c) sig[c] = load_lanes(block.stress.data() + c, off);
+  material::elastic_jaumann_update(block.material, d, w, dt, sig);
+
+  HourglassTerms h{ax, av, g, vol, {w[0], w[1], w[2]}, {}, {}};
+  Lanes state[4][3];
+  if constexpr (kStateful) {
+    lane_offsets(b, 12, off);
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < 3; ++i)
+        state[a][i] = load_lanes(block.hourglass_state.data() + 3 * a + i, off);
+  }
+  if constexpr (kForm == HourglassForm::kStiffnessFB)
+    stiffness_hourglass(block, dt, state, h);
+  else if constexpr (kForm == HourglassForm::kBelytschkoBindeman)
+    corotational_hourglass(block, dt, state, h);
+  else
+    viscous_hourglass<kOrthogonal>(block, b, dt, h);
+
+  // Nodal forces f_iI = sum_k (P G_k)_i s_k(I) + sum_a Q_ai s_(4+a)(I), P = sigma - T.
+  const Lanes P0[3][3] = {
+      {sig[0], sig[3], sig[5]}, {sig[3], sig[1], sig[4]}, {sig[5], sig[4], sig[2]}};
+  Lanes P[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) P[i][j] = P0[i][j];
+  if constexpr (kOrthogonal) {
+    const Lanes inv_v = 1.0 / vol;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        P[i][j] -= inv_v * (h.q[0][i] * ax[4][j] + h.q[1][i] * ax[5][j] + h.q[2][i] * ax[6][j] +
+                            h.q[3][i] * ax[7][j]);
+  }
+  Lanes coef[8][3], f[3][8];
+  for (int i = 0; i < 3; ++i) {
+    coef[0][i] = Lanes{};
+    for (int k = 1; k <= 6; ++k)
+      coef[k][i] = P[i][0] * g[k][0] + P[i][1] * g[k][1] + P[i][2] * g[k][2];
+    coef[7][i] = Lanes{};
+    for (int a = 0; a < 4; ++a) coef[4 + a][i] += h.q[a][i];
+  }
+  hex::expand_nodal(coef, f);
+
+  // Critical step L_e / c with L_e = V / A_max (tetrahedra: 3 V / A_max).
+  Lanes shape_factor;
+  for (int l = 0; l < kLanes; ++l)
+    shape_factor[l] = block.shape[b.element(l)] == HexShape::kTetrahedron ? 3.0 : 1.0;
+  const Lanes elem_dt =
+      vol * shape_factor /
+      (lane_sqrt(hex::max_face_area_squared_from_base(ax)) * block.material.wave_speed);
+  Lanes fsum{};
+  for (int i = 0; i < 3; ++i)
+    for (int n = 0; n < 8; ++n) fsum += f[i][n];
+
+  // Write back lane by lane, in element order (keeps "first failure" and the work sum in the
+  // same order as an element-by-element loop).
+  for (int l = 0; l < count; ++l) {
+    const std::size_t e = first + static_cast<std::size_t>(l);
+    const auto ie = static_cast<std::int64_t>(e);
+    block.volume[e] = vol[l];
+    double* out = &block.force[24 * e];
+    if (!(vm[l] > 0.0) || !(vol[l] > 0.0)) {
+      part.record_failure(ie, vol[l] > 0.0 ? vm[l] : vol[l]);
+      for (int s = 0; s < 24; ++s) out[s] = 0.0;
+      continue;
+    }
+    double* s = &block.stress[6 * e];
+    for (int c = 0; c < 6; ++c) s[c] = sig[c][l];
+    if constexpr (kStateful) {
+      double* q = &block.hourglass_state[12 * e];
+      for (int a = 0; a < 4; ++a)
+        for (int i = 0; i < 3; ++i) q[3 * a + i] = state[a][i][l];
+    }
+    part.hourglass_work += h.work[l];
+    if (!std::isfinite(fsum[l])) part.record_failure(ie, vol[l]);
+    if (b.slots[l] == kIdentitySlots) {
+      for (int n = 0; n < 8; ++n)
+        for (int i = 0; i < 3; ++i) out[3 * n + i] = f[i][n][l];
+    } else {
+      double fl[3][8];
+      for (int i = 0; i < 3; ++i)
+        for (int n = 0; n < 8; ++n) fl[i][n] = f[i][n][l];
+      scatter_forces(b.slots[l], fl, out);
+    }
+    part.record_dt(elem_dt[l], ie);
+  }
+}
+
+template <HourglassForm kForm>
+void elform1_range(HexBlock& block, std::int64_t batches, const NodalView& nv, double dt,
+                   Partial& part) {
+  const std::size_t n = block.size();
+#pragma omp for schedule(static)
+  for (std::int64_t bi = 0; bi < batches; ++bi) {
+    const std::size_t first = static_cast<std::size_t>(bi) * kLanes;
+    const int count = static_cast<int>(std::min<std::size_t>(kLanes, n - first));
+    elform1_batch<kForm>(block, first, count, nv, dt, part);
+  }
+}
+
+// --- ELFORM 2 -----------------------------------------------------------------------------
 
 inline bool finite_forces(const double f[3][8]) {
   double s = 0.0;
@@ -291,68 +558,6 @@ inline bool finite_forces(const double f[3][8]) {
     for (int n = 0; n < 8; ++n) s += f[i][n];
   return std::isfinite(s);
 }
-
-void elform1_element(HexBlock& block, std::size_t e, const NodalView& nv, double dt,
-                     Partial& part) {
-  const int* slots = slot_map(block, e);
-  const std::int32_t* c = &block.conn[8 * e];
-  double x[3][8], v[3][8], f[3][8];
-  gather_coordinates(c, slots, nv, x);
-  gather_velocities(c, slots, nv, v);
-
-  // Rates on the mid-step configuration.
-  double xm[3][8];
-  const double half_dt = 0.5 * dt;
-  for (int i = 0; i < 3; ++i)
-    for (int n = 0; n < 8; ++n) xm[i][n] = x[i][n] - half_dt * v[i][n];
-  hex::Geometry gm;
-  hex::compute_geometry(xm, gm);
-
-  hex::Geometry g;
-  hex::compute_geometry(x, g);
-  block.volume[e] = g.volume;
-  double* out = &block.force[24 * e];
-  if (!(gm.volume > 0.0) || !(g.volume > 0.0)) {
-    part.record_failure(static_cast<std::int64_t>(e), g.volume > 0.0 ? gm.volume : g.volume);
-    for (int s = 0; s < 24; ++s) out[s] = 0.0;
-    return;
-  }
-
-  double L[9];
-  const double inv_vm = 1.0 / gm.volume;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      double s = 0.0;
-      for (int n = 0; n < 8; ++n) s += v[i][n] * gm.b[j][n];
-      L[3 * i + j] = s * inv_vm;
-    }
-  double d[6], w[3];
-  material::split_velocity_gradient(L, d, w);
-  double* sig = &block.stress[6 * e];
-  material::elastic_jaumann_update(block.material, d, w, dt, sig);
-
-  // f_iI = sigma_ij dV/dx_jI  (= V sigma_ij b_jI).
-  const double sxx = sig[0], syy = sig[1], szz = sig[2], sxy = sig[3], syz = sig[4], szx = sig[5];
-  for (int n = 0; n < 8; ++n) {
-    const double bx = g.b[0][n], by = g.b[1][n], bz = g.b[2][n];
-    f[0][n] = sxx * bx + sxy * by + szx * bz;
-    f[1][n] = sxy * bx + syy * by + syz * bz;
-    f[2][n] = szx * bx + syz * by + szz * bz;
-  }
-
-  double work = 0.0;
-  // The viscous coefficient uses the current density rho0 V0 / V (mass conservation).
-  const double density = block.material.rho * block.volume0[e] / g.volume;
-  hourglass_forces(block, g, v, w, dt, density, &block.hourglass_state[12 * e], f, work);
-  part.hourglass_work += work;
-
-  if (!finite_forces(f)) part.record_failure(static_cast<std::int64_t>(e), g.volume);
-  scatter_forces(slots, f, out);
-  part.record_dt(element_time_step(x, g.volume, block.shape[e], block.material.wave_speed),
-                 static_cast<std::int64_t>(e));
-}
-
-// --- ELFORM 2 -----------------------------------------------------------------------------
 
 void elform2_element(HexBlock& block, std::size_t e, const NodalView& nv, double dt,
                      Partial& part) {
@@ -466,6 +671,7 @@ void initialize_hex_block(HexBlock& block, const NodalView& nodes) {
   block.hourglass_state.assign(12 * n, 0.0);
   block.force.assign(24 * n, 0.0);
   block.volume0.assign(n, 0.0);
+  block.volume0_cbrt.assign(n, 0.0);
   block.volume.assign(n, 0.0);
   block.shape.assign(n, HexShape::kHexahedron);
   for (std::size_t e = 0; e < n; ++e) {
@@ -480,6 +686,7 @@ void initialize_hex_block(HexBlock& block, const NodalView& nodes) {
           "patterns n1 n2 n3 n4 n4 n4 n4 n4, n1..n5 n5 n5 n5, n1 n2 n3 n4 n5 n5 n6 n6)",
           block.element_id[e], block.part_id, v));
     block.volume0[e] = v;
+    block.volume0_cbrt[e] = std::cbrt(v);
     block.volume[e] = v;
   }
 }
@@ -489,15 +696,31 @@ KernelResult compute_hex_forces(HexBlock& block, const NodalView& nodes, double 
   const std::int64_t n = static_cast<std::int64_t>(block.size());
   int threads = 1;
   const bool elform2 = block.elform == 2;
+  const std::int64_t batches = (n + kLanes - 1) / kLanes;
+  const HourglassForm form = hourglass_form(block.hourglass.ihq);
 #pragma omp parallel num_threads(thread_count())
   {
     Partial local;
+    if (elform2) {
 #pragma omp for schedule(static)
-    for (std::int64_t e = 0; e < n; ++e) {
-      if (elform2)
+      for (std::int64_t e = 0; e < n; ++e)
         elform2_element(block, static_cast<std::size_t>(e), nodes, dt, local);
-      else
-        elform1_element(block, static_cast<std::size_t>(e), nodes, dt, local);
+    } else {
+      // Static schedule over batches: each thread still owns a contiguous element range.
+      switch (form) {
+        case HourglassForm::kViscousLsDyna:
+          elform1_range<HourglassForm::kViscousLsDyna>(block, batches, nodes, dt, local);
+          break;
+        case HourglassForm::kViscousFB:
+          elform1_range<HourglassForm::kViscousFB>(block, batches, nodes, dt, local);
+          break;
+        case HourglassForm::kStiffnessFB:
+          elform1_range<HourglassForm::kStiffnessFB>(block, batches, nodes, dt, local);
+          break;
+        case HourglassForm::kBelytschkoBindeman:
+          elform1_range<HourglassForm::kBelytschkoBindeman>(block, batches, nodes, dt, local);
+          break;
+      }
     }
     partials[omp_get_thread_num()] = local;
 #pragma omp single

@@ -60,8 +60,9 @@ struct HexBlock {
   std::vector<double> stress;
   // Accumulated hourglass generalized forces for the stiffness forms (IHQ 4,5,6): 12 per element.
   std::vector<double> hourglass_state;
-  std::vector<double> volume0;  // reference volume
-  std::vector<double> volume;   // current volume
+  std::vector<double> volume0;       // reference volume
+  std::vector<double> volume0_cbrt;  // V0^{1/3}, scales the viscous hourglass coefficient
+  std::vector<double> volume;        // current volume
   // Element nodal forces of the last evaluation, 24 per element (node-major: f0x,f0y,f0z,...).
   std::vector<double> force;
   // Shape detected from the connectivity (initialize_hex_block), one per element.

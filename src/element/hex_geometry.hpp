@@ -37,12 +37,16 @@ inline constexpr double kHourglassBase[4][8] = {{1, 1, -1, -1, -1, -1, 1, 1},   
 inline constexpr int kFaces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
                                      {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
 
-inline void cross(const double a[3], const double b[3], double c[3]) {
+// The helpers below are templates over the scalar type so that the same code serves one element
+// (double) and a batch of elements held in SIMD lanes (see hex_block.cpp).
+template <class T>
+inline void cross(const T a[3], const T b[3], T c[3]) {
   c[0] = a[1] * b[2] - a[2] * b[1];
   c[1] = a[2] * b[0] - a[0] * b[2];
   c[2] = a[0] * b[1] - a[1] * b[0];
 }
-inline double dot(const double a[3], const double b[3]) {
+template <class T>
+inline T dot(const T a[3], const T b[3]) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
@@ -53,12 +57,13 @@ struct Geometry {
 };
 
 // A-vectors only (cheap; used for Jacobians and corotational axes).
-inline void base_vectors(const double x[3][8], double a[8][3]) {
+template <class T>
+inline void base_vectors(const T x[3][8], T a[8][3]) {
   for (int i = 0; i < 3; ++i) {
-    const double* p = x[i];
+    const T* p = x[i];
     // Butterflies over the node pattern keep this at ~ 3 x 24 additions.
-    const double s01 = p[0] + p[1], d10 = p[1] - p[0], s23 = p[2] + p[3], d23 = p[2] - p[3];
-    const double s45 = p[4] + p[5], d54 = p[5] - p[4], s67 = p[6] + p[7], d67 = p[6] - p[7];
+    const T s01 = p[0] + p[1], d10 = p[1] - p[0], s23 = p[2] + p[3], d23 = p[2] - p[3];
+    const T s45 = p[4] + p[5], d54 = p[5] - p[4], s67 = p[6] + p[7], d67 = p[6] - p[7];
     a[0][i] = s01 + s23 + s45 + s67;
     a[1][i] = d10 + d23 + d54 + d67;   // xi
     a[2][i] = -s01 + s23 - s45 + s67;  // eta
@@ -70,16 +75,19 @@ inline void base_vectors(const double x[3][8], double a[8][3]) {
   }
 }
 
-inline void compute_geometry(const double x[3][8], Geometry& g) {
-  base_vectors(x, g.a);
-  const double* A1 = g.a[1];
-  const double* A2 = g.a[2];
-  const double* A3 = g.a[3];
-  const double* A4 = g.a[4];
-  const double* A5 = g.a[5];
-  const double* A6 = g.a[6];
-  double c23[3], c31[3], c12[3], c65[3], c46[3], c54[3], c62[3], c35[3], c43[3], c16[3], c24[3],
-      c51[3];
+// Volume and its gradient with respect to the base vectors, G_k = dV/dA_k for k = 1..6
+// (G_0 = G_7 = 0: V is translation invariant and A_7 drops out). From
+//   V = [A1,A2,A3]/64 + ([A6,A2,A4] + [A5,A4,A3] + [A1,A6,A5])/192
+// by the triple-product rule d[a,b,c]/da = b x c. Only a[1..6] are read.
+template <class T>
+inline void volume_gradient(const T a[8][3], T G[7][3], T& volume) {
+  const T* A1 = a[1];
+  const T* A2 = a[2];
+  const T* A3 = a[3];
+  const T* A4 = a[4];
+  const T* A5 = a[5];
+  const T* A6 = a[6];
+  T c23[3], c31[3], c12[3], c65[3], c46[3], c54[3], c62[3], c35[3], c43[3], c16[3], c24[3], c51[3];
   cross(A2, A3, c23);
   cross(A3, A1, c31);
   cross(A1, A2, c12);
@@ -93,8 +101,8 @@ inline void compute_geometry(const double x[3][8], Geometry& g) {
   cross(A2, A4, c24);
   cross(A5, A1, c51);
   constexpr double k64 = 1.0 / 64.0, k192 = 1.0 / 192.0;
-  double G[7][3];  // dV/dA_k for k = 1..6
   for (int i = 0; i < 3; ++i) {
+    G[0][i] = T{};
     G[1][i] = k64 * c23[i] + k192 * c65[i];
     G[2][i] = k64 * c31[i] + k192 * c46[i];
     G[3][i] = k64 * c12[i] + k192 * c54[i];
@@ -102,7 +110,36 @@ inline void compute_geometry(const double x[3][8], Geometry& g) {
     G[5][i] = k192 * (c43[i] + c16[i]);
     G[6][i] = k192 * (c24[i] + c51[i]);
   }
-  g.volume = k64 * dot(A1, c23) + k192 * (dot(A6, c24) + dot(A5, c43) + dot(A1, c65));
+  volume = k64 * dot(A1, c23) + k192 * (dot(A6, c24) + dot(A5, c43) + dot(A1, c65));
+}
+
+// Nodal values from coefficients of the base monomials: f_I = sum_k s_k(node I) c_k, the
+// transpose of base_vectors. Used for dV/dx_I = sum_k G_k s_k(I) and for nodal forces, which in
+// the one-point element are all of this form. Butterfly: with zeta = -1 / +1 on nodes 0-3 / 4-7,
+//   f = P(xi, eta) + zeta R(xi, eta),  P = (c0 + eta c2) + xi (c1 + eta c6),
+//                                      R = (c3 + eta c4) + xi (c5 + eta c7),
+// 24 additions per component instead of 56.
+template <class T>
+inline void expand_nodal(const T c[8][3], T f[3][8]) {
+  for (int i = 0; i < 3; ++i) {
+    const T up = c[0][i] + c[2][i], um = c[0][i] - c[2][i];
+    const T tp = c[1][i] + c[6][i], tm = c[1][i] - c[6][i];
+    const T rp = c[3][i] + c[4][i], rm = c[3][i] - c[4][i];
+    const T zp = c[5][i] + c[7][i], zm = c[5][i] - c[7][i];
+    const T p[4] = {um - tm, um + tm, up + tp,
+                    up - tp};  // nodes (xi, eta) = (-,-) (+,-) (+,+) (-,+)
+    const T r[4] = {rm - zm, rm + zm, rp + zp, rp - zp};
+    for (int n = 0; n < 4; ++n) {
+      f[i][n] = p[n] - r[n];
+      f[i][n + 4] = p[n] + r[n];
+    }
+  }
+}
+
+inline void compute_geometry(const double x[3][8], Geometry& g) {
+  base_vectors(x, g.a);
+  double G[7][3];
+  volume_gradient(g.a, G, g.volume);
   for (int i = 0; i < 3; ++i) {
     const double g1 = G[1][i], g2 = G[2][i], g3 = G[3][i], g4 = G[4][i], g5 = G[5][i], g6 = G[6][i];
     for (int n = 0; n < 8; ++n) {
@@ -141,6 +178,31 @@ inline double max_face_area_squared(const double x[3][8]) {
     amax = a2 > amax ? a2 : amax;
   }
   return amax;
+}
+
+// Largest face area squared from the base vectors (same quantity as max_face_area_squared). On
+// the face zeta = z the map is x = (1/8)[(A0 + z A3) + xi (A1 + z A5) + eta (A2 + z A4) + ...],
+// and the cross product of its diagonals is (1/32) (A1 + z A5) x (A2 + z A4), so
+//   area^2 = |(A1 + z A5) x (A2 + z A4)|^2 / 256,
+// and likewise for xi = +-1 (tangents A2 +- A6, A3 +- A5) and eta = +-1 (A1 +- A6, A3 +- A4).
+template <class T>
+inline T max_face_area_squared_from_base(const T a[8][3]) {
+  // {first tangent, its face partner, second tangent, its face partner}
+  constexpr int kPairs[3][4] = {{1, 5, 2, 4}, {2, 6, 3, 5}, {1, 6, 3, 4}};
+  T amax{};
+  for (const auto& pr : kPairs) {
+    for (const double side : {-1.0, 1.0}) {
+      T t1[3], t2[3], c[3];
+      for (int i = 0; i < 3; ++i) {
+        t1[i] = a[pr[0]][i] + side * a[pr[1]][i];
+        t2[i] = a[pr[2]][i] + side * a[pr[3]][i];
+      }
+      cross(t1, t2, c);
+      const T a2 = dot(c, c);
+      amax = a2 > amax ? a2 : amax;
+    }
+  }
+  return amax * (1.0 / 256.0);
 }
 
 // 2x2x2 Gauss rule (weights 1): point g has natural coordinates (kXi[g], kEta[g], kZeta[g])/sqrt3.

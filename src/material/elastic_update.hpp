@@ -15,6 +15,8 @@
 //   stress s, Voigt order xx, yy, zz, xy, yz, zx (tensor components);
 //   rate of deformation d, same order, TENSOR shear components d_xy = (L_xy + L_yx) / 2;
 //   spin vector w with W a = w x a, i.e. w = (W_zy, W_xz, W_yx).
+// The functions are templates over the scalar type: T = double for one material point, or a
+// GCC vector of doubles when the element kernels process a batch of elements in SIMD lanes.
 #pragma once
 
 #include "material/elastic.hpp"
@@ -24,26 +26,27 @@ namespace rf::material {
 // Rotates symmetric stress s (6 components) by Q = Cayley(W dt / 2). The closed form of the
 // Cayley transform of a skew matrix [psi]x is Q = I + 2/(1+|psi|^2) ([psi]x + [psi]x^2); it avoids
 // the 3x3 inverse.
-inline void hughes_winget_rotate(const double w[3], double dt, double s[6]) {
-  const double p1 = 0.5 * dt * w[0], p2 = 0.5 * dt * w[1], p3 = 0.5 * dt * w[2];
-  const double pp = p1 * p1 + p2 * p2 + p3 * p3;
-  const double k = 2.0 / (1.0 + pp);
-  const double q11 = 1.0 + k * (p1 * p1 - pp), q22 = 1.0 + k * (p2 * p2 - pp),
-               q33 = 1.0 + k * (p3 * p3 - pp);
-  const double q12 = k * (p1 * p2 - p3), q21 = k * (p1 * p2 + p3);
-  const double q13 = k * (p1 * p3 + p2), q31 = k * (p1 * p3 - p2);
-  const double q23 = k * (p2 * p3 - p1), q32 = k * (p2 * p3 + p1);
-  const double sxx = s[0], syy = s[1], szz = s[2], sxy = s[3], syz = s[4], szx = s[5];
+template <class T>
+inline void hughes_winget_rotate(const T w[3], double dt, T s[6]) {
+  const T p1 = 0.5 * dt * w[0], p2 = 0.5 * dt * w[1], p3 = 0.5 * dt * w[2];
+  const T pp = p1 * p1 + p2 * p2 + p3 * p3;
+  const T k = 2.0 / (1.0 + pp);
+  const T q11 = 1.0 + k * (p1 * p1 - pp), q22 = 1.0 + k * (p2 * p2 - pp),
+          q33 = 1.0 + k * (p3 * p3 - pp);
+  const T q12 = k * (p1 * p2 - p3), q21 = k * (p1 * p2 + p3);
+  const T q13 = k * (p1 * p3 + p2), q31 = k * (p1 * p3 - p2);
+  const T q23 = k * (p2 * p3 - p1), q32 = k * (p2 * p3 + p1);
+  const T sxx = s[0], syy = s[1], szz = s[2], sxy = s[3], syz = s[4], szx = s[5];
   // T = Q sigma
-  const double t11 = q11 * sxx + q12 * sxy + q13 * szx;
-  const double t12 = q11 * sxy + q12 * syy + q13 * syz;
-  const double t13 = q11 * szx + q12 * syz + q13 * szz;
-  const double t21 = q21 * sxx + q22 * sxy + q23 * szx;
-  const double t22 = q21 * sxy + q22 * syy + q23 * syz;
-  const double t23 = q21 * szx + q22 * syz + q23 * szz;
-  const double t31 = q31 * sxx + q32 * sxy + q33 * szx;
-  const double t32 = q31 * sxy + q32 * syy + q33 * syz;
-  const double t33 = q31 * szx + q32 * syz + q33 * szz;
+  const T t11 = q11 * sxx + q12 * sxy + q13 * szx;
+  const T t12 = q11 * sxy + q12 * syy + q13 * syz;
+  const T t13 = q11 * szx + q12 * syz + q13 * szz;
+  const T t21 = q21 * sxx + q22 * sxy + q23 * szx;
+  const T t22 = q21 * sxy + q22 * syy + q23 * syz;
+  const T t23 = q21 * szx + q22 * syz + q23 * szz;
+  const T t31 = q31 * sxx + q32 * sxy + q33 * szx;
+  const T t32 = q31 * sxy + q32 * syy + q33 * syz;
+  const T t33 = q31 * szx + q32 * syz + q33 * szz;
   // sigma' = T Q^T
   s[0] = t11 * q11 + t12 * q12 + t13 * q13;
   s[1] = t21 * q21 + t22 * q22 + t23 * q23;
@@ -54,10 +57,10 @@ inline void hughes_winget_rotate(const double w[3], double dt, double s[6]) {
 }
 
 // Adds the isotropic elastic increment C : D dt = (lambda tr(D) I + 2 mu D) dt.
-inline void add_elastic_increment(const ElasticConstants& m, const double d[6], double dt,
-                                  double s[6]) {
+template <class T>
+inline void add_elastic_increment(const ElasticConstants& m, const T d[6], double dt, T s[6]) {
   const double two_mu_dt = 2.0 * m.shear * dt;
-  const double lam_tr = m.lambda * (d[0] + d[1] + d[2]) * dt;
+  const T lam_tr = m.lambda * (d[0] + d[1] + d[2]) * dt;
   s[0] += lam_tr + two_mu_dt * d[0];
   s[1] += lam_tr + two_mu_dt * d[1];
   s[2] += lam_tr + two_mu_dt * d[2];
@@ -67,15 +70,17 @@ inline void add_elastic_increment(const ElasticConstants& m, const double d[6], 
 }
 
 // Full hypoelastic Jaumann update over one step: rotate, then add C : D dt.
-inline void elastic_jaumann_update(const ElasticConstants& m, const double d[6], const double w[3],
-                                   double dt, double s[6]) {
+template <class T>
+inline void elastic_jaumann_update(const ElasticConstants& m, const T d[6], const T w[3], double dt,
+                                   T s[6]) {
   hughes_winget_rotate(w, dt, s);
   add_elastic_increment(m, d, dt, s);
 }
 
 // Splits a velocity gradient L (row-major, L[i*3+j] = dv_i/dx_j) into d (Voigt, tensor shear)
 // and the spin vector w.
-inline void split_velocity_gradient(const double L[9], double d[6], double w[3]) {
+template <class T>
+inline void split_velocity_gradient(const T L[9], T d[6], T w[3]) {
   d[0] = L[0];
   d[1] = L[4];
   d[2] = L[8];

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "element/hex_block.hpp"
@@ -42,6 +43,20 @@ struct NodeIncidence {
   std::vector<std::int32_t> block;   // which block each slot belongs to
 };
 
+// Element-order assembly schedule for a given thread count (built on first use). Thread t owns
+// the nodes [node_begin[t], node_begin[t+1]) and walks, block by block, the element range
+// element_range[t * blocks + b] = {first, last + 1} of elements that touch one of its nodes,
+// adding only the slots of its own nodes. Every node therefore receives its slots in ascending
+// (block, element, local node) order, the same order as the CSR incidence, so both paths give
+// bit-identical sums. `use_csr` is set when the node numbering makes the ranges overlap so much
+// that the walk would be slower than the CSR gather.
+struct AssemblyPlan {
+  int threads = 0;
+  bool use_csr = false;
+  std::vector<std::int64_t> node_begin;                              // threads + 1
+  std::vector<std::pair<std::int64_t, std::int64_t>> element_range;  // threads x blocks
+};
+
 struct PartInfo {
   model::Id id = 0;
   std::string title;
@@ -59,6 +74,7 @@ struct State {
   double dt_prev = 0.0;  // dt^{n-1/2}
   std::int64_t cycle = 0;
   std::vector<const double*> block_force_pointers;  // scratch for assembly, sized once
+  AssemblyPlan assembly_plan;
 };
 
 }  // namespace rf::solver

@@ -60,6 +60,51 @@ TEST(HexGeometry, DistortedVolumeMatchesTetrahedralDecompositionAndGauss) {
   EXPECT_GT(std::abs(vt - 1.0), 0.05);  // really distorted
 }
 
+TEST(HexGeometry, ExpandNodalIsTheTransposeOfBaseVectors) {
+  // expand_nodal(c)_I = sum_k s_k(I) c_k, checked against the monomials evaluated directly.
+  double c[8][3];
+  for (int k = 0; k < 8; ++k)
+    for (int i = 0; i < 3; ++i) c[k][i] = std::sin(1.0 + 3.0 * k + i);
+  double f[3][8];
+  rf::element::hex::expand_nodal(c, f);
+  using rf::element::hex::kEta;
+  using rf::element::hex::kXi;
+  using rf::element::hex::kZeta;
+  for (int n = 0; n < 8; ++n) {
+    const double s[8] = {1.0,
+                         kXi[n],
+                         kEta[n],
+                         kZeta[n],
+                         kEta[n] * kZeta[n],
+                         kZeta[n] * kXi[n],
+                         kXi[n] * kEta[n],
+                         kXi[n] * kEta[n] * kZeta[n]};
+    for (int i = 0; i < 3; ++i) {
+      double expected = 0.0;
+      for (int k = 0; k < 8; ++k) expected += s[k] * c[k][i];
+      EXPECT_NEAR(f[i][n], expected, 1e-14);
+    }
+  }
+}
+
+TEST(HexGeometry, FaceAreasFromBaseVectorsMatchDiagonalForm) {
+  double x[3][8];
+  for (int k = 0; k < 8; ++k)
+    for (int i = 0; i < 3; ++i) x[i][k] = rf::test::kDistorted[k][i];
+  double a[8][3];
+  rf::element::hex::base_vectors(x, a);
+  const double direct = rf::element::hex::max_face_area_squared(x);
+  EXPECT_NEAR(rf::element::hex::max_face_area_squared_from_base(a), direct, 1e-14 * direct);
+  // Collapsed face (wedge pattern n1..n4 n5 n5 n6 n6): the triangle areas still agree.
+  for (int i = 0; i < 3; ++i) {
+    x[i][5] = x[i][4];
+    x[i][7] = x[i][6];
+  }
+  rf::element::hex::base_vectors(x, a);
+  const double wedge = rf::element::hex::max_face_area_squared(x);
+  EXPECT_NEAR(rf::element::hex::max_face_area_squared_from_base(a), wedge, 1e-14 * wedge);
+}
+
 TEST(HexGeometry, UniformGradientReproducesLinearFields) {
   // sum_I b_jI x_kI = V delta_jk for the exact volume-averaged operator.
   double x[3][8];
