@@ -189,8 +189,8 @@ TEST_P(KeywordRigid, MotionsLoadsAndControls) {
   EXPECT_DOUBLE_EQ(m.output.rbdout_dt, 1e-4);
   bool control_rigid_warned = false;
   for (const auto& w : m.warnings) {
-    control_rigid_warned |= w.where.keyword == "*CONTROL_RIGID" &&
-                            w.message.find("ignored") != std::string::npos;
+    control_rigid_warned |=
+        w.where.keyword == "*CONTROL_RIGID" && w.message.find("ignored") != std::string::npos;
   }
   EXPECT_TRUE(control_rigid_warned);
 }

@@ -63,8 +63,8 @@ void add_coordinate_system(ReaderContext& context, const Card& card, model::Coor
 int flag_in(const Card& card, std::size_t i, const char* field, int fallback, int low, int high) {
   const int v = card.flag(i, field, fallback);
   if (v < low || v > high) {
-    throw card.error(field, fmt::format("value {} is not supported (supported: {}..{})", v, low,
-                                        high));
+    throw card.error(field,
+                     fmt::format("value {} is not supported (supported: {}..{})", v, low, high));
   }
   return v;
 }
@@ -93,8 +93,8 @@ RigidConstraints read_rigid_constraints(const Card& card) {
     for (int k = 5; k >= 0; --k, code /= 10) {
       const long digit = code % 10;
       if (digit > 1) {
-        throw card.error("CON2", fmt::format("CMO -1: CON2 {} has a digit other than 0 or 1",
-                                             c.con2));
+        throw card.error("CON2",
+                         fmt::format("CMO -1: CON2 {} has a digit other than 0 or 1", c.con2));
       }
       c.local_fix[static_cast<std::size_t>(k)] = digit == 1;
     }
@@ -152,8 +152,9 @@ model::RigidInertia read_rigid_inertia(CardCursor& cursor, int n, int& cards_rea
     if (in.cid == 0) {
       const auto axes = axes_from(in.xl, in.xlip, 0);
       if (!axes) {
-        throw c4.error("XL", "the local x axis XL YL ZL and the in-plane vector XLIP YLIP ZLIP "
-                             "must be nonzero and not parallel (or give CID)");
+        throw c4.error("XL",
+                       "the local x axis XL YL ZL and the in-plane vector XLIP YLIP ZLIP "
+                       "must be nonzero and not parallel (or give CID)");
       }
       in.principal_axes = *axes;
     }
@@ -176,16 +177,18 @@ void define_coordinate_system(const Block& block, ReaderContext& context) {
     cs.kind = model::CoordinateKind::System;
     cs.origin = read_vec3(c1, 1, kO);
     if (c1.id(7, "CID2") != 0) {
-      throw c1.error("CID2", "points given in another coordinate system (CID2) are not "
-                             "supported; give global coordinates");
+      throw c1.error("CID2",
+                     "points given in another coordinate system (CID2) are not "
+                     "supported; give global coordinates");
     }
     // The manual's construction: x from the origin to the point on the x axis, z normal to
     // the plane of the origin, that point and the in-plane point, y = z x x.
-    const auto axes = axes_from(sub(read_vec3(c1, 4, kL), cs.origin),
-                                sub(read_vec3(c2, 0, kP), cs.origin), 0);
+    const auto axes =
+        axes_from(sub(read_vec3(c1, 4, kL), cs.origin), sub(read_vec3(c2, 0, kP), cs.origin), 0);
     if (!axes) {
-      throw c2.error("XP", "the origin, the point on the x axis (XL YL ZL) and the in-plane "
-                           "point (XP YP ZP) must be distinct and not on one line");
+      throw c2.error("XP",
+                     "the origin, the point on the x axis (XL YL ZL) and the in-plane "
+                     "point (XP YP ZP) must be distinct and not on one line");
     }
     cs.axes = *axes;
     cs.where = c1.location();
@@ -204,13 +207,15 @@ void define_coordinate_vector(const Block& block, ReaderContext& context) {
     cs.id = positive_id(card, 0, "CID", "coordinate system");
     cs.kind = model::CoordinateKind::Vector;
     if (card.id(7, "NID") != 0) {
-      throw card.error("NID", "a system rotating with a node (NID) is not supported; leave NID "
-                              "blank for a fixed system");
+      throw card.error("NID",
+                       "a system rotating with a node (NID) is not supported; leave NID "
+                       "blank for a fixed system");
     }
     const auto axes = axes_from(read_vec3(card, 1, kX), read_vec3(card, 4, kV), 0);
     if (!axes) {
-      throw card.error("XV", "the x axis (XX YX ZX) and the in-plane vector (XV YV ZV) must be "
-                             "nonzero and not parallel");
+      throw card.error("XV",
+                       "the x axis (XX YX ZX) and the in-plane vector (XV YV ZV) must be "
+                       "nonzero and not parallel");
     }
     cs.axes = *axes;  // origin at (0, 0, 0)
     cs.where = card.location();
@@ -233,8 +238,9 @@ void define_coordinate_nodes(const Block& block, ReaderContext& context) {
     }
     const int flag = card.flag(4, "FLAG", 0);
     if (flag == 1) {
-      throw card.error("FLAG", "systems updated with the nodes (FLAG 1) are not supported; "
-                               "leave FLAG blank for a fixed system");
+      throw card.error("FLAG",
+                       "systems updated with the nodes (FLAG 1) are not supported; "
+                       "leave FLAG blank for a fixed system");
     }
     if (flag != 0) throw card.error("FLAG", fmt::format("value {} is not 0 or 1", flag));
     const std::string_view dir = card.text(5);
@@ -311,7 +317,8 @@ void constrained_extra_nodes(const Block& block, ReaderContext& context) {
     extra.where = card.location();
     context.model.extra_nodes.push_back(extra);
   }
-  if (n == 0) throw block_error(block, 1, "PID", fmt::format("no {} card follows the keyword", fields));
+  if (n == 0)
+    throw block_error(block, 1, "PID", fmt::format("no {} card follows the keyword", fields));
 }
 
 void constrained_nodal_rigid_body(const Block& block, ReaderContext& context) {
@@ -330,8 +337,9 @@ void constrained_nodal_rigid_body(const Block& block, ReaderContext& context) {
     body.iprt = flag_in(card, 4, "IPRT", 0, 0, 2);
     for (const auto& [i, name] : {std::pair{5u, "DRFLAG"}, std::pair{6u, "RRFLAG"}}) {
       if (card.flag(i, name, 0) != 0) {
-        throw card.error(name, "release of nodal degrees of freedom is not supported (leave "
-                               "DRFLAG and RRFLAG blank or 0)");
+        throw card.error(name,
+                         "release of nodal degrees of freedom is not supported (leave "
+                         "DRFLAG and RRFLAG blank or 0)");
       }
     }
     body.where = card.location();
@@ -446,8 +454,9 @@ void rigid_body_update(const Block& block, ReaderContext& context) {
 void control_rigid(const Block& block, ReaderContext& context) {
   // Its options (joint treatment, rigid-deformable switching by *DEFORMABLE_TO_RIGID,
   // metal forming) concern features RigidFlex does not have; saying so beats silence.
-  context.warn(block.location(), "*CONTROL_RIGID is read but ignored: RigidFlex uses its own "
-                                 "rigid body settings");
+  context.warn(block.location(),
+               "*CONTROL_RIGID is read but ignored: RigidFlex uses its own "
+               "rigid body settings");
 }
 
 }  // namespace rf::io::handlers
