@@ -37,6 +37,29 @@ struct SolidElement {
   SourceLocation where;
 };
 
+// Mass properties given instead of computed from the elements: *PART_INERTIA and
+// *CONSTRAINED_NODAL_RIGID_BODY_INERTIA share this layout.
+struct RigidInertia {
+  std::array<double, 3> xc{};  // centre of mass; the coordinates of NODEID when nodeid != 0
+  double tm = 0.0;             // translational mass
+  int ircs = 0;                // 0: tensor in global axes; 1: principal moments, see axes
+  Id nodeid = 0;               // node at the centre of mass (0: none)
+  // IXX IXY IXZ IYY IYZ IZZ as written. With IRCS 1 only IXX, IYY, IZZ (the principal
+  // moments about principal_axes rows 0, 1, 2) are meaningful.
+  std::array<double, 6> inertia{};
+  std::array<double, 3> vt{};  // initial translational velocity VTX VTY VTZ
+  std::array<double, 3> vr{};  // initial angular velocity VRX VRY VRZ (rad/time, global)
+  // IRCS 1 card as written: local x axis XL YL ZL, in-plane vector XLIP YLIP ZLIP, or CID.
+  std::array<double, 3> xl{};
+  std::array<double, 3> xlip{};
+  Id cid = 0;
+  // Rows: principal directions in global coordinates, resolved after reading (identity
+  // for IRCS 0).
+  std::array<std::array<double, 3>, 3> principal_axes{
+      {{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}}};
+  SourceLocation where;  // the XC YC ZC TM card
+};
+
 struct Part {
   Id id = 0;
   std::string title;
@@ -45,6 +68,7 @@ struct Part {
   Id eosid = 0;
   Id hgid = 0;
   SourceLocation where;
+  std::optional<RigidInertia> inertia;  // *PART_INERTIA
 };
 
 struct SectionSolid {
@@ -69,6 +93,42 @@ struct Material {
   double cmo = 0.0;
   double con1 = 0.0;
   double con2 = 0.0;
+  // CMO -1: constraints in a local system. CON1 is then the *DEFINE_COORDINATE_ ID (fixed in
+  // time) copied to cmo_cid, and CON2 the six-digit code 'xyzXYZ' (translations x y z, then
+  // rotations x y z of that system; a 1 digit constrains), decoded into cmo_local_fix.
+  Id cmo_cid = 0;
+  std::array<bool, 6> cmo_local_fix{};
+  // *MAT_RIGID card 3 (output orientation only). Either LCO, a coordinate system ID (when
+  // only the first field is given), or two body-fixed vectors a (A1..A3) and v (V1..V3).
+  Id lco = 0;
+  bool has_output_vectors = false;
+  std::array<double, 3> output_a{};
+  std::array<double, 3> output_v{};
+  SourceLocation where;
+};
+
+// *DEFINE_COORDINATE_SYSTEM / _VECTOR / _NODES. All are fixed in time.
+enum class CoordinateKind { System, Vector, Nodes };
+
+struct CoordinateSystem {
+  Id id = 0;
+  CoordinateKind kind = CoordinateKind::System;
+  std::array<double, 3> origin{};
+  // Rows: local x, y, z unit vectors in global coordinates (orthonormal, right-handed).
+  // For _NODES they are computed from the node coordinates after the deck is read.
+  std::array<std::array<double, 3>, 3> axes{{{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}}};
+  std::array<Id, 3> nodes{};  // _NODES: N1 (origin), N2 (along axis dir), N3 (in plane)
+  char dir = 'X';             // _NODES: axis that points from N1 to N2
+  SourceLocation where;
+};
+
+// *DEFINE_VECTOR: a direction from tail to head, in coordinate system cid.
+struct Vector {
+  Id id = 0;
+  std::array<double, 3> tail{};
+  std::array<double, 3> head{};
+  Id cid = 0;
+  std::array<double, 3> direction{};  // unit vector, global; resolved after reading
   SourceLocation where;
 };
 
@@ -150,6 +210,7 @@ struct InitialVelocity {
   std::array<double, 3> point{};
   std::array<double, 3> axis{};
   std::vector<Id> exempt_nodes;    // *INITIAL_VELOCITY IRIGID/NSIDEX exemptions
+  int irigid = 0;                  // IRIGID as written (-1, 0, 1); see docs/keywords.md
   SourceLocation where;
 };
 
@@ -166,6 +227,66 @@ struct NodalLoad {
 // *LOAD_BODY_X/Y/Z: a base acceleration; the body force on a node is -m * a(t).
 struct BodyLoad {
   int direction = 0;  // 0,1,2 for X,Y,Z
+  Id lcid = 0;
+  double sf = 1.0;
+  SourceLocation where;
+};
+
+// *CONSTRAINED_RIGID_BODIES: part `constrained` (PIDC) becomes part of rigid body `lead`
+// (PIDL).
+struct RigidBodyMerge {
+  Id lead = 0;
+  Id constrained = 0;
+  int iflag = 0;  // 1: update *PART_INERTIA properties of the lead with the merged body
+  SourceLocation where;
+};
+
+// *CONSTRAINED_EXTRA_NODES_NODE/_SET: nodes that move with rigid part pid.
+struct ExtraNodes {
+  Id pid = 0;
+  Target target = Target::Node;  // Node or NodeSet
+  Id id = 0;
+  int iflag = 0;  // 1: update *PART_INERTIA properties with the nodal masses
+  SourceLocation where;
+};
+
+// *CONSTRAINED_NODAL_RIGID_BODY (_SPC, _INERTIA): the nodes of a set move as one rigid body.
+// pid is the body's own ID (not a *PART).
+struct NodalRigidBody {
+  Id pid = 0;
+  Id cid = 0;    // output coordinate system (0: none)
+  Id nsid = 0;   // node set; NSID 0 on the card means NSID = PID
+  Id pnode = 0;  // optional node at the centre of mass, as written (negative: global output)
+  int iprt = 0;
+  // _SPC card, same meaning as on *MAT_RIGID (Material::cmo ... cmo_local_fix).
+  double cmo = 0.0;
+  double con1 = 0.0;
+  double con2 = 0.0;
+  Id cmo_cid = 0;
+  std::array<bool, 6> cmo_local_fix{};
+  std::optional<RigidInertia> inertia;  // _INERTIA
+  SourceLocation where;
+};
+
+// *BOUNDARY_PRESCRIBED_MOTION_RIGID: motion of a rigid body (rigid part or nodal rigid body).
+struct RigidPrescribedMotion {
+  Id pid = 0;
+  // 1,2,3: translation x,y,z; 4: translation along vector vid; 5,6,7: rotation about the
+  // global x,y,z axes through the centre of mass; 8: rotation about vector vid.
+  int dof = 1;
+  int vad = 0;  // 0 velocity, 1 acceleration, 2 displacement
+  Id lcid = 0;
+  double sf = 1.0;
+  Id vid = 0;  // *DEFINE_VECTOR for DOF 4 and 8
+  double death = 1e28;
+  double birth = 0.0;
+  SourceLocation where;
+};
+
+// *LOAD_RIGID_BODY: force or moment on a rigid body at its centre of mass, global axes.
+struct RigidLoad {
+  Id pid = 0;
+  int dof = 1;  // 1,2,3: force x,y,z; 5,6,7: moment about x,y,z
   Id lcid = 0;
   double sf = 1.0;
   SourceLocation where;
@@ -194,6 +315,8 @@ struct OutputControl {
   double nodout_dt = 0.0;  // 0: about 1000 rows per run when history nodes exist
   double d3plot_dt = 0.0;  // 0: 20 frames per run
   std::vector<Id> history_nodes;
+  double rbdout_dt = 0.0;  // *DATABASE_RBDOUT DT; 0: no rigid body output requested
+  bool rbdout = false;     // true when *DATABASE_RBDOUT is present
 };
 
 struct Warning {
@@ -221,6 +344,15 @@ struct Model {
   std::vector<InitialVelocity> initial_velocities;
   std::vector<NodalLoad> nodal_loads;
   std::vector<BodyLoad> body_loads;
+
+  std::map<Id, CoordinateSystem> coordinate_systems;
+  std::map<Id, Vector> vectors;
+  std::vector<RigidBodyMerge> rigid_body_merges;
+  std::vector<ExtraNodes> extra_nodes;
+  std::map<Id, NodalRigidBody> nodal_rigid_bodies;  // by PID
+  std::vector<RigidPrescribedMotion> rigid_prescribed_motions;
+  std::vector<RigidLoad> rigid_loads;
+  int rigid_body_update = 0;  // *RIGID_BODY_UPDATE type (0, 1, 2)
 
   Termination termination;
   TimestepControl timestep;

@@ -2,9 +2,12 @@
 // reference points at something defined. Errors name the referring definition.
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <unordered_map>
 #include <unordered_set>
 
 #include "io/keyword/context.hpp"
+#include "io/keyword/geometry.hpp"
 
 namespace rf::io {
 
@@ -57,6 +60,204 @@ void check_target(const model::Model& m, const std::unordered_set<Id>& nodes, mo
       break;
     case model::Target::All:
       break;
+  }
+}
+
+const model::CoordinateSystem& coordinate_system(const model::Model& m, Id cid,
+                                                 const model::SourceLocation& where,
+                                                 const char* field) {
+  const auto it = m.coordinate_systems.find(cid);
+  if (it == m.coordinate_systems.end()) {
+    throw located_error(where, field,
+                        fmt::format("coordinate system {} is not defined (*DEFINE_COORDINATE_...)",
+                                    cid));
+  }
+  return it->second;
+}
+
+// A part that must be a rigid body: defined and made of *MAT_RIGID.
+void check_rigid_part(const model::Model& m, Id pid, const model::SourceLocation& where,
+                      const char* field, const char* what) {
+  const auto it = m.parts.find(pid);
+  if (it == m.parts.end()) {
+    throw located_error(where, field, fmt::format("part {} is not defined", pid));
+  }
+  const auto& material = m.materials.at(it->second.mid);  // checked with the parts
+  if (material.kind != model::MaterialKind::Rigid) {
+    throw located_error(where, field,
+                        fmt::format("part {} is not rigid (material {} is {}); {} needs a "
+                                    "*MAT_RIGID part",
+                                    pid, material.id, material.keyword, what));
+  }
+}
+
+// Rigid bodies that motions and loads may address: rigid parts and nodal rigid bodies.
+void check_rigid_body(const model::Model& m, Id pid, const model::SourceLocation& where,
+                      const char* what) {
+  if (m.nodal_rigid_bodies.count(pid)) return;
+  if (!m.parts.count(pid)) {
+    throw located_error(where, "PID",
+                        fmt::format("part {} is not defined (neither a *PART nor a "
+                                    "*CONSTRAINED_NODAL_RIGID_BODY)",
+                                    pid));
+  }
+  check_rigid_part(m, pid, where, "PID", what);
+}
+
+// The cycle check walks lead links; each constrained part has at most one lead.
+void check_merges(const model::Model& m) {
+  std::map<Id, const model::RigidBodyMerge*> lead_of;
+  for (const auto& merge : m.rigid_body_merges) {
+    check_rigid_part(m, merge.lead, merge.where, "PIDL", "*CONSTRAINED_RIGID_BODIES");
+    check_rigid_part(m, merge.constrained, merge.where, "PIDC", "*CONSTRAINED_RIGID_BODIES");
+    const auto [it, inserted] = lead_of.try_emplace(merge.constrained, &merge);
+    if (!inserted && it->second->lead != merge.lead) {
+      const auto& w = it->second->where;
+      throw located_error(merge.where, "PIDC",
+                          fmt::format("part {} is merged into part {} here and into part {} at "
+                                      "{}:{}; a part can be merged into one lead part only",
+                                      merge.constrained, merge.lead, it->second->lead, w.file,
+                                      w.line));
+    }
+  }
+  std::unordered_set<Id> done;
+  for (const auto& [start, first] : lead_of) {
+    std::vector<Id> path;
+    Id current = start;
+    while (!done.count(current)) {
+      const auto in_path = std::find(path.begin(), path.end(), current);
+      if (in_path != path.end()) {
+        std::string parts;
+        for (auto p = in_path; p != path.end(); ++p) parts += fmt::format("{} -> ", *p);
+        parts += fmt::format("{}", current);
+        throw located_error(lead_of.at(current)->where, "PIDC",
+                            fmt::format("rigid body merges form a cycle: part {} (each part "
+                                        "merged into the next)",
+                                        parts));
+      }
+      path.push_back(current);
+      const auto next = lead_of.find(current);
+      if (next == lead_of.end()) break;
+      current = next->second->lead;
+    }
+    done.insert(path.begin(), path.end());
+  }
+}
+
+void finish_inertia(const model::Model& m, const std::unordered_set<Id>& nodes,
+                    const std::unordered_map<Id, Vec3>& coordinates, model::RigidInertia& in) {
+  if (in.nodeid != 0) {
+    if (!nodes.count(in.nodeid)) {
+      throw located_error(in.where, "NODEID", fmt::format("node {} is not defined", in.nodeid));
+    }
+    in.xc = coordinates.at(in.nodeid);  // the manual: XC YC ZC are then ignored
+  }
+  if (in.ircs == 1 && in.cid != 0) {
+    in.principal_axes = coordinate_system(m, in.cid, in.where, "CID").axes;
+  }
+}
+
+// Rigid-body definitions: resolve what needs node coordinates or coordinate systems, then
+// check every reference. Runs after the general checks, so parts have known materials.
+void finish_rigid(model::Model& m, const std::unordered_set<Id>& nodes) {
+  std::unordered_map<Id, Vec3> coordinates;
+  const bool need_coordinates = [&] {
+    for (const auto& [id, cs] : m.coordinate_systems) {
+      if (cs.kind == model::CoordinateKind::Nodes) return true;
+    }
+    for (const auto& [id, p] : m.parts) {
+      if (p.inertia && p.inertia->nodeid != 0) return true;
+    }
+    for (const auto& [id, b] : m.nodal_rigid_bodies) {
+      if (b.inertia && b.inertia->nodeid != 0) return true;
+    }
+    return false;
+  }();
+  if (need_coordinates) {
+    coordinates.reserve(m.nodes.size());
+    for (const auto& n : m.nodes) coordinates.emplace(n.id, n.x);
+  }
+
+  static const char* const kNodeFields[] = {"N1", "N2", "N3"};
+  for (auto& [id, cs] : m.coordinate_systems) {
+    if (cs.kind != model::CoordinateKind::Nodes) continue;
+    std::array<Vec3, 3> x{};
+    for (std::size_t k = 0; k < 3; ++k) {
+      const auto it = coordinates.find(cs.nodes[k]);
+      if (it == coordinates.end()) {
+        throw located_error(cs.where, kNodeFields[k],
+                            fmt::format("node {} is not defined", cs.nodes[k]));
+      }
+      x[k] = it->second;
+    }
+    const int axis = cs.dir - 'X';
+    const auto axes = axes_from(sub(x[1], x[0]), sub(x[2], x[0]), axis);
+    if (!axes) {
+      throw located_error(cs.where, "N3",
+                          fmt::format("nodes {}, {} and {} lie on one line (or coincide); they "
+                                      "do not define coordinate system {}",
+                                      cs.nodes[0], cs.nodes[1], cs.nodes[2], id));
+    }
+    cs.origin = x[0];
+    cs.axes = *axes;
+  }
+  for (auto& [id, v] : m.vectors) {
+    if (v.cid == 0) continue;
+    const auto& cs = coordinate_system(m, v.cid, v.where, "CID");
+    v.direction = *unit(to_global(cs.axes, sub(v.head, v.tail)));
+  }
+  for (const auto& [id, mat] : m.materials) {
+    if (mat.kind != model::MaterialKind::Rigid) continue;
+    if (mat.cmo == -1.0) coordinate_system(m, mat.cmo_cid, mat.where, "CON1");
+    if (mat.lco != 0) coordinate_system(m, mat.lco, mat.where, "LCO");
+  }
+  for (auto& [id, p] : m.parts) {
+    if (!p.inertia) continue;
+    const auto& material = m.materials.at(p.mid);
+    if (material.kind != model::MaterialKind::Rigid) {
+      throw located_error(p.where, "MID",
+                          fmt::format("part {} has *PART_INERTIA but material {} is {}; inertia "
+                                      "properties need a *MAT_RIGID part",
+                                      id, p.mid, material.keyword));
+    }
+    finish_inertia(m, nodes, coordinates, *p.inertia);
+  }
+  check_merges(m);
+  for (const auto& e : m.extra_nodes) {
+    check_rigid_part(m, e.pid, e.where, "PID", "*CONSTRAINED_EXTRA_NODES");
+    check_target(m, nodes, e.target, e.id, e.where);
+  }
+  for (auto& [id, b] : m.nodal_rigid_bodies) {
+    if (const auto it = m.parts.find(id); it != m.parts.end()) {
+      throw located_error(b.where, "PID",
+                          fmt::format("nodal rigid body {} has the ID of the *PART defined at "
+                                      "{}:{}; give it an ID of its own",
+                                      id, it->second.where.file, it->second.where.line));
+    }
+    if (!m.node_sets.count(b.nsid)) {
+      throw located_error(b.where, "NSID",
+                          fmt::format("node set {} is not defined{}", b.nsid,
+                                      b.nsid == id ? " (NSID blank or 0 means NSID = PID)" : ""));
+    }
+    if (b.pnode != 0 && !nodes.count(std::abs(b.pnode))) {
+      throw located_error(b.where, "PNODE",
+                          fmt::format("node {} is not defined", std::abs(b.pnode)));
+    }
+    if (b.cid != 0) coordinate_system(m, b.cid, b.where, "CID");
+    if (b.cmo == -1.0) coordinate_system(m, b.cmo_cid, b.where, "CON1");
+    if (b.inertia) finish_inertia(m, nodes, coordinates, *b.inertia);
+  }
+  for (const auto& p : m.rigid_prescribed_motions) {
+    check_rigid_body(m, p.pid, p.where, "*BOUNDARY_PRESCRIBED_MOTION_RIGID");
+    check_curve(m, p.lcid, p.where, "LCID");
+    if (p.vid != 0 && !m.vectors.count(p.vid)) {
+      throw located_error(p.where, "VID",
+                          fmt::format("vector {} is not defined (*DEFINE_VECTOR)", p.vid));
+    }
+  }
+  for (const auto& l : m.rigid_loads) {
+    check_rigid_body(m, l.pid, l.where, "*LOAD_RIGID_BODY");
+    check_curve(m, l.lcid, l.where, "LCID");
   }
 }
 
@@ -175,6 +376,7 @@ void finish_model(ReaderContext& context) {
       throw located_error(h.where, "NID", fmt::format("node {} is not defined", h.nsid));
     }
   }
+  finish_rigid(m, nodes);
 }
 
 }  // namespace rf::io

@@ -40,4 +40,30 @@ void title(const Block&, ReaderContext&);
 void include(const Block&, ReaderContext&);
 void ignore(const Block&, ReaderContext&);
 
+// handlers_rigid.cpp
+void define_coordinate_system(const Block&, ReaderContext&);
+void define_coordinate_vector(const Block&, ReaderContext&);
+void define_coordinate_nodes(const Block&, ReaderContext&);
+void define_vector(const Block&, ReaderContext&);
+void constrained_rigid_bodies(const Block&, ReaderContext&);
+void constrained_extra_nodes(const Block&, ReaderContext&);
+void constrained_nodal_rigid_body(const Block&, ReaderContext&);
+void boundary_prescribed_motion_rigid(const Block&, ReaderContext&);
+void load_rigid_body(const Block&, ReaderContext&);
+void rigid_body_update(const Block&, ReaderContext&);
+void control_rigid(const Block&, ReaderContext&);
+
+// Cards shared by *MAT_RIGID, *PART_INERTIA and *CONSTRAINED_NODAL_RIGID_BODY.
+struct RigidConstraints {
+  double cmo = 0.0;
+  double con1 = 0.0;
+  double con2 = 0.0;
+  model::Id cmo_cid = 0;            // CMO -1: CON1 as a coordinate system ID
+  std::array<bool, 6> local_fix{};  // CMO -1: CON2 digits (x y z translation, x y z rotation)
+};
+// CMO CON1 CON2, validated for CMO 1 (codes 0..7), 0 and -1 (local system and digit code).
+RigidConstraints read_rigid_constraints(const Card& card);
+// XC..NODEID / IXX..IZZ / VTX..VRZ [/ XL..CID when IRCS = 1], starting at card number n.
+model::RigidInertia read_rigid_inertia(CardCursor& cursor, int n, int& cards_read);
+
 }  // namespace rf::io::handlers

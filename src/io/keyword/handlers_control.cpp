@@ -91,10 +91,14 @@ void database_ascii(const Block& block, ReaderContext& context) {
       context.warn(card->location(), "LCUR ignored: output intervals come from DT");
     }
   }
-  if (block.base == "*DATABASE_GLSTAT")
+  if (block.base == "*DATABASE_GLSTAT") {
     context.model.output.glstat_dt = dt;
-  else
+  } else if (block.base == "*DATABASE_RBDOUT") {
+    context.model.output.rbdout_dt = dt;
+    context.model.output.rbdout = true;
+  } else {
     context.model.output.nodout_dt = dt;
+  }
   warn_unread_lines(block, cursor, context);
 }
 

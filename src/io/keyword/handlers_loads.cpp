@@ -208,6 +208,7 @@ void initial_velocity(const Block& block, ReaderContext& context) {
     v.target = nsid == 0 ? model::Target::All : model::Target::NodeSet;
     v.id = nsid;
     v.v = {velocity.real(0, "VX", 0.0), velocity.real(1, "VY", 0.0), velocity.real(2, "VZ", 0.0)};
+    v.irigid = irigid;
     v.where = head.location();
     context.model.initial_velocities.push_back(v);
     n += 2;
@@ -298,6 +299,10 @@ void initial_velocity_generation(const Block& block, ReaderContext& context) {
       }
       if (length > 0.0 && std::isfinite(length)) {
         for (double& a : v.axis) a /= length;
+      }
+      v.irigid = c2->flag(7, "IRIGID", 0);
+      if (v.irigid < -1 || v.irigid > 1) {
+        throw c2->error("IRIGID", fmt::format("value {} is not -1, 0 or 1", v.irigid));
       }
     }
     context.model.initial_velocities.push_back(v);

@@ -131,9 +131,14 @@ void part(const Block& block, ReaderContext& context) {
     if (p.eosid != 0) {
       throw card.error("EOSID", "equations of state are not supported (leave EOSID blank)");
     }
+    card_number += 2;
+    if (block.has_option("INERTIA")) {
+      int cards = 0;
+      p.inertia = read_rigid_inertia(cursor, card_number, cards);
+      card_number += cards;
+    }
     check_unique(context.model.parts, p.id, card, "PID", "part");
     context.model.parts.emplace(p.id, std::move(p));
-    card_number += 2;
   } while (!only_blank_lines_left(cursor, block));
 }
 
@@ -220,22 +225,28 @@ void mat_rigid(const Block& block, ReaderContext& context) {
   m.where = card.location();
   check_elastic_constants(card, m);
   if (const auto constraints = cursor.next_optional(n + 1, kEightByTen)) {
-    m.cmo = constraints->real(0, "CMO", 0.0);
-    m.con1 = constraints->real(1, "CON1", 0.0);
-    m.con2 = constraints->real(2, "CON2", 0.0);
-    if (m.cmo != 0.0 && m.cmo != 1.0) {
-      const char* why = m.cmo == -1.0 ? "local constraint directions (CMO -1) are not supported"
-                                      : "value must be 0 or 1";
-      throw constraints->error("CMO", fmt::format("CMO {}: {}", m.cmo, why));
-    }
-    for (const auto& [value, name] : {std::pair{m.con1, "CON1"}, std::pair{m.con2, "CON2"}}) {
-      if (value < 0.0 || value > 7.0 || value != static_cast<int>(value)) {
-        throw constraints->error(name, fmt::format("value {} is not a code 0..7", value));
-      }
-    }
+    const RigidConstraints c = read_rigid_constraints(*constraints);
+    m.cmo = c.cmo;
+    m.con1 = c.con1;
+    m.con2 = c.con2;
+    m.cmo_cid = c.cmo_cid;
+    m.cmo_local_fix = c.local_fix;
   }
-  if (cursor.next_optional(n + 2, kEightByTen)) {
-    // Card 3 (LCO or A1..V3) only orients output for rigid bodies; nothing to keep.
+  // Card 3 only orients rigid body output: LCO alone, or the body-fixed vectors A and V.
+  if (const auto output = cursor.next_optional(n + 2, kEightByTen)) {
+    bool vectors = false;
+    for (std::size_t i = 1; i < 6; ++i) vectors |= !output->blank(i);
+    if (vectors) {
+      static const char* const kNames[] = {"A1", "A2", "A3", "V1", "V2", "V3"};
+      m.has_output_vectors = true;
+      for (std::size_t k = 0; k < 3; ++k) {
+        m.output_a[k] = output->real(k, kNames[k], 0.0);
+        m.output_v[k] = output->real(3 + k, kNames[3 + k], 0.0);
+      }
+    } else {
+      m.lco = output->id(0, "LCO");
+      if (m.lco < 0) throw output->error("LCO", "coordinate system ID must not be negative");
+    }
   }
   add_material(context, card, std::move(m));
   warn_unread_lines(block, cursor, context);
