@@ -51,6 +51,9 @@ struct HexBlock {
       1;  // 1: one-point + hourglass; 2: selective-reduced (2x2x2 deviatoric, 1pt volumetric)
   HourglassSettings hourglass;
   material::ElasticConstants material;
+  // Elements of a *MAT_RIGID part: they give mass and appear in the output, but have no kernel
+  // and no force slots in the assembly (the body moves their nodes).
+  bool rigid = false;
 
   std::vector<model::Id> element_id;  // user IDs, size n
   std::vector<std::int32_t> conn;     // dense node indices, 8 per element

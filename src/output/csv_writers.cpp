@@ -133,4 +133,28 @@ void NodoutWriter::write_rows(const solver::State& state, const solver::Vec3Arra
   csv_.write_text(std::string_view(rows.data(), rows.size()));
 }
 
+RbdoutWriter::RbdoutWriter(const std::filesystem::path& path)
+    : csv_(path, std::string(kRbdoutHeader)) {}
+
+void RbdoutWriter::write(const std::vector<RbdoutRow>& rows) {
+  fmt::memory_buffer text;
+  for (const RbdoutRow& row : rows) {
+    append_number(text, row.time);
+    fmt::format_to(std::back_inserter(text), ",{},", row.body);
+    append_number(text, row.mass);
+    for (const auto* group : {&row.x, &row.v, &row.a, &row.w}) {
+      for (double value : *group) {
+        text.push_back(',');
+        append_number(text, value);
+      }
+    }
+    for (double value : row.r) {
+      text.push_back(',');
+      append_number(text, value);
+    }
+    text.push_back('\n');
+  }
+  csv_.write_text(std::string_view(text.data(), text.size()));
+}
+
 }  // namespace rf::output

@@ -61,6 +61,30 @@ inline constexpr std::string_view kGlstatHeader =
     "energy_ratio,momentum_x,momentum_y,momentum_z,angular_momentum_x,angular_momentum_y,"
     "angular_momentum_z";
 inline constexpr std::string_view kNodoutHeader = "time,node,x,y,z,vx,vy,vz,ax,ay,az";
+inline constexpr std::string_view kRbdoutHeader =
+    "time,body,mass,x,y,z,vx,vy,vz,ax,ay,az,wx,wy,wz,r11,r12,r13,r21,r22,r23,r31,r32,r33";
+
+// One row of rbdout.csv: a rigid body at an output time t^n. Velocities are full-step values
+// (means of the half steps), accelerations their difference quotients; w is in global axes
+// and R (row-major r11..r33) maps the body's output axes to global axes.
+struct RbdoutRow {
+  double time = 0.0;
+  std::int64_t body = 0;
+  double mass = 0.0;
+  std::array<double, 3> x{}, v{}, a{}, w{};
+  std::array<double, 9> r{};
+};
+
+// rbdout.csv: one row per rigid body at each output time.
+class RbdoutWriter {
+ public:
+  explicit RbdoutWriter(const std::filesystem::path& path);
+  void write(const std::vector<RbdoutRow>& rows);
+  void flush() { csv_.flush(); }
+
+ private:
+  CsvFile csv_;
+};
 
 class GlstatWriter {
  public:

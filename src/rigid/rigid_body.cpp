@@ -9,6 +9,12 @@ namespace rf::rigid {
 
 namespace {
 
+// Constraint matrices with at most six rows/columns (three from the body, three per step):
+// fixed maximum sizes keep the time loop free of heap allocation.
+using ConstraintAxes = Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 6>;
+using ConstraintValues = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
+using ConstraintSquare = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
+
 // Accumulates mass, first and second moments about a reference point (the first node), so
 // that the centred second moment does not lose digits when the body sits far from the origin.
 class MomentAccumulator {
@@ -61,41 +67,72 @@ void principal_axis_flow(int k, double h, const Eigen::Vector3d& principal_inert
   body_momentum[l] = c * pl - s * pj;
 }
 
-// Rotation with some global rotational DOFs held (CMO-style). The constrained angular
-// velocity has w_c = 0 and carries the free components of L: I_ff w_f = L_f with I taken at
-// the midpoint rotation (two fixed-point passes). L is then reset to I w, i.e. the held
-// components of L absorb the reaction impulse. For one free axis a (a hinge) I_aa does not
-// change as the body turns about a, so this is exact; otherwise it is second order.
-void advance_constrained_rotation(RigidBodyState& body, double dt) {
-  int free_axes[3];
-  int free_count = 0;
-  for (int a = 0; a < 3; ++a) {
-    if (!body.fixed_rotation[a]) free_axes[free_count++] = a;
+// Constraints along a global axis hold exactly (not only to round-off of the solve), so that a
+// fixed DOF stays bit-exactly at rest however long the run.
+void snap_axis_constraints(const ConstraintAxes& axes, const ConstraintValues& values,
+                           Eigen::Vector3d& velocity) {
+  for (Eigen::Index k = 0; k < axes.cols(); ++k) {
+    for (int a = 0; a < 3; ++a) {
+      const double c = axes(a, k);
+      if ((c == 1.0 || c == -1.0) && axes(( a + 1) % 3, k) == 0.0 && axes((a + 2) % 3, k) == 0.0) {
+        velocity[a] = c * values[k];
+      }
+    }
   }
+}
+
+// Rotation with constrained components n_k . w = c_k. The constrained angular velocity is the
+// one closest to the free motion in the kinetic-energy metric: w = I^-1 (L + N lambda) with
+// N^T w = c (Lagrange multipliers lambda, the reaction angular impulse N lambda). I is taken at
+// the midpoint rotation (two fixed-point passes). L is then reset to I w. For one free global
+// axis a (a hinge) I_aa does not change as the body turns about a, so this is exact; otherwise
+// it is second order.
+void advance_constrained_rotation(RigidBodyState& body, const ConstraintAxes& axes,
+                                  const ConstraintValues& values, double dt) {
   Eigen::Vector3d w = Eigen::Vector3d::Zero();
   Eigen::Matrix3d inertia_mid = global_inertia(body);
-  if (free_count > 0) {
-    for (int pass = 0; pass < 2; ++pass) {
-      const Eigen::Matrix3d rotation_mid = rotation_from_vector(0.5 * dt * w) * body.rotation;
-      inertia_mid = rotation_mid * body.principal_inertia.asDiagonal() * rotation_mid.transpose();
-      Eigen::MatrixXd inertia_free(free_count, free_count);
-      Eigen::VectorXd momentum_free(free_count);
-      for (int r = 0; r < free_count; ++r) {
-        momentum_free[r] = body.angular_momentum[free_axes[r]];
-        for (int c = 0; c < free_count; ++c) {
-          inertia_free(r, c) = inertia_mid(free_axes[r], free_axes[c]);
-        }
-      }
-      const Eigen::VectorXd w_free = inertia_free.ldlt().solve(momentum_free);
-      w.setZero();
-      for (int r = 0; r < free_count; ++r) w[free_axes[r]] = w_free[r];
-    }
+  for (int pass = 0; pass < 2; ++pass) {
+    const Eigen::Matrix3d rotation_mid = rotation_from_vector(0.5 * dt * w) * body.rotation;
+    inertia_mid = rotation_mid * body.principal_inertia.asDiagonal() * rotation_mid.transpose();
+    const Eigen::LLT<Eigen::Matrix3d> inertia_llt(inertia_mid);
+    const ConstraintAxes inv_i_n = inertia_llt.solve(axes);
+    const Eigen::Vector3d w_free = inertia_llt.solve(body.angular_momentum);
+    const ConstraintSquare schur = axes.transpose() * inv_i_n;
+    const ConstraintValues lambda =
+        schur.completeOrthogonalDecomposition().solve(values - axes.transpose() * w_free);
+    w = w_free + inv_i_n * lambda;
+    snap_axis_constraints(axes, values, w);
   }
   const Eigen::Vector3d constrained_momentum = inertia_mid * w;
   body.reaction_angular_impulse = constrained_momentum - body.angular_momentum;
   body.angular_momentum = constrained_momentum;
   body.angular_velocity = w;
   body.rotation = orthonormalise(rotation_from_vector(dt * w) * body.rotation);
+}
+
+// Columns: the constraint axes of both sets; values alongside.
+void stack(const std::array<Eigen::Vector3d, 3>& axis_a, const std::array<double, 3>& value_a,
+           int count_a, const std::array<Eigen::Vector3d, 3>* axis_b,
+           const std::array<double, 3>* value_b, int count_b,
+           ConstraintAxes& axes, ConstraintValues& values) {
+  axes.resize(3, count_a + count_b);
+  values.resize(count_a + count_b);
+  for (int k = 0; k < count_a; ++k) {
+    axes.col(k) = axis_a[k];
+    values[k] = value_a[k];
+  }
+  for (int k = 0; k < count_b; ++k) {
+    axes.col(count_a + k) = (*axis_b)[k];
+    values[count_a + k] = (*value_b)[k];
+  }
+}
+
+bool columns_independent(const ConstraintAxes& axes) {
+  if (axes.cols() == 0) return true;
+  if (axes.cols() > 3) return false;
+  Eigen::FullPivLU<ConstraintAxes> lu(axes);
+  lu.setThreshold(1e-8);
+  return lu.rank() == axes.cols();
 }
 
 }  // namespace
@@ -138,6 +175,7 @@ RigidBodyState make_rigid_body(double mass, const Eigen::Vector3d& centre,
   // The eigenvectors are orthonormal; flipping one axis makes them a proper rotation.
   body.rotation = eigen.eigenvectors();
   if (body.rotation.determinant() < 0.0) body.rotation.col(2) *= -1.0;
+  body.previous_rotation = body.rotation;
   return body;
 }
 
@@ -190,13 +228,67 @@ Eigen::Matrix3d free_rotation(const Eigen::Matrix3d& rotation,
   return orthonormalise(r);
 }
 
+bool VelocityConstraints::add_translation(const Eigen::Vector3d& axis, double value) {
+  if (translation_count == 3) return false;
+  translation_axis[translation_count] = axis.normalized();
+  translation_value[translation_count++] = value;
+  return true;
+}
+
+bool VelocityConstraints::add_rotation(const Eigen::Vector3d& axis, double value) {
+  if (rotation_count == 3) return false;
+  rotation_axis[rotation_count] = axis.normalized();
+  rotation_value[rotation_count++] = value;
+  return true;
+}
+
+void VelocityConstraints::fix_global_translation(const std::array<bool, 3>& axes) {
+  for (int a = 0; a < 3; ++a) {
+    if (axes[a]) add_translation(Eigen::Vector3d::Unit(a), 0.0);
+  }
+}
+
+void VelocityConstraints::fix_global_rotation(const std::array<bool, 3>& axes) {
+  for (int a = 0; a < 3; ++a) {
+    if (axes[a]) add_rotation(Eigen::Vector3d::Unit(a), 0.0);
+  }
+}
+
+bool constraints_independent(const VelocityConstraints& a, const VelocityConstraints& b) {
+  ConstraintAxes axes;
+  ConstraintValues values;
+  stack(a.translation_axis, a.translation_value, a.translation_count, &b.translation_axis,
+        &b.translation_value, b.translation_count, axes, values);
+  if (!columns_independent(axes)) return false;
+  stack(a.rotation_axis, a.rotation_value, a.rotation_count, &b.rotation_axis, &b.rotation_value,
+        b.rotation_count, axes, values);
+  return columns_independent(axes);
+}
+
 void advance_rigid_body(RigidBodyState& body, const Eigen::Vector3d& force,
-                        const Eigen::Vector3d& torque_about_centre, double dt_avg, double dt) {
-  // Translation: the nodes' central-difference update applied to the centre of mass.
+                        const Eigen::Vector3d& torque_about_centre, double dt_avg, double dt,
+                        const VelocityConstraints* step_constraints) {
+  const VelocityConstraints& fixed = body.constraints;
+  const int step_translations = step_constraints ? step_constraints->translation_count : 0;
+  const int step_rotations = step_constraints ? step_constraints->rotation_count : 0;
+  body.previous_rotation = body.rotation;
+
+  // Translation: the nodes' central-difference update applied to the centre of mass, then
+  // the orthogonal (mass-weighted) projection onto n_k . v = c_k.
   const Eigen::Vector3d velocity_free = body.velocity + (dt_avg / body.mass) * force;
   body.velocity = velocity_free;
-  for (int a = 0; a < 3; ++a) {
-    if (body.fixed_translation[a]) body.velocity[a] = 0.0;
+  if (fixed.translation_count + step_translations > 0) {
+    ConstraintAxes axes;
+    ConstraintValues values;
+    stack(fixed.translation_axis, fixed.translation_value, fixed.translation_count,
+          step_constraints ? &step_constraints->translation_axis : nullptr,
+          step_constraints ? &step_constraints->translation_value : nullptr, step_translations,
+          axes, values);
+    const ConstraintSquare gram = axes.transpose() * axes;
+    const ConstraintValues mu =
+        gram.completeOrthogonalDecomposition().solve(values - axes.transpose() * velocity_free);
+    body.velocity = velocity_free + axes * mu;
+    snap_axis_constraints(axes, values, body.velocity);
   }
   body.reaction_impulse = body.mass * (body.velocity - velocity_free);
 
@@ -204,10 +296,14 @@ void advance_rigid_body(RigidBodyState& body, const Eigen::Vector3d& force,
   // free-body flow. Kick-drift with L at half steps is the leapfrog (Verlet) form of the
   // splitting H = T(L, R) + V(R), so the whole cycle stays second order and symplectic.
   body.angular_momentum += dt_avg * torque_about_centre;
-  const bool any_rotation_fixed =
-      body.fixed_rotation[0] || body.fixed_rotation[1] || body.fixed_rotation[2];
-  if (any_rotation_fixed) {
-    advance_constrained_rotation(body, dt);
+  if (fixed.rotation_count + step_rotations > 0) {
+    ConstraintAxes axes;
+    ConstraintValues values;
+    stack(fixed.rotation_axis, fixed.rotation_value, fixed.rotation_count,
+          step_constraints ? &step_constraints->rotation_axis : nullptr,
+          step_constraints ? &step_constraints->rotation_value : nullptr, step_rotations, axes,
+          values);
+    advance_constrained_rotation(body, axes, values, dt);
   } else {
     body.reaction_angular_impulse.setZero();
     const Eigen::Matrix3d rotation_next =

@@ -13,8 +13,30 @@
 
 namespace rf::rigid {
 
-// Per global axis x, y, z: true where that DOF of the centre of mass is held fixed.
-using AxisMask = std::array<bool, 3>;
+// Velocity constraints of a body: each row says n . v_c = value (translation) or n . w = value
+// (rotation), n a unit vector in global axes. Fixed DOFs have value 0; prescribed motion sets
+// the value every step. At most three of each kind (a fully held body).
+struct VelocityConstraints {
+  int translation_count = 0;
+  int rotation_count = 0;
+  std::array<Eigen::Vector3d, 3> translation_axis;
+  std::array<double, 3> translation_value{};
+  std::array<Eigen::Vector3d, 3> rotation_axis;
+  std::array<double, 3> rotation_value{};
+
+  // Returns false (and adds nothing) when three constraints of the kind exist already.
+  bool add_translation(const Eigen::Vector3d& axis, double value);
+  bool add_rotation(const Eigen::Vector3d& axis, double value);
+  // Holds the global axes whose flags are set (CMO-style codes decoded by the caller).
+  void fix_global_translation(const std::array<bool, 3>& axes);
+  void fix_global_rotation(const std::array<bool, 3>& axes);
+  bool empty() const { return translation_count == 0 && rotation_count == 0; }
+  void clear() { translation_count = rotation_count = 0; }
+};
+
+// True when the constraint axes of each kind are linearly independent (the constrained
+// velocity is then unique; dependent axes would over-constrain the body).
+bool constraints_independent(const VelocityConstraints& a, const VelocityConstraints& b);
 
 // Time levels follow the nodes: positions and rotation at t^n, velocities and momenta at
 // t^{n+1/2} (at creation, the initial values stand for t^{-1/2}).
@@ -32,14 +54,15 @@ struct RigidBodyState {
   // w^{n+1/2}, global axes: the constant angular velocity that carries R^n to R^{n+1},
   // R^{n+1} = exp(dt [w]) R^n, so nodes moved with it follow the body (see advance).
   Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();
-  // x_c before the last advance (x_c^n once the body sits at n+1): the linear node update
-  // needs the lever arms x_i^n - x_c^n.
+  // x_c and R before the last advance (x_c^n, R^n once the body sits at n+1): the linear node
+  // update needs the lever arms x_i^n - x_c^n, output reports the body at t^n.
   Eigen::Vector3d previous_centre = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d previous_rotation = Eigen::Matrix3d::Identity();
 
-  // Constraints on the centre of mass in global axes (CMO-style), applied after each
-  // momentum update; the impulses they exerted in the last step are kept for reactions.
-  AxisMask fixed_translation = {false, false, false};
-  AxisMask fixed_rotation = {false, false, false};
+  // Permanent constraints (CMO, nodal rigid body _SPC), applied after each momentum update
+  // together with any per-step constraints passed to advance_rigid_body. The impulses they
+  // exerted in the last step are kept for reactions and reaction work.
+  VelocityConstraints constraints;
   Eigen::Vector3d reaction_impulse = Eigen::Vector3d::Zero();          // on v_c (M dv)
   Eigen::Vector3d reaction_angular_impulse = Eigen::Vector3d::Zero();  // on L
 };
@@ -80,13 +103,16 @@ double kinetic_energy(const RigidBodyState& body);
 
 // One cycle. dt_avg = (dt^{n-1/2} + dt^{n+1/2}) / 2 for the momenta, dt = dt^{n+1/2} for the
 // positions; force and torque (about x_c^n) are evaluated at t^n:
-//   v_c^{n+1/2} = v_c^{n-1/2} + dt_avg F / M          then fixed_translation
+//   v_c^{n+1/2} = v_c^{n-1/2} + dt_avg F / M          then translation constraints
 //   L^{n+1/2}   = L^{n-1/2}   + dt_avg T
 //   R^{n+1}     = free rotation of R^n over dt at constant L^{n+1/2} (symmetric splitting)
 //   x_c^{n+1}   = x_c^n + dt v_c^{n+1/2}
-// With fixed rotations the body turns with the constrained w instead (see docs).
+// With rotation constraints the body turns with the constrained w instead (see docs).
+// `step_constraints` (may be null) are added to body.constraints for this step only
+// (prescribed motion).
 void advance_rigid_body(RigidBodyState& body, const Eigen::Vector3d& force,
-                        const Eigen::Vector3d& torque_about_centre, double dt_avg, double dt);
+                        const Eigen::Vector3d& torque_about_centre, double dt_avg, double dt,
+                        const VelocityConstraints* step_constraints = nullptr);
 
 // R^{n+1} from R^n for the torque-free body with constant spatial L over step h:
 // R <- R e1(h/2) e2(h/2) e3(h) e2(h/2) e1(h/2), the exact flows of the three principal

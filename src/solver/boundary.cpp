@@ -96,15 +96,29 @@ std::vector<std::int32_t> resolve_nodes(const model::Model& model, const NodeInd
 }
 
 Boundary resolve_boundary(const model::Model& model, const NodeIndex& node_index,
-                          const State& state) {
+                          const State& state, const std::vector<std::int32_t>& body_of_node,
+                          std::vector<model::Warning>& warnings) {
   Boundary b;
   const std::size_t n = state.nodes.size();
+  auto rigid = [&](std::int32_t i) { return !body_of_node.empty() && body_of_node[i] >= 0; };
   b.fixed.assign(n, 0);
   // *NODE TC: 1 x, 2 y, 3 z, 4 xy, 5 yz, 6 zx, 7 xyz.
   static constexpr std::uint8_t kTcMask[8] = {0, 1, 2, 4, 3, 6, 5, 7};
+  std::int64_t ignored_tc = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const int tc = model.nodes[i].tc;
-    if (tc >= 0 && tc <= 7) b.fixed[i] |= kTcMask[tc];
+    if (tc <= 0 || tc > 7) continue;
+    if (rigid(static_cast<std::int32_t>(i))) {
+      ++ignored_tc;
+      continue;
+    }
+    b.fixed[i] |= kTcMask[tc];
+  }
+  if (ignored_tc > 0) {
+    warnings.push_back({{}, fmt::format("*NODE: TC on {} node(s) of rigid bodies is ignored; "
+                                        "constrain a rigid body with CMO/CON1/CON2 on "
+                                        "*MAT_RIGID",
+                                        ignored_tc)});
   }
   for (const auto& spc : model.spcs) {
     const auto nodes =
@@ -112,7 +126,20 @@ Boundary resolve_boundary(const model::Model& model, const NodeIndex& node_index
                       spc.target == model::Target::Node ? "NID" : "NSID");
     const std::uint8_t mask = static_cast<std::uint8_t>((spc.fix[0] ? 1 : 0) |
                                                         (spc.fix[1] ? 2 : 0) | (spc.fix[2] ? 4 : 0));
-    for (const auto i : nodes) b.fixed[i] |= mask;
+    std::int64_t ignored = 0;
+    for (const auto i : nodes) {
+      if (rigid(i)) {
+        ++ignored;
+      } else {
+        b.fixed[i] |= mask;
+      }
+    }
+    if (ignored > 0) {
+      warnings.push_back(
+          {spc.where, fmt::format("{} node(s) belong to rigid bodies; the SPC is ignored on them "
+                                  "(constrain a rigid body with CMO/CON1/CON2 on *MAT_RIGID)",
+                                  ignored)});
+    }
   }
   for (const auto& pm : model.prescribed_motions) {
     const int axis = translation_axis(pm.dof, pm.where);
@@ -126,6 +153,13 @@ Boundary resolve_boundary(const model::Model& model, const NodeIndex& node_index
                                      pm.target == model::Target::Node ? "NID" : "NSID");
     const ScaledCurve value = make_curve(model, pm.lcid, pm.sf, pm.birth, pm.where);
     for (const auto i : nodes) {
+      if (rigid(i)) {
+        throw InputError(context_of(pm.where, pm.target == model::Target::Node ? "NID" : "NSID"),
+                         fmt::format("node {} moves with a rigid body (rigid part, extra node or "
+                                     "nodal rigid body); prescribe the motion of the body with "
+                                     "*BOUNDARY_PRESCRIBED_MOTION_RIGID",
+                                     state.nodes.id[i]));
+      }
       if (b.fixed[i] & (1u << axis)) {
         throw InputError(context_of(pm.where, "DOF"),
                          fmt::format("node {} has a prescribed motion in a DOF that is also "
@@ -150,6 +184,10 @@ Boundary resolve_boundary(const model::Model& model, const NodeIndex& node_index
   }
   for (std::size_t i = 0; i < n; ++i) {
     if (b.fixed[i]) b.constrained_nodes.push_back(static_cast<std::int32_t>(i));
+  }
+  b.body_force_mass = state.nodes.mass;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (rigid(static_cast<std::int32_t>(i))) b.body_force_mass[i] = 0.0;
   }
   for (const auto& p : b.prescribed) b.constrained_nodes.push_back(p.node);
   std::sort(b.constrained_nodes.begin(), b.constrained_nodes.end());
@@ -207,7 +245,8 @@ void compute_external_forces(const Boundary& boundary, double t, State& state) {
     const double a = body.value(t);
     double* fa = f[body.axis];
     const std::size_t n = nodes.size();
-    for (std::size_t i = 0; i < n; ++i) fa[i] -= nodes.mass[i] * a;
+    const double* mass = boundary.body_force_mass.data();
+    for (std::size_t i = 0; i < n; ++i) fa[i] -= mass[i] * a;
   }
   for (const auto& load : boundary.nodal_forces) f[load.axis][load.node] += load.value(t);
 }

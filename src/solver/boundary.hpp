@@ -47,10 +47,17 @@ struct Boundary {
   std::vector<BodyAcceleration> body_accelerations;
   // Sorted unique nodes with a fixed or prescribed DOF: their reactions enter external work.
   std::vector<std::int32_t> constrained_nodes;
+  // Mass that *LOAD_BODY acts on, per node: the lumped mass, zero on rigid-body nodes (the
+  // body force of a rigid body is applied at its centre of mass, to the body's own mass).
+  std::vector<double> body_force_mass;
 };
 
+// `body_of_node` (empty when there are no rigid bodies) gives each node's rigid body or -1.
+// Nodal constraints (*NODE TC, *BOUNDARY_SPC) on rigid-body nodes are ignored as in LS-DYNA,
+// with a warning appended to `warnings`; nodal prescribed motion on them is an error.
 Boundary resolve_boundary(const model::Model& model, const NodeIndex& node_index,
-                          const State& state);
+                          const State& state, const std::vector<std::int32_t>& body_of_node,
+                          std::vector<model::Warning>& warnings);
 
 // Nodes addressed by a target (node, node set, part, part set, all), as dense indices.
 std::vector<std::int32_t> resolve_nodes(const model::Model& model, const NodeIndex& node_index,

@@ -104,7 +104,7 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
                                    part.mid));
     }
     const model::Material& mat = mat_it->second;
-    if (mat.kind != model::MaterialKind::Elastic) {
+    if (mat.kind != model::MaterialKind::Elastic && mat.kind != model::MaterialKind::Rigid) {
       throw InputError(context_of(mat.where, "MID"),
                        fmt::format("part {} uses {} (material {}), which this version does not "
                                    "simulate yet",
@@ -115,7 +115,9 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
     block.part_id = pid;
     block.part_index = static_cast<int>(state.parts.size());
     block.elform = sec_it->second.elform;
-    block.hourglass = resolve_hourglass(model, part);
+    block.rigid = mat.kind == model::MaterialKind::Rigid;
+    // Rigid parts: the section and hourglass do not matter; E and PR only for contact later.
+    if (!block.rigid) block.hourglass = resolve_hourglass(model, part);
     block.material = material::make_elastic(mat.rho, mat.e, mat.pr);
     block.element_id.reserve(element_indices.size());
     block.conn.reserve(element_indices.size() * 8);
@@ -142,6 +144,7 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
   NodeIncidence& inc = state.incidence;
   inc.offset.assign(n + 1, 0);
   for (const auto& block : state.hex_blocks) {
+    if (block.rigid) continue;
     for (const std::int32_t node : block.conn) ++inc.offset[node + 1];
   }
   for (std::size_t i = 0; i < n; ++i) inc.offset[i + 1] += inc.offset[i];
@@ -149,6 +152,7 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
   inc.block.resize(inc.offset[n]);
   std::vector<std::int64_t> fill(inc.offset.begin(), inc.offset.end() - 1);
   for (std::size_t b = 0; b < state.hex_blocks.size(); ++b) {
+    if (state.hex_blocks[b].rigid) continue;
     const auto& conn = state.hex_blocks[b].conn;
     for (std::size_t k = 0; k < conn.size(); ++k) {
       const std::int64_t pos = fill[conn[k]]++;
@@ -172,6 +176,7 @@ AssemblyPlan make_assembly_plan(const State& state, int threads) {
                             {std::numeric_limits<std::int64_t>::max(), 0});
   std::int64_t visited = 0, total = 0;
   for (std::size_t b = 0; b < blocks; ++b) {
+    if (state.hex_blocks[b].rigid) continue;  // no force slots: ranges stay empty
     const auto& conn = state.hex_blocks[b].conn;
     const std::int64_t elements = static_cast<std::int64_t>(conn.size() / 8);
     total += elements;

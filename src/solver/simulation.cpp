@@ -54,7 +54,9 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
       options_(std::move(options)),
       node_index_(model_),
       state_(build_state(model_, node_index_)),
-      boundary_(resolve_boundary(model_, node_index_, state_)) {
+      rigid_(build_rigid_system(model_, node_index_, state_)),
+      warnings_(rigid_.warnings),
+      boundary_(resolve_boundary(model_, node_index_, state_, rigid_.body_of_node, warnings_)) {
   const model::Model& model = model_;
   for (const auto& block : state_.hex_blocks) element_count_ += block.size();
   end_time_ = model.termination.endtim;
@@ -63,10 +65,11 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
     throw InputError({}, "*CONTROL_TERMINATION is missing or ENDTIM is not positive: nothing "
                          "says when the analysis ends");
   }
-  if (element_count_ == 0) {
-    throw InputError({}, "the model has no elements to simulate");
+  if (element_count_ == 0 && rigid_.empty()) {
+    throw InputError({}, "the model has no elements or rigid bodies to simulate");
   }
   for (std::size_t i = 0; i < state_.nodes.size(); ++i) {
+    if (rigid_.is_rigid(static_cast<std::int32_t>(i))) continue;  // moved by its body
     if (state_.nodes.mass[i] <= 0.0 && !(boundary_.fixed[i] == 7)) {
       // A node without mass cannot be integrated; it is held where it is.
       boundary_.fixed[i] = 7;
@@ -92,6 +95,11 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
       nodout_ = std::make_unique<output::NodoutWriter>(options_.output_directory / "nodout.csv",
                                                        std::move(dense));
     }
+    if (!rigid_.empty()) {
+      // *DATABASE_RBDOUT interval, else about 1000 rows per body and run.
+      rbdout_schedule_.interval = default_interval(model.output.rbdout_dt, span, 1000.0);
+      rbdout_ = std::make_unique<output::RbdoutWriter>(options_.output_directory / "rbdout.csv");
+    }
     if (options_.write_fields) {
       d3plot_schedule_.interval = default_interval(model.output.d3plot_dt, span, 20.0);
       fields_ = std::make_unique<output::FieldWriter>(options_.output_directory);
@@ -104,16 +112,20 @@ Simulation::~Simulation() = default;
 
 void Simulation::initialize() {
   apply_initial_velocities(model_, node_index_, state_);
+  initialize_rigid_velocities(model_, node_index_, rigid_, state_);
   v_previous_ = state_.nodes.v;
   state_.time = 0.0;
   compute_internal_forces();
   compute_external_forces();
   check_breakdown();
-  // Initial kinetic energy and momenta at t = 0 (v^0 plays the role of v^{-1/2}).
+  // Initial kinetic energy and momenta at t = 0 (v^0 plays the role of v^{-1/2}); rigid-body
+  // nodes are counted through their bodies.
   const NodalState& nodes = state_.nodes;
-  const auto sums = deterministic_sum<7>(
+  const std::int32_t* body_of = rigid_.empty() ? nullptr : rigid_.body_of_node.data();
+  auto sums = deterministic_sum<7>(
       static_cast<std::int64_t>(nodes.size()), reduction_scratch_,
       [&](std::int64_t i, std::array<double, 7>& acc) {
+        if (body_of && body_of[i] >= 0) return;
         const double m = nodes.mass[i];
         const double vx = nodes.v.x[i], vy = nodes.v.y[i], vz = nodes.v.z[i];
         const double x = nodes.x.x[i], y = nodes.x.y[i], z = nodes.x.z[i];
@@ -125,6 +137,12 @@ void Simulation::initialize() {
         acc[5] += m * (z * vx - x * vz);
         acc[6] += m * (x * vy - y * vx);
       });
+  const RigidStepSums rigid_sums = rigid_body_sums(rigid_);
+  sums[0] += rigid_sums.kinetic;
+  for (int k = 0; k < 3; ++k) {
+    sums[1 + k] += rigid_sums.momentum[k];
+    sums[4 + k] += rigid_sums.angular_momentum[k];
+  }
   energy_.kinetic = sums[0];
   energy_.initial_total = sums[0];
   for (int k = 0; k < 3; ++k) {
@@ -168,10 +186,12 @@ void Simulation::run(const std::function<void(const Simulation&)>& on_progress) 
     if (fields_) fields_->write_collection();
     if (glstat_) glstat_->flush();
     if (nodout_) nodout_->flush();
+    if (rbdout_) rbdout_->flush();
     throw;
   }
   if (glstat_) glstat_->flush();
   if (nodout_) nodout_->flush();
+  if (rbdout_) rbdout_->flush();
 }
 
 void Simulation::update_velocities() {
@@ -198,10 +218,25 @@ void Simulation::update_velocities() {
     nodes.v.z[i] += dt_avg * nodes.a.z[i];
   }
   constrain_velocities(boundary_, state_.time, state_.dt, state_);
-
-  // Energy and momenta at n+1/2: d = dt_avg (v^{n-1/2} + v^{n+1/2}) / 2 per DOF.
+  // Rigid bodies take the nodal forces on their nodes and set those nodes' velocities.
+  const RigidStepSums rigid_sums =
+      advance_rigid_bodies(rigid_, boundary_, state_.time, dt_avg, state_.dt, state_);
   const Vec3Array& vp = v_previous_;
-  const auto sums = deterministic_sum<9>(
+  if (!rigid_.empty() && dt_avg > 0.0) {
+    for (const auto& body : rigid_.bodies) {
+      for (const std::int32_t i : body.nodes) {  // the acceleration the node actually has
+        nodes.a.x[i] = (nodes.v.x[i] - vp.x[i]) / dt_avg;
+        nodes.a.y[i] = (nodes.v.y[i] - vp.y[i]) / dt_avg;
+        nodes.a.z[i] = (nodes.v.z[i] - vp.z[i]) / dt_avg;
+      }
+    }
+  }
+
+  // Energy and momenta at n+1/2: d = dt_avg (v^{n-1/2} + v^{n+1/2}) / 2 per DOF. Work is
+  // summed over every node (forces on rigid-body nodes do work on the bodies); kinetic energy
+  // and momenta of rigid-body nodes are those of their bodies.
+  const std::int32_t* body_of = rigid_.empty() ? nullptr : rigid_.body_of_node.data();
+  auto sums = deterministic_sum<9>(
       n, reduction_scratch_, [&](std::int64_t i, std::array<double, 9>& acc) {
         const double m = nodes.mass[i];
         const double vx = nodes.v.x[i], vy = nodes.v.y[i], vz = nodes.v.z[i];
@@ -209,9 +244,10 @@ void Simulation::update_velocities() {
         const double dy = 0.5 * dt_avg * (vp.y[i] + vy);
         const double dz = 0.5 * dt_avg * (vp.z[i] + vz);
         const double x = nodes.x.x[i], y = nodes.x.y[i], z = nodes.x.z[i];
-        acc[0] += 0.5 * m * (vx * vx + vy * vy + vz * vz);
         acc[1] += nodes.f_int.x[i] * dx + nodes.f_int.y[i] * dy + nodes.f_int.z[i] * dz;
         acc[2] += nodes.f_ext.x[i] * dx + nodes.f_ext.y[i] * dy + nodes.f_ext.z[i] * dz;
+        if (body_of && body_of[i] >= 0) return;
+        acc[0] += 0.5 * m * (vx * vx + vy * vy + vz * vz);
         acc[3] += m * vx;
         acc[4] += m * vy;
         acc[5] += m * vz;
@@ -237,9 +273,14 @@ void Simulation::update_velocities() {
                         rz * (vp.z[i] + nodes.v.z[i]));
     }
   }
+  sums[0] += rigid_sums.kinetic;
+  for (int k = 0; k < 3; ++k) {
+    sums[3 + k] += rigid_sums.momentum[k];
+    sums[6 + k] += rigid_sums.angular_momentum[k];
+  }
   energy_.kinetic = sums[0];
   energy_.internal_work += sums[1];
-  energy_.external_work += sums[2] + reaction_work;
+  energy_.external_work += sums[2] + reaction_work + rigid_sums.external_work;
   for (int k = 0; k < 3; ++k) {
     energy_.momentum[k] = sums[3 + k];
     energy_.angular_momentum[k] = sums[6 + k];
@@ -255,6 +296,14 @@ void Simulation::update_velocities() {
         "this mesh (smallest element step: element {}). Reduce TSSFAC on *CONTROL_TIMESTEP "
         "(free single elements or meshes of a few elements across need TSSFAC <= 0.55)",
         state_.time, state_.cycle, energy_.internal_work, energy_.kinetic, controlling_element_));
+  }
+  if (!std::isfinite(rigid_sums.kinetic)) {
+    for (const auto& body : rigid_.bodies) {
+      if (!std::isfinite(rigid::kinetic_energy(body.state))) {
+        throw SolverError(fmt::format("non-finite motion of rigid body {} at time {:.6g} (cycle {})",
+                                      body.id, state_.time, state_.cycle));
+      }
+    }
   }
   if (!std::isfinite(sums[0])) {
     // Find the first offending node for the message (rare path).
@@ -296,6 +345,28 @@ void Simulation::write_output_if_due(bool force) {
     nodout_->write(state_, v_previous_);
     nodout_schedule_.mark_written(t, cycle);
   }
+  if (rbdout_ && wanted(rbdout_schedule_)) {
+    rbdout_rows_.clear();
+    const double dt_avg = dt_average_;
+    for (const auto& body : rigid_.bodies) {
+      const rigid::RigidBodyState& s = body.state;
+      output::RbdoutRow row;
+      row.time = t;
+      row.body = body.id;
+      row.mass = s.mass;
+      const Eigen::Matrix3d r = output_rotation(body);
+      for (int k = 0; k < 3; ++k) {
+        row.x[k] = s.previous_centre[k];
+        row.v[k] = 0.5 * (body.velocity_before[k] + s.velocity[k]);
+        row.a[k] = dt_avg > 0.0 ? (s.velocity[k] - body.velocity_before[k]) / dt_avg : 0.0;
+        row.w[k] = 0.5 * (body.angular_velocity_before[k] + s.angular_velocity[k]);
+        for (int c = 0; c < 3; ++c) row.r[3 * k + c] = r(k, c);
+      }
+      rbdout_rows_.push_back(row);
+    }
+    rbdout_->write(rbdout_rows_);
+    rbdout_schedule_.mark_written(t, cycle);
+  }
   if (fields_ && wanted(d3plot_schedule_)) {
     fields_->write_frame(state_);
     d3plot_schedule_.mark_written(t, cycle);
@@ -314,6 +385,7 @@ void Simulation::update_positions() {
     nodes.x.y[i] += dt * nodes.v.y[i];
     nodes.x.z[i] += dt * nodes.v.z[i];
   }
+  place_curvilinear_nodes(rigid_, state_);
   state_.time += dt;
 }
 
@@ -321,6 +393,7 @@ void Simulation::compute_internal_forces() {
   const element::NodalView view = view_of(state_.nodes);
   element_dt_ = std::numeric_limits<double>::infinity();
   for (auto& block : state_.hex_blocks) {
+    if (block.rigid) continue;  // moved by its body; no stress, no step limit
     const element::KernelResult r = element::compute_hex_forces(block, view, state_.dt);
     energy_.hourglass += r.hourglass_work;
     if (r.failed && breakdown_message_.empty()) {
@@ -353,13 +426,25 @@ void Simulation::select_time_step() {
   if (control.lctm != 0) {
     const auto it = model_.curves.find(control.lctm);
     if (it == model_.curves.end()) {
-      throw InputError({.keyword = "*CONTROL_TIMESTEP", .field = "LCTM"},
+      // The reader checks this reference; kept for models built in code.
+      throw InputError({.file = {}, .line = 0, .keyword = "*CONTROL_TIMESTEP", .card = 1,
+                        .field = "LCTM"},
                        fmt::format("LCTM refers to load curve {}, which is not defined",
                                    control.lctm));
     }
     dt = std::min(dt, model::evaluate(it->second, state_.time));
   }
-  if (state_.cycle == 0 && control.dtinit > 0.0) dt = std::min(dt, control.dtinit);
+  const bool no_element_step = !std::isfinite(element_dt_);
+  if (control.dtinit > 0.0 && (state_.cycle == 0 || no_element_step)) {
+    // Without deformable elements DTINIT is the step throughout (capped by LCTM above).
+    dt = std::min(dt, control.dtinit);
+  }
+  if (no_element_step && !std::isfinite(dt)) {
+    throw InputError({.file = {}, .line = 0, .keyword = "*CONTROL_TIMESTEP", .card = 1,
+                      .field = "DTINIT"},
+                     "the model has no deformable elements, so nothing limits the time step: "
+                     "give DTINIT (or LCTM) on *CONTROL_TIMESTEP");
+  }
   if (!std::isfinite(dt) || dt <= 0.0) {
     throw SolverError(fmt::format("no valid time step at time {:.6g}: element {} gives {:.6g}",
                                   state_.time, controlling_element_, element_dt_));

@@ -14,6 +14,7 @@
 #include "output/writers.hpp"
 #include "solver/boundary.hpp"
 #include "solver/build_state.hpp"
+#include "solver/rigid_bodies.hpp"
 #include "solver/state.hpp"
 
 namespace rf::solver {
@@ -66,12 +67,16 @@ class Simulation {
   const EnergyAccount& energy() const { return energy_; }
   double end_time() const { return end_time_; }
   std::int64_t element_count() const { return element_count_; }
+  const RigidSystem& rigid_bodies() const { return rigid_; }
+  // Notices found while turning the model into a state (ignored constraints, regularised
+  // inertia); the reader's warnings are in the model.
+  const std::vector<model::Warning>& warnings() const { return warnings_; }
   // User ID and part of the element that controls the step (for messages and progress).
   model::Id controlling_element() const { return controlling_element_; }
 
  private:
   // The phases of a cycle, in order.
-  void update_velocities();          // a^n -> v^{n+1/2}, constraints, energy at n+1/2
+  void update_velocities();          // a^n -> v^{n+1/2}, constraints, rigid bodies, energy
   void write_output_if_due(bool force);
   void update_positions();           // x^{n+1} = x^n + dt v^{n+1/2}
   void compute_internal_forces();    // element kernels at n+1, assembly, element time step
@@ -86,6 +91,8 @@ class Simulation {
   SimulationOptions options_;
   NodeIndex node_index_;
   State state_;
+  RigidSystem rigid_;
+  std::vector<model::Warning> warnings_;
   Boundary boundary_;
   EnergyAccount energy_;
   Vec3Array v_previous_;  // v^{n-1/2}, kept for the energy balance and full-step velocities
@@ -117,6 +124,9 @@ class Simulation {
   OutputSchedule glstat_schedule_, nodout_schedule_, d3plot_schedule_;
   std::unique_ptr<output::GlstatWriter> glstat_;
   std::unique_ptr<output::NodoutWriter> nodout_;
+  std::unique_ptr<output::RbdoutWriter> rbdout_;
+  OutputSchedule rbdout_schedule_;
+  std::vector<output::RbdoutRow> rbdout_rows_;
   std::unique_ptr<output::FieldWriter> fields_;
   std::vector<double> reduction_scratch_;
 };

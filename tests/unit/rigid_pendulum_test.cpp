@@ -69,8 +69,8 @@ TEST(RigidPendulum, HingeConstraintTurnsAboutFixedAxisWithExactRate) {
   Matrix3d inertia;
   inertia << 2.0, 0.3, -0.4, 0.3, 3.0, 0.2, -0.4, 0.2, 4.0;
   auto body = rf::rigid::make_rigid_body(5.0, Vector3d(1, 1, 1), inertia);
-  body.fixed_translation = {true, true, true};
-  body.fixed_rotation = {true, true, false};
+  body.constraints.fix_global_translation({true, true, true});
+  body.constraints.fix_global_rotation({true, true, false});
   const Matrix3d rotation0 = body.rotation;
   constexpr double kTorque = 0.8, kDt = 1e-3;
   double angle = 0.0;
