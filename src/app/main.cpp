@@ -154,6 +154,10 @@ int command_run(const std::string& deck, std::string output_dir, int threads, bo
   try {
     sim = std::make_unique<rf::solver::Simulation>(model,
                                                    rf::solver::SimulationOptions{out, true});
+    for (const auto& w : sim->warnings()) {
+      summary.warnings.push_back(rf::app::format_warning(w));
+      if (!quiet) std::fprintf(stderr, "warning: %s\n", summary.warnings.back().c_str());
+    }
     if (!quiet) {
       std::printf("rigidflex %s: %zu nodes, %lld elements, end time %g, %d thread(s)\n",
                   RIGIDFLEX_VERSION, sim->state().nodes.size(),

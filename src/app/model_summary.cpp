@@ -45,6 +45,13 @@ void print_model_summary(const model::Model& model, std::FILE* out) {
   for (const auto& block : state.hex_blocks) {
     const auto& part = model.parts.at(block.part_id);
     const auto& mat = model.materials.at(part.mid);
+    if (block.rigid) {
+      fmt::print(out, "  part {} '{}': {} elements, section {}, material {} {} (rho {:g}, E {:g}, "
+                      "nu {:g}), rigid\n",
+                 part.id, part.title, block.size(), part.secid, mat.id, mat.keyword, mat.rho,
+                 mat.e, mat.pr);
+      continue;
+    }
     double dt = 0.0;
     const element::NodalView view{state.nodes.x.x.data(), state.nodes.x.y.data(),
                                   state.nodes.x.z.data(), state.nodes.v.x.data(),
@@ -58,6 +65,28 @@ void print_model_summary(const model::Model& model, std::FILE* out) {
                dt);
   }
   fmt::print(out, "total mass: {:.6g}\n", total_mass);
+  const auto& rigid = sim.rigid_bodies();
+  fmt::print(out, "rigid bodies: {} (*RIGID_BODY_UPDATE {})\n", rigid.bodies.size(),
+             model.rigid_body_update);
+  for (const auto& body : rigid.bodies) {
+    const auto& s = body.state;
+    std::string parts;
+    for (const auto p : body.parts) parts += fmt::format("{}{}", parts.empty() ? "" : ", ", p);
+    fmt::print(out,
+               "  {} {}{}: {} nodes, mass {:.6g}{}, centre ({:.6g}, {:.6g}, {:.6g}), principal "
+               "inertias {:.6g}, {:.6g}, {:.6g}, {} update{}{}\n",
+               body.nodal ? "nodal rigid body" : "rigid body", body.id,
+               parts.empty() ? "" : fmt::format(" (parts {})", parts), body.nodes.size(), s.mass,
+               body.inertia_from_card ? " (inertia card)" : "", s.centre.x(), s.centre.y(),
+               s.centre.z(), s.principal_inertia[0], s.principal_inertia[1],
+               s.principal_inertia[2],
+               body.update == solver::NodeUpdate::kLinear ? "linear" : "curvilinear",
+               body.shares_nodes ? ", shares nodes with deformable elements" : "",
+               s.constraints.empty()
+                   ? ""
+                   : fmt::format(", {} translation and {} rotation constraint(s)",
+                                 s.constraints.translation_count, s.constraints.rotation_count));
+  }
   fmt::print(out, "node sets: {}, part sets: {}, segment sets: {}\n", model.node_sets.size(),
              model.part_sets.size(), model.segment_sets.size());
   fmt::print(out, "curves: {}\n", model.curves.size());
@@ -73,8 +102,9 @@ void print_model_summary(const model::Model& model, std::FILE* out) {
                                           : "");
   fmt::print(out, "time step: TSSFAC {:g}, first step {:.4g} (controlled by element {})\n",
              model.timestep.tssfac, state.dt, sim.controlling_element());
-  fmt::print(out, "warnings: {}\n", model.warnings.size());
+  fmt::print(out, "warnings: {}\n", model.warnings.size() + sim.warnings().size());
   for (const auto& w : model.warnings) fmt::print(out, "  {}\n", format_warning(w));
+  for (const auto& w : sim.warnings()) fmt::print(out, "  {}\n", format_warning(w));
   if (!model.unknown_keywords.empty()) {
     fmt::print(out, "unknown keywords (ignored):\n");
     for (const auto& [kw, count] : model.unknown_keywords) fmt::print(out, "  {} x{}\n", kw, count);

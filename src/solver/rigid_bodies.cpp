@@ -539,8 +539,10 @@ RigidStepSums advance_rigid_bodies(RigidSystem& rigid, const Boundary& boundary,
     }
 
     // Work of body-level loads and constraint reactions over the step (midpoint velocities).
-    const Eigen::Vector3d v_mid = 0.5 * (body.velocity_before + s.velocity);
-    const Eigen::Vector3d w_mid = 0.5 * (body.angular_velocity_before + s.angular_velocity);
+    body.mid_velocity = 0.5 * (body.velocity_before + s.velocity);
+    body.mid_angular_velocity = 0.5 * (body.angular_velocity_before + s.angular_velocity);
+    const Eigen::Vector3d& v_mid = body.mid_velocity;
+    const Eigen::Vector3d& w_mid = body.mid_angular_velocity;
     sums.external_work += dt_avg * (load_force.dot(v_mid) + load_moment.dot(w_mid)) +
                           s.reaction_impulse.dot(v_mid) + s.reaction_angular_impulse.dot(w_mid);
   }

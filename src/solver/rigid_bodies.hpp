@@ -64,6 +64,8 @@ struct RigidBody {
   // energy balance; force and torque that drove it (t^n).
   Eigen::Vector3d velocity_before = Eigen::Vector3d::Zero();
   Eigen::Vector3d angular_velocity_before = Eigen::Vector3d::Zero();
+  Eigen::Vector3d mid_velocity = Eigen::Vector3d::Zero();          // (v^{n-1/2} + v^{n+1/2}) / 2
+  Eigen::Vector3d mid_angular_velocity = Eigen::Vector3d::Zero();  // the same for w
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
   Eigen::Vector3d torque = Eigen::Vector3d::Zero();
   rigid::VelocityConstraints step_constraints;  // scratch, reused every step

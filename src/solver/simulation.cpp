@@ -240,13 +240,27 @@ void Simulation::update_velocities() {
       n, reduction_scratch_, [&](std::int64_t i, std::array<double, 9>& acc) {
         const double m = nodes.mass[i];
         const double vx = nodes.v.x[i], vy = nodes.v.y[i], vz = nodes.v.z[i];
-        const double dx = 0.5 * dt_avg * (vp.x[i] + vx);
-        const double dy = 0.5 * dt_avg * (vp.y[i] + vy);
-        const double dz = 0.5 * dt_avg * (vp.z[i] + vz);
+        double dx = 0.5 * dt_avg * (vp.x[i] + vx);
+        double dy = 0.5 * dt_avg * (vp.y[i] + vy);
+        double dz = 0.5 * dt_avg * (vp.z[i] + vz);
         const double x = nodes.x.x[i], y = nodes.x.y[i], z = nodes.x.z[i];
+        const bool rigid_node = body_of && body_of[i] >= 0;
+        if (rigid_node) {
+          // The body's displacement at the node, dt_avg (v_mid + w_mid x (x^n - x_c^n)): with
+          // it the work of the nodal forces equals dt_avg (F . v_mid + T . w_mid), the work the
+          // body's momentum update did, so the balance closes at the body (docs/theory.md).
+          const RigidBody& body = rigid_.bodies[body_of[i]];
+          const Eigen::Vector3d arm(x - body.state.previous_centre.x(),
+                                    y - body.state.previous_centre.y(),
+                                    z - body.state.previous_centre.z());
+          const Eigen::Vector3d d = dt_avg * (body.mid_velocity + body.mid_angular_velocity.cross(arm));
+          dx = d.x();
+          dy = d.y();
+          dz = d.z();
+        }
         acc[1] += nodes.f_int.x[i] * dx + nodes.f_int.y[i] * dy + nodes.f_int.z[i] * dz;
         acc[2] += nodes.f_ext.x[i] * dx + nodes.f_ext.y[i] * dy + nodes.f_ext.z[i] * dz;
-        if (body_of && body_of[i] >= 0) return;
+        if (rigid_node) return;
         acc[0] += 0.5 * m * (vx * vx + vy * vy + vz * vz);
         acc[3] += m * vx;
         acc[4] += m * vy;
