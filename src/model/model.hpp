@@ -280,6 +280,9 @@ struct RigidPrescribedMotion {
   Id vid = 0;  // *DEFINE_VECTOR for DOF 4 and 8
   double death = 1e28;
   double birth = 0.0;
+  // _LOCAL: DOF 1-3 and 5-7 act along the body's own axes (its *MAT_RIGID output system,
+  // else the global axes at t = 0, carried along with the body); VID is given in them too.
+  bool local = false;
   SourceLocation where;
 };
 

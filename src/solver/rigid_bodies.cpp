@@ -345,13 +345,19 @@ RigidSystem build_rigid_system(const model::Model& model, const NodeIndex& node_
     } else {
       m.axis = Eigen::Vector3d::Unit((pm.dof - 1) % 4);
     }
+    if (pm.local) {
+      // Components in the body's output axes; as a global direction at t = 0.
+      m.body_fixed = true;
+      m.axis = (rigid.bodies[m.body].output_axes * m.axis).normalized();
+    }
     m.vad = pm.vad;
     const model::Curve* curve = nullptr;
     if (pm.lcid != 0) curve = &model.curves.at(pm.lcid);
     m.value = ScaledCurve{curve, pm.sf, pm.birth};
     m.birth = pm.birth;
     m.death = pm.death <= 0.0 ? 1e28 : pm.death;
-    m.reference = m.rotation ? 0.0 : m.axis.dot(rigid.bodies[m.body].state.centre);
+    m.reference =
+        (m.rotation || m.body_fixed) ? 0.0 : m.axis.dot(rigid.bodies[m.body].state.centre);
     m.where = pm.where;
     motions_of[m.body].push_back(m);
   }
@@ -489,31 +495,41 @@ RigidStepSums advance_rigid_bodies(RigidSystem& rigid, const Boundary& boundary,
     std::size_t motion_end = motion_begin;
     while (motion_end < rigid.motions.size() && rigid.motions[motion_end].body == b) ++motion_end;
     for (std::size_t k = motion_begin; k < motion_end; ++k) {
-      const RigidMotion& m = rigid.motions[k];
+      RigidMotion& m = rigid.motions[k];
       const Eigen::Vector3d& before = m.rotation ? body.angular_velocity_before : body.velocity_before;
+      // Body-fixed axes turn with the body: R^n R0^T carries them from t = 0 to t^n.
+      const Eigen::Vector3d axis = m.body_fixed
+                                       ? Eigen::Vector3d(s.rotation * (body.initial_rotation.transpose() * m.axis))
+                                       : m.axis;
       double value = 0.0;
       if (m.vad == 0) {
         if (!(t_mid >= m.birth && t_mid <= m.death)) continue;
         value = m.value(t_mid);
       } else if (m.vad == 1) {
         if (!(t_n >= m.birth && t_n <= m.death)) continue;
-        value = m.axis.dot(before) + dt_avg * m.value(t_n);
+        value = axis.dot(before) + dt_avg * m.value(t_n);
       } else {
         if (!(t_end >= m.birth && t_end <= m.death)) continue;
-        const double now = m.rotation ? m.angle : m.axis.dot(s.centre) - m.reference;
+        const bool integrated = m.rotation || m.body_fixed;
+        const double now = integrated ? m.travelled : axis.dot(s.centre) - m.reference;
         value = (m.value(t_end) - now) / dt;
       }
       if (m.rotation) {
-        step.add_rotation(m.axis, value);
+        step.add_rotation(axis, value);
       } else {
-        step.add_translation(m.axis, value);
+        step.add_translation(axis, value);
       }
     }
 
+    const Eigen::Matrix3d rotation_before = s.rotation;
     rigid::advance_rigid_body(s, body.force, body.torque, dt_avg, dt, &step);
     for (std::size_t k = motion_begin; k < motion_end; ++k) {
       RigidMotion& m = rigid.motions[k];
-      if (m.rotation) m.angle += dt * m.axis.dot(s.angular_velocity);
+      if (!(m.rotation || m.body_fixed)) continue;
+      const Eigen::Vector3d axis =
+          m.body_fixed ? Eigen::Vector3d(rotation_before * (body.initial_rotation.transpose() * m.axis))
+                       : m.axis;
+      m.travelled += dt * axis.dot(m.rotation ? s.angular_velocity : s.velocity);
     }
     motion_begin = motion_end;
 

@@ -32,8 +32,10 @@ struct RigidMotion {
   ScaledCurve value;
   double birth = 0.0;
   double death = 1e28;
-  double reference = 0.0;          // VAD 2 translation: axis . x_c at t = 0
-  double angle = 0.0;              // VAD 2 rotation: angle turned about axis so far
+  // _LOCAL: `axis` is fixed in the body; the global axis is R R0^T axis at each step.
+  bool body_fixed = false;
+  double reference = 0.0;          // VAD 2 global translation: axis . x_c at t = 0
+  double travelled = 0.0;          // VAD 2 rotation or body-fixed translation: so far
   model::SourceLocation where;
 };
 

@@ -402,6 +402,7 @@ void boundary_prescribed_motion_rigid(const Block& block, ReaderContext& context
       throw card.error("DEATH",
                        fmt::format("death time {} is not after birth time {}", m.death, m.birth));
     }
+    m.local = block.has_option("LOCAL");
     m.where = card.location();
     context.model.rigid_prescribed_motions.push_back(m);
     any = true;

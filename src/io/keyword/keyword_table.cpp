@@ -36,7 +36,7 @@ const std::vector<KeywordEntry>& table() {
       {"*CONSTRAINED_EXTRA_NODES_NODE", constrained_extra_nodes, {}},
       {"*CONSTRAINED_EXTRA_NODES_SET", constrained_extra_nodes, {}},
       {"*CONSTRAINED_NODAL_RIGID_BODY", constrained_nodal_rigid_body, {"SPC", "INERTIA", "TITLE"}},
-      {"*BOUNDARY_PRESCRIBED_MOTION_RIGID", boundary_prescribed_motion_rigid, {"ID"}},
+      {"*BOUNDARY_PRESCRIBED_MOTION_RIGID", boundary_prescribed_motion_rigid, {"ID", "LOCAL"}},
       {"*LOAD_RIGID_BODY", load_rigid_body, {}},
       {"*RIGID_BODY_UPDATE", rigid_body_update, {}},
       {"*CONTROL_RIGID", control_rigid, {}},
