@@ -1,10 +1,10 @@
 // rigidflex: command-line entry point.
 //   rigidflex run DECK [-o DIR] [--threads N] [--quiet] [--set name=value]...
 //   rigidflex check DECK
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <omp.h>
 #include <unistd.h>
+#include <CLI/CLI.hpp>
 
 #include <chrono>
 #include <cstdio>
@@ -84,10 +84,9 @@ class ProgressPrinter {
     last_ = now;
     const double wall = std::chrono::duration<double>(now - start_).count();
     const double left = fraction > 0.0 ? wall * (1.0 - fraction) / fraction : 0.0;
-    const std::string line =
-        fmt::format("t = {:.5e} ({:5.1f}%)  cycle {:>9}  dt = {:.3e}  wall {}  left {}", t,
-                    100.0 * fraction, sim.state().cycle, sim.state().dt, format_seconds(wall),
-                    format_seconds(left));
+    const std::string line = fmt::format(
+        "t = {:.5e} ({:5.1f}%)  cycle {:>9}  dt = {:.3e}  wall {}  left {}", t, 100.0 * fraction,
+        sim.state().cycle, sim.state().dt, format_seconds(wall), format_seconds(left));
     if (tty_) {
       std::fprintf(stdout, "\r%s   ", line.c_str());
       if (sim.finished()) std::fputc('\n', stdout);
@@ -129,8 +128,8 @@ int command_run(const std::string& deck, std::string output_dir, int threads, bo
       summary.cycles = sim->state().cycle;
       summary.nodes = static_cast<std::int64_t>(sim->state().nodes.size());
       summary.elements = sim->element_count();
-      const double element_cycles =
-          static_cast<double>(summary.elements) * static_cast<double>(std::max<std::int64_t>(1, summary.cycles));
+      const double element_cycles = static_cast<double>(summary.elements) *
+                                    static_cast<double>(std::max<std::int64_t>(1, summary.cycles));
       summary.ns_per_element_cycle = 1e9 * summary.wall_seconds / element_cycles;
     }
     rf::output::write_run_json(out / "run.json", summary);
@@ -152,8 +151,7 @@ int command_run(const std::string& deck, std::string output_dir, int threads, bo
 
   std::unique_ptr<rf::solver::Simulation> sim;
   try {
-    sim = std::make_unique<rf::solver::Simulation>(model,
-                                                   rf::solver::SimulationOptions{out, true});
+    sim = std::make_unique<rf::solver::Simulation>(model, rf::solver::SimulationOptions{out, true});
     for (const auto& w : sim->warnings()) {
       summary.warnings.push_back(rf::app::format_warning(w));
       if (!quiet) std::fprintf(stderr, "warning: %s\n", summary.warnings.back().c_str());
@@ -161,8 +159,7 @@ int command_run(const std::string& deck, std::string output_dir, int threads, bo
     if (!quiet) {
       std::printf("rigidflex %s: %zu nodes, %lld elements, end time %g, %d thread(s)\n",
                   RIGIDFLEX_VERSION, sim->state().nodes.size(),
-                  static_cast<long long>(sim->element_count()), sim->end_time(),
-                  summary.threads);
+                  static_cast<long long>(sim->element_count()), sim->end_time(), summary.threads);
     }
     ProgressPrinter progress(quiet);
     sim->run(std::ref(progress));
@@ -175,13 +172,15 @@ int command_run(const std::string& deck, std::string output_dir, int threads, bo
   summary.status = "normal termination";
   finish(sim.get());
   if (!quiet) {
-    std::printf("normal termination: t = %g after %lld cycles, %.2f s wall, %.1f ns per "
-                "element-cycle\n",
-                summary.final_time, static_cast<long long>(summary.cycles), summary.wall_seconds,
-                summary.ns_per_element_cycle);
-    std::printf("results in %s/ (glstat.csv, d3plot.pvd, run.json); open d3plot.pvd in "
-                "ParaView\n",
-                fs::absolute(out).lexically_normal().string().c_str());
+    std::printf(
+        "normal termination: t = %g after %lld cycles, %.2f s wall, %.1f ns per "
+        "element-cycle\n",
+        summary.final_time, static_cast<long long>(summary.cycles), summary.wall_seconds,
+        summary.ns_per_element_cycle);
+    std::printf(
+        "results in %s/ (glstat.csv, d3plot.pvd, run.json); open d3plot.pvd in "
+        "ParaView\n",
+        fs::absolute(out).lexically_normal().string().c_str());
   }
   return 0;
 }

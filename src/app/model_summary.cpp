@@ -15,11 +15,16 @@ namespace {
 const char* shape_of(const model::SolidElement& e) {
   std::set<model::Id> distinct(e.nodes.begin(), e.nodes.end());
   switch (distinct.size()) {
-    case 4: return "tetrahedron";
-    case 5: return "pyramid";
-    case 6: return "wedge";
-    case 8: return "hexahedron";
-    default: return "degenerate";
+    case 4:
+      return "tetrahedron";
+    case 5:
+      return "pyramid";
+    case 6:
+      return "wedge";
+    case 8:
+      return "hexahedron";
+    default:
+      return "degenerate";
   }
 }
 
@@ -46,10 +51,11 @@ void print_model_summary(const model::Model& model, std::FILE* out) {
     const auto& part = model.parts.at(block.part_id);
     const auto& mat = model.materials.at(part.mid);
     if (block.rigid) {
-      fmt::print(out, "  part {} '{}': {} elements, section {}, material {} {} (rho {:g}, E {:g}, "
-                      "nu {:g}), rigid\n",
-                 part.id, part.title, block.size(), part.secid, mat.id, mat.keyword, mat.rho,
-                 mat.e, mat.pr);
+      fmt::print(out,
+                 "  part {} '{}': {} elements, section {}, material {} {} (rho {:g}, E {:g}, "
+                 "nu {:g}), rigid\n",
+                 part.id, part.title, block.size(), part.secid, mat.id, mat.keyword, mat.rho, mat.e,
+                 mat.pr);
       continue;
     }
     double dt = 0.0;
@@ -60,9 +66,8 @@ void print_model_summary(const model::Model& model, std::FILE* out) {
     fmt::print(out,
                "  part {} '{}': {} elements, section {} (ELFORM {}), material {} {} "
                "(rho {:g}, E {:g}, nu {:g}), hourglass IHQ {} QM {:g}, element step {:.4g}\n",
-               part.id, part.title, block.size(), part.secid, block.elform, mat.id,
-               mat.keyword, mat.rho, mat.e, mat.pr, block.hourglass.ihq, block.hourglass.qm,
-               dt);
+               part.id, part.title, block.size(), part.secid, block.elform, mat.id, mat.keyword,
+               mat.rho, mat.e, mat.pr, block.hourglass.ihq, block.hourglass.qm, dt);
   }
   fmt::print(out, "total mass: {:.6g}\n", total_mass);
   const auto& rigid = sim.rigid_bodies();
@@ -78,8 +83,7 @@ void print_model_summary(const model::Model& model, std::FILE* out) {
                body.nodal ? "nodal rigid body" : "rigid body", body.id,
                parts.empty() ? "" : fmt::format(" (parts {})", parts), body.nodes.size(), s.mass,
                body.inertia_from_card ? " (inertia card)" : "", s.centre.x(), s.centre.y(),
-               s.centre.z(), s.principal_inertia[0], s.principal_inertia[1],
-               s.principal_inertia[2],
+               s.centre.z(), s.principal_inertia[0], s.principal_inertia[1], s.principal_inertia[2],
                body.update == solver::NodeUpdate::kLinear ? "linear" : "curvilinear",
                body.shares_nodes ? ", shares nodes with deformable elements" : "",
                s.constraints.empty()
@@ -93,13 +97,14 @@ void print_model_summary(const model::Model& model, std::FILE* out) {
   for (const auto& [id, c] : model.curves) {
     fmt::print(out, "  curve {}: {} points\n", id, c.abscissa.size());
   }
-  fmt::print(out, "SPCs: {}, prescribed motions: {}, nodal loads: {}, body loads: {}, "
-                  "initial velocities: {}\n",
+  fmt::print(out,
+             "SPCs: {}, prescribed motions: {}, nodal loads: {}, body loads: {}, "
+             "initial velocities: {}\n",
              model.spcs.size(), model.prescribed_motions.size(), model.nodal_loads.size(),
              model.body_loads.size(), model.initial_velocities.size());
-  fmt::print(out, "termination: ENDTIM {:g}{}\n", model.termination.endtim,
-             model.termination.endcyc > 0 ? fmt::format(", ENDCYC {}", model.termination.endcyc)
-                                          : "");
+  fmt::print(
+      out, "termination: ENDTIM {:g}{}\n", model.termination.endtim,
+      model.termination.endcyc > 0 ? fmt::format(", ENDCYC {}", model.termination.endcyc) : "");
   fmt::print(out, "time step: TSSFAC {:g}, first step {:.4g} (controlled by element {})\n",
              model.timestep.tssfac, state.dt, sim.controlling_element());
   fmt::print(out, "warnings: {}\n", model.warnings.size() + sim.warnings().size());

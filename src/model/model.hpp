@@ -134,9 +134,9 @@ struct Vector {
 
 struct Hourglass {
   Id id = 0;
-  int ihq = 0;        // 0: use *CONTROL_HOURGLASS default
-  double qm = 0.1;    // hourglass coefficient
-  double q1 = 1.5;    // bulk viscosity (read, kept for later)
+  int ihq = 0;      // 0: use *CONTROL_HOURGLASS default
+  double qm = 0.1;  // hourglass coefficient
+  double q1 = 1.5;  // bulk viscosity (read, kept for later)
   double q2 = 0.06;
   double qb = 0.0;
   double qw = 0.0;
@@ -180,9 +180,9 @@ enum class Target { Node, NodeSet, Part, PartSet, All };
 
 struct Spc {
   Target target = Target::Node;
-  Id id = 0;  // node or node-set ID
-  std::array<bool, 3> fix{};     // DOFX DOFY DOFZ
-  std::array<bool, 3> fix_rot{}; // read, not used by solids
+  Id id = 0;                      // node or node-set ID
+  std::array<bool, 3> fix{};      // DOFX DOFY DOFZ
+  std::array<bool, 3> fix_rot{};  // read, not used by solids
   Id cid = 0;
   SourceLocation where;
 };
@@ -204,13 +204,13 @@ struct PrescribedMotion {
 struct InitialVelocity {
   // A single generated velocity field: v = v_trans + omega * axis x (x - point).
   Target target = Target::Node;
-  Id id = 0;                       // node, node set, part or part set; 0 with All
-  std::array<double, 3> v{};       // translational velocity
-  double omega = 0.0;              // rad/time about axis through point
+  Id id = 0;                  // node, node set, part or part set; 0 with All
+  std::array<double, 3> v{};  // translational velocity
+  double omega = 0.0;         // rad/time about axis through point
   std::array<double, 3> point{};
   std::array<double, 3> axis{};
-  std::vector<Id> exempt_nodes;    // *INITIAL_VELOCITY IRIGID/NSIDEX exemptions
-  int irigid = 0;                  // IRIGID as written (-1, 0, 1); see docs/keywords.md
+  std::vector<Id> exempt_nodes;  // *INITIAL_VELOCITY IRIGID/NSIDEX exemptions
+  int irigid = 0;                // IRIGID as written (-1, 0, 1); see docs/keywords.md
   SourceLocation where;
 };
 
@@ -331,8 +331,8 @@ struct Model {
   std::string title;
   std::vector<std::string> files;  // every file read, main deck first
 
-  std::vector<Node> nodes;                   // in input order
-  std::vector<SolidElement> solids;          // in input order
+  std::vector<Node> nodes;           // in input order
+  std::vector<SolidElement> solids;  // in input order
   std::map<Id, Part> parts;
   std::map<Id, SectionSolid> solid_sections;
   std::map<Id, Material> materials;
@@ -362,8 +362,8 @@ struct Model {
   HourglassControl hourglass_control;
   OutputControl output;
 
-  std::map<std::string, double> parameters;  // *PARAMETER values, final
-  std::vector<Warning> warnings;             // unknown keywords and other notices
+  std::map<std::string, double> parameters;     // *PARAMETER values, final
+  std::vector<Warning> warnings;                // unknown keywords and other notices
   std::map<std::string, int> unknown_keywords;  // keyword -> occurrences
 };
 

@@ -101,7 +101,9 @@ void GlstatWriter::write(const GlstatRow& row) {
 NodoutWriter::NodoutWriter(const std::filesystem::path& path, std::vector<std::int32_t> dense_nodes)
     : csv_(path, std::string(kNodoutHeader)), nodes_(std::move(dense_nodes)) {}
 
-void NodoutWriter::write(const solver::State& state) { write_rows(state, nullptr); }
+void NodoutWriter::write(const solver::State& state) {
+  write_rows(state, nullptr);
+}
 
 void NodoutWriter::write(const solver::State& state, const solver::Vec3Array& v_previous) {
   write_rows(state, &v_previous);
@@ -123,7 +125,8 @@ void NodoutWriter::write_rows(const solver::State& state, const solver::Vec3Arra
       vy = 0.5 * (vy + v_previous->y[i]);
       vz = 0.5 * (vz + v_previous->z[i]);
     }
-    const double values[] = {n.x.x[i], n.x.y[i], n.x.z[i], vx, vy, vz, n.a.x[i], n.a.y[i], n.a.z[i]};
+    const double values[] = {n.x.x[i], n.x.y[i], n.x.z[i], vx,      vy,
+                             vz,       n.a.x[i], n.a.y[i], n.a.z[i]};
     for (double value : values) {
       rows.push_back(',');
       append_number(rows, value);

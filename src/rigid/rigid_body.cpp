@@ -74,7 +74,7 @@ void snap_axis_constraints(const ConstraintAxes& axes, const ConstraintValues& v
   for (Eigen::Index k = 0; k < axes.cols(); ++k) {
     for (int a = 0; a < 3; ++a) {
       const double c = axes(a, k);
-      if ((c == 1.0 || c == -1.0) && axes(( a + 1) % 3, k) == 0.0 && axes((a + 2) % 3, k) == 0.0) {
+      if ((c == 1.0 || c == -1.0) && axes((a + 1) % 3, k) == 0.0 && axes((a + 2) % 3, k) == 0.0) {
         velocity[a] = c * values[k];
       }
     }
@@ -113,8 +113,8 @@ void advance_constrained_rotation(RigidBodyState& body, const ConstraintAxes& ax
 // Columns: the constraint axes of both sets; values alongside.
 void stack(const std::array<Eigen::Vector3d, 3>& axis_a, const std::array<double, 3>& value_a,
            int count_a, const std::array<Eigen::Vector3d, 3>* axis_b,
-           const std::array<double, 3>* value_b, int count_b,
-           ConstraintAxes& axes, ConstraintValues& values) {
+           const std::array<double, 3>* value_b, int count_b, ConstraintAxes& axes,
+           ConstraintValues& values) {
   axes.resize(3, count_a + count_b);
   values.resize(count_a + count_b);
   for (int k = 0; k < count_a; ++k) {

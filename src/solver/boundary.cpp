@@ -34,9 +34,9 @@ ScaledCurve make_curve(const model::Model& model, model::Id lcid, double sf, dou
 int translation_axis(int dof, const model::SourceLocation& where) {
   const int a = std::abs(dof);
   if (a < 1 || a > 3) {
-    throw InputError(context_of(where, "DOF"),
-                     fmt::format("DOF={} is not supported here (supported: 1, 2, 3 for x, y, z)",
-                                 dof));
+    throw InputError(
+        context_of(where, "DOF"),
+        fmt::format("DOF={} is not supported here (supported: 1, 2, 3 for x, y, z)", dof));
   }
   return a - 1;
 }
@@ -115,17 +115,17 @@ Boundary resolve_boundary(const model::Model& model, const NodeIndex& node_index
     b.fixed[i] |= kTcMask[tc];
   }
   if (ignored_tc > 0) {
-    warnings.push_back({{}, fmt::format("*NODE: TC on {} node(s) of rigid bodies is ignored; "
-                                        "constrain a rigid body with CMO/CON1/CON2 on "
-                                        "*MAT_RIGID",
-                                        ignored_tc)});
+    warnings.push_back({{},
+                        fmt::format("*NODE: TC on {} node(s) of rigid bodies is ignored; "
+                                    "constrain a rigid body with CMO/CON1/CON2 on "
+                                    "*MAT_RIGID",
+                                    ignored_tc)});
   }
   for (const auto& spc : model.spcs) {
-    const auto nodes =
-        resolve_nodes(model, node_index, state, spc.target, spc.id, spc.where,
-                      spc.target == model::Target::Node ? "NID" : "NSID");
-    const std::uint8_t mask = static_cast<std::uint8_t>((spc.fix[0] ? 1 : 0) |
-                                                        (spc.fix[1] ? 2 : 0) | (spc.fix[2] ? 4 : 0));
+    const auto nodes = resolve_nodes(model, node_index, state, spc.target, spc.id, spc.where,
+                                     spc.target == model::Target::Node ? "NID" : "NSID");
+    const std::uint8_t mask = static_cast<std::uint8_t>(
+        (spc.fix[0] ? 1 : 0) | (spc.fix[1] ? 2 : 0) | (spc.fix[2] ? 4 : 0));
     std::int64_t ignored = 0;
     for (const auto i : nodes) {
       if (rigid(i)) {
@@ -166,15 +166,14 @@ Boundary resolve_boundary(const model::Model& model, const NodeIndex& node_index
                                      "fixed by an SPC",
                                      state.nodes.id[i]));
       }
-      b.prescribed.push_back(PrescribedDof{i, axis, pm.vad, value, pm.birth,
-                                           pm.death <= 0.0 ? 1e28 : pm.death});
+      b.prescribed.push_back(
+          PrescribedDof{i, axis, pm.vad, value, pm.birth, pm.death <= 0.0 ? 1e28 : pm.death});
     }
   }
   for (const auto& load : model.nodal_loads) {
     const int axis = translation_axis(load.dof, load.where);
-    const auto nodes =
-        resolve_nodes(model, node_index, state, load.target, load.id, load.where,
-                      load.target == model::Target::Node ? "NID" : "NSID");
+    const auto nodes = resolve_nodes(model, node_index, state, load.target, load.id, load.where,
+                                     load.target == model::Target::Node ? "NID" : "NSID");
     const ScaledCurve value = make_curve(model, load.lcid, load.sf, 0.0, load.where);
     for (const auto i : nodes) b.nodal_forces.push_back(NodalForce{i, axis, value});
   }
@@ -206,7 +205,8 @@ void apply_initial_velocities(const model::Model& model, const NodeIndex& node_i
     auto targets = resolve_nodes(model, node_index, state, iv.target, iv.id, iv.where, field);
     if (!iv.exempt_nodes.empty()) {
       std::vector<std::int32_t> exempt;
-      for (const auto nid : iv.exempt_nodes) exempt.push_back(node_index.at(nid, iv.where, "NSIDEX"));
+      for (const auto nid : iv.exempt_nodes)
+        exempt.push_back(node_index.at(nid, iv.where, "NSIDEX"));
       std::sort(exempt.begin(), exempt.end());
       std::erase_if(targets, [&](std::int32_t i) {
         return std::binary_search(exempt.begin(), exempt.end(), i);

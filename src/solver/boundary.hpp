@@ -65,8 +65,7 @@ std::vector<std::int32_t> resolve_nodes(const model::Model& model, const NodeInd
                                         const model::SourceLocation& where, const char* field);
 
 // Applies *INITIAL_VELOCITY* cards in input order (later cards override earlier ones).
-void apply_initial_velocities(const model::Model& model, const NodeIndex& node_index,
-                              State& state);
+void apply_initial_velocities(const model::Model& model, const NodeIndex& node_index, State& state);
 
 // f_ext at time t: nodal loads and body forces (-m a_base, as LS-DYNA *LOAD_BODY).
 void compute_external_forces(const Boundary& boundary, double t, State& state);

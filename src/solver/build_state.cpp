@@ -23,17 +23,17 @@ element::HourglassSettings resolve_hourglass(const model::Model& model, const mo
   if (part.hgid != 0) {
     const auto it = model.hourglass.find(part.hgid);
     if (it == model.hourglass.end()) {
-      throw InputError(context_of(part.where, "HGID"),
-                       fmt::format("part {} refers to *HOURGLASS {}, which is not defined",
-                                   part.id, part.hgid));
+      throw InputError(
+          context_of(part.where, "HGID"),
+          fmt::format("part {} refers to *HOURGLASS {}, which is not defined", part.id, part.hgid));
     }
     if (it->second.ihq != 0) hg.ihq = it->second.ihq;
     if (it->second.qm > 0.0) hg.qm = it->second.qm;
   }
   if (hg.ihq < 1 || hg.ihq > 6) {
-    throw InputError(context_of(part.where, "HGID"),
-                     fmt::format("hourglass type IHQ={} for part {} is not supported (1-6)",
-                                 hg.ihq, part.id));
+    throw InputError(
+        context_of(part.where, "HGID"),
+        fmt::format("hourglass type IHQ={} for part {} is not supported (1-6)", hg.ihq, part.id));
   }
   return hg;
 }
@@ -86,22 +86,22 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
     const auto& first = model.solids[element_indices.front()];
     const auto part_it = model.parts.find(pid);
     if (part_it == model.parts.end()) {
-      throw InputError(context_of(first.where, "PID"),
-                       fmt::format("element {} refers to part {}, which is not defined",
-                                   first.id, pid));
+      throw InputError(
+          context_of(first.where, "PID"),
+          fmt::format("element {} refers to part {}, which is not defined", first.id, pid));
     }
     const model::Part& part = part_it->second;
     const auto sec_it = model.solid_sections.find(part.secid);
     if (sec_it == model.solid_sections.end()) {
       throw InputError(context_of(part.where, "SECID"),
-                       fmt::format("part {} refers to *SECTION_SOLID {}, which is not defined",
-                                   pid, part.secid));
+                       fmt::format("part {} refers to *SECTION_SOLID {}, which is not defined", pid,
+                                   part.secid));
     }
     const auto mat_it = model.materials.find(part.mid);
     if (mat_it == model.materials.end()) {
-      throw InputError(context_of(part.where, "MID"),
-                       fmt::format("part {} refers to material {}, which is not defined", pid,
-                                   part.mid));
+      throw InputError(
+          context_of(part.where, "MID"),
+          fmt::format("part {} refers to material {}, which is not defined", pid, part.mid));
     }
     const model::Material& mat = mat_it->second;
     if (mat.kind != model::MaterialKind::Elastic && mat.kind != model::MaterialKind::Rigid) {
@@ -128,8 +128,8 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
         block.conn.push_back(node_index.at(solid.nodes[k], solid.where, "N"));
       }
     }
-    state.parts.push_back(PartInfo{pid, part.title, block.elform,
-                                   static_cast<std::int64_t>(block.size())});
+    state.parts.push_back(
+        PartInfo{pid, part.title, block.elform, static_cast<std::int64_t>(block.size())});
     state.hex_blocks.push_back(std::move(block));
   }
 

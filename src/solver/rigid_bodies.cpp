@@ -18,7 +18,9 @@ namespace {
 using model::context_of;
 using model::Id;
 
-Eigen::Vector3d vec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
+Eigen::Vector3d vec(const std::array<double, 3>& a) {
+  return {a[0], a[1], a[2]};
+}
 
 // Parallel-axis sum of mass properties (each about its own centre).
 rigid::MassProperties combine(const std::vector<rigid::MassProperties>& parts) {
@@ -29,8 +31,8 @@ rigid::MassProperties combine(const std::vector<rigid::MassProperties>& parts) {
   sum.centre /= sum.mass;
   for (const auto& p : parts) {
     const Eigen::Vector3d d = p.centre - sum.centre;
-    sum.inertia += p.inertia +
-                   p.mass * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
+    sum.inertia +=
+        p.inertia + p.mass * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
   }
   return sum;
 }
@@ -57,13 +59,13 @@ rigid::MassProperties card_properties(const model::RigidInertia& in) {
 // Decodes *NODE-style constraint codes 0..7 (1 x, 2 y, 3 z, 4 xy, 5 yz, 6 zx, 7 xyz).
 std::array<bool, 3> decode_code(double code) {
   static constexpr std::array<std::array<bool, 3>, 8> kAxes = {{{false, false, false},
-                                                                 {true, false, false},
-                                                                 {false, true, false},
-                                                                 {false, false, true},
-                                                                 {true, true, false},
-                                                                 {false, true, true},
-                                                                 {true, false, true},
-                                                                 {true, true, true}}};
+                                                                {true, false, false},
+                                                                {false, true, false},
+                                                                {false, false, true},
+                                                                {true, true, false},
+                                                                {false, true, true},
+                                                                {true, false, true},
+                                                                {true, true, true}}};
   const int c = static_cast<int>(std::lround(code));
   return (c >= 0 && c <= 7) ? kAxes[c] : kAxes[0];
 }
@@ -90,15 +92,16 @@ void add_cmo_constraints(const model::Model& model, double cmo, double con1, dou
 rigid::RigidBodyState make_body(rigid::MassProperties props, const RigidBody& body,
                                 const model::SourceLocation& where, const char* field,
                                 std::vector<model::Warning>& warnings) {
-  const std::string name = fmt::format("{} {}", body.nodal ? "nodal rigid body" : "rigid body",
-                                       body.id);
+  const std::string name =
+      fmt::format("{} {}", body.nodal ? "nodal rigid body" : "rigid body", body.id);
   if (!(props.mass > 0.0)) {
     throw InputError(context_of(where, field),
                      fmt::format("{} has no mass (mass {:g}): its nodes carry no element mass; "
                                  "give it *PART_INERTIA or connect it to elements",
                                  name, props.mass));
   }
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(0.5 * (props.inertia + props.inertia.transpose()));
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(0.5 *
+                                                       (props.inertia + props.inertia.transpose()));
   const Eigen::Vector3d moments = eigen.eigenvalues();
   if (!body.inertia_from_card) {
     const double largest = moments.maxCoeff();
@@ -280,8 +283,8 @@ RigidSystem build_rigid_system(const model::Model& model, const NodeIndex& node_
                                                nodes.x.z.data()));
       }
     }
-    body.state = make_body(combine(parts), body, where_of[b], body.nodal ? "NSID" : "PID",
-                           rigid.warnings);
+    body.state =
+        make_body(combine(parts), body, where_of[b], body.nodal ? "NSID" : "PID", rigid.warnings);
     body.initial_rotation = body.state.rotation;
     body.body_coordinates = rigid::body_coordinates(body.state, body.nodes, nodes.x.x.data(),
                                                     nodes.x.y.data(), nodes.x.z.data());
@@ -364,7 +367,8 @@ RigidSystem build_rigid_system(const model::Model& model, const NodeIndex& node_
   for (std::size_t b = 0; b < rigid.bodies.size(); ++b) {
     rigid::VelocityConstraints all;
     for (const auto& m : motions_of[b]) {
-      const bool added = m.rotation ? all.add_rotation(m.axis, 0.0) : all.add_translation(m.axis, 0.0);
+      const bool added =
+          m.rotation ? all.add_rotation(m.axis, 0.0) : all.add_translation(m.axis, 0.0);
       if (!added || !rigid::constraints_independent(rigid.bodies[b].state.constraints, all)) {
         throw InputError(
             context_of(m.where, "DOF"),
@@ -424,7 +428,8 @@ void initialize_rigid_velocities(const model::Model& model, const NodeIndex& nod
       Eigen::Vector3d spin = Eigen::Vector3d::Zero();
       Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
       for (const auto i : body.nodes) {
-        const Eigen::Vector3d r = Eigen::Vector3d(nodes.x.x[i], nodes.x.y[i], nodes.x.z[i]) - centre;
+        const Eigen::Vector3d r =
+            Eigen::Vector3d(nodes.x.x[i], nodes.x.y[i], nodes.x.z[i]) - centre;
         const Eigen::Vector3d u = Eigen::Vector3d(nodes.v.x[i], nodes.v.y[i], nodes.v.z[i]) - v;
         spin += weight(i) * r.cross(u);
         inertia += weight(i) * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
@@ -496,11 +501,12 @@ RigidStepSums advance_rigid_bodies(RigidSystem& rigid, const Boundary& boundary,
     while (motion_end < rigid.motions.size() && rigid.motions[motion_end].body == b) ++motion_end;
     for (std::size_t k = motion_begin; k < motion_end; ++k) {
       RigidMotion& m = rigid.motions[k];
-      const Eigen::Vector3d& before = m.rotation ? body.angular_velocity_before : body.velocity_before;
+      const Eigen::Vector3d& before =
+          m.rotation ? body.angular_velocity_before : body.velocity_before;
       // Body-fixed axes turn with the body: R^n R0^T carries them from t = 0 to t^n.
-      const Eigen::Vector3d axis = m.body_fixed
-                                       ? Eigen::Vector3d(s.rotation * (body.initial_rotation.transpose() * m.axis))
-                                       : m.axis;
+      const Eigen::Vector3d axis =
+          m.body_fixed ? Eigen::Vector3d(s.rotation * (body.initial_rotation.transpose() * m.axis))
+                       : m.axis;
       double value = 0.0;
       if (m.vad == 0) {
         if (!(t_mid >= m.birth && t_mid <= m.death)) continue;
@@ -527,8 +533,9 @@ RigidStepSums advance_rigid_bodies(RigidSystem& rigid, const Boundary& boundary,
       RigidMotion& m = rigid.motions[k];
       if (!(m.rotation || m.body_fixed)) continue;
       const Eigen::Vector3d axis =
-          m.body_fixed ? Eigen::Vector3d(rotation_before * (body.initial_rotation.transpose() * m.axis))
-                       : m.axis;
+          m.body_fixed
+              ? Eigen::Vector3d(rotation_before * (body.initial_rotation.transpose() * m.axis))
+              : m.axis;
       m.travelled += dt * axis.dot(m.rotation ? s.angular_velocity : s.velocity);
     }
     motion_begin = motion_end;
@@ -575,8 +582,8 @@ void place_curvilinear_nodes(const RigidSystem& rigid, State& state) {
   NodalState& nodes = state.nodes;
   for (const RigidBody& body : rigid.bodies) {
     if (body.update != NodeUpdate::kCurvilinear) continue;
-    rigid::place_nodes_curvilinear(body.state, body.nodes, body.body_coordinates,
-                                   nodes.x.x.data(), nodes.x.y.data(), nodes.x.z.data());
+    rigid::place_nodes_curvilinear(body.state, body.nodes, body.body_coordinates, nodes.x.x.data(),
+                                   nodes.x.y.data(), nodes.x.z.data());
   }
 }
 

@@ -26,16 +26,16 @@ enum class NodeUpdate : std::uint8_t { kLinear, kCurvilinear };
 // A *BOUNDARY_PRESCRIBED_MOTION_RIGID resolved to one body and one global axis.
 struct RigidMotion {
   int body = 0;
-  bool rotation = false;           // DOF 5-8
+  bool rotation = false;                            // DOF 5-8
   Eigen::Vector3d axis = Eigen::Vector3d::UnitX();  // unit, global, fixed in time
-  int vad = 0;                     // 0 velocity, 1 acceleration, 2 displacement
+  int vad = 0;                                      // 0 velocity, 1 acceleration, 2 displacement
   ScaledCurve value;
   double birth = 0.0;
   double death = 1e28;
   // _LOCAL: `axis` is fixed in the body; the global axis is R R0^T axis at each step.
   bool body_fixed = false;
-  double reference = 0.0;          // VAD 2 global translation: axis . x_c at t = 0
-  double travelled = 0.0;          // VAD 2 rotation or body-fixed translation: so far
+  double reference = 0.0;  // VAD 2 global translation: axis . x_c at t = 0
+  double travelled = 0.0;  // VAD 2 rotation or body-fixed translation: so far
   model::SourceLocation where;
 };
 
@@ -48,12 +48,12 @@ struct RigidLoadTerm {
 };
 
 struct RigidBody {
-  model::Id id = 0;                    // lead part ID, or the nodal rigid body's PID
-  bool nodal = false;                  // *CONSTRAINED_NODAL_RIGID_BODY
-  std::vector<model::Id> parts;        // merged parts, lead first
-  std::vector<std::int32_t> nodes;     // dense node indices, ascending
-  bool inertia_from_card = false;      // *PART_INERTIA / _INERTIA (else from lumped masses)
-  bool shares_nodes = false;           // a node also belongs to a deformable element
+  model::Id id = 0;                 // lead part ID, or the nodal rigid body's PID
+  bool nodal = false;               // *CONSTRAINED_NODAL_RIGID_BODY
+  std::vector<model::Id> parts;     // merged parts, lead first
+  std::vector<std::int32_t> nodes;  // dense node indices, ascending
+  bool inertia_from_card = false;   // *PART_INERTIA / _INERTIA (else from lumped masses)
+  bool shares_nodes = false;        // a node also belongs to a deformable element
   NodeUpdate update = NodeUpdate::kCurvilinear;
   rigid::RigidBodyState state;
   rigid::BodyCoordinates body_coordinates;  // X_i = R0^T (x_i - x_c0), parallel to nodes
@@ -78,7 +78,7 @@ struct RigidSystem {
   std::vector<std::int32_t> body_of_node;  // per node: body index, -1 if not rigid
   std::vector<RigidMotion> motions;        // grouped by body (ascending body index)
   std::vector<RigidLoadTerm> loads;
-  std::vector<model::Warning> warnings;    // notices found while building (shown by the CLI)
+  std::vector<model::Warning> warnings;  // notices found while building (shown by the CLI)
 
   bool empty() const { return bodies.empty(); }
   bool is_rigid(std::int32_t node) const {

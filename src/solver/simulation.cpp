@@ -62,8 +62,9 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
   end_time_ = model.termination.endtim;
   end_cycle_ = model.termination.endcyc;
   if (end_time_ <= 0.0 && end_cycle_ <= 0) {
-    throw InputError({}, "*CONTROL_TERMINATION is missing or ENDTIM is not positive: nothing "
-                         "says when the analysis ends");
+    throw InputError({},
+                     "*CONTROL_TERMINATION is missing or ENDTIM is not positive: nothing "
+                     "says when the analysis ends");
   }
   if (element_count_ == 0 && rigid_.empty()) {
     throw InputError({}, "the model has no elements or rigid bodies to simulate");
@@ -122,21 +123,21 @@ void Simulation::initialize() {
   // nodes are counted through their bodies.
   const NodalState& nodes = state_.nodes;
   const std::int32_t* body_of = rigid_.empty() ? nullptr : rigid_.body_of_node.data();
-  auto sums = deterministic_sum<7>(
-      static_cast<std::int64_t>(nodes.size()), reduction_scratch_,
-      [&](std::int64_t i, std::array<double, 7>& acc) {
-        if (body_of && body_of[i] >= 0) return;
-        const double m = nodes.mass[i];
-        const double vx = nodes.v.x[i], vy = nodes.v.y[i], vz = nodes.v.z[i];
-        const double x = nodes.x.x[i], y = nodes.x.y[i], z = nodes.x.z[i];
-        acc[0] += 0.5 * m * (vx * vx + vy * vy + vz * vz);
-        acc[1] += m * vx;
-        acc[2] += m * vy;
-        acc[3] += m * vz;
-        acc[4] += m * (y * vz - z * vy);
-        acc[5] += m * (z * vx - x * vz);
-        acc[6] += m * (x * vy - y * vx);
-      });
+  auto sums =
+      deterministic_sum<7>(static_cast<std::int64_t>(nodes.size()), reduction_scratch_,
+                           [&](std::int64_t i, std::array<double, 7>& acc) {
+                             if (body_of && body_of[i] >= 0) return;
+                             const double m = nodes.mass[i];
+                             const double vx = nodes.v.x[i], vy = nodes.v.y[i], vz = nodes.v.z[i];
+                             const double x = nodes.x.x[i], y = nodes.x.y[i], z = nodes.x.z[i];
+                             acc[0] += 0.5 * m * (vx * vx + vy * vy + vz * vz);
+                             acc[1] += m * vx;
+                             acc[2] += m * vy;
+                             acc[3] += m * vz;
+                             acc[4] += m * (y * vz - z * vy);
+                             acc[5] += m * (z * vx - x * vz);
+                             acc[6] += m * (x * vy - y * vx);
+                           });
   const RigidStepSums rigid_sums = rigid_body_sums(rigid_);
   sums[0] += rigid_sums.kinetic;
   for (int k = 0; k < 3; ++k) {
@@ -236,8 +237,8 @@ void Simulation::update_velocities() {
   // summed over every node (forces on rigid-body nodes do work on the bodies); kinetic energy
   // and momenta of rigid-body nodes are those of their bodies.
   const std::int32_t* body_of = rigid_.empty() ? nullptr : rigid_.body_of_node.data();
-  auto sums = deterministic_sum<9>(
-      n, reduction_scratch_, [&](std::int64_t i, std::array<double, 9>& acc) {
+  auto sums =
+      deterministic_sum<9>(n, reduction_scratch_, [&](std::int64_t i, std::array<double, 9>& acc) {
         const double m = nodes.mass[i];
         const double vx = nodes.v.x[i], vy = nodes.v.y[i], vz = nodes.v.z[i];
         double dx = 0.5 * dt_avg * (vp.x[i] + vx);
@@ -253,7 +254,8 @@ void Simulation::update_velocities() {
           const Eigen::Vector3d arm(x - body.state.previous_centre.x(),
                                     y - body.state.previous_centre.y(),
                                     z - body.state.previous_centre.z());
-          const Eigen::Vector3d d = dt_avg * (body.mid_velocity + body.mid_angular_velocity.cross(arm));
+          const Eigen::Vector3d d =
+              dt_avg * (body.mid_velocity + body.mid_angular_velocity.cross(arm));
           dx = d.x();
           dy = d.y();
           dz = d.z();
@@ -314,8 +316,9 @@ void Simulation::update_velocities() {
   if (!std::isfinite(rigid_sums.kinetic)) {
     for (const auto& body : rigid_.bodies) {
       if (!std::isfinite(rigid::kinetic_energy(body.state))) {
-        throw SolverError(fmt::format("non-finite motion of rigid body {} at time {:.6g} (cycle {})",
-                                      body.id, state_.time, state_.cycle));
+        throw SolverError(
+            fmt::format("non-finite motion of rigid body {} at time {:.6g} (cycle {})", body.id,
+                        state_.time, state_.cycle));
       }
     }
   }
@@ -387,7 +390,9 @@ void Simulation::write_output_if_due(bool force) {
   }
 }
 
-void Simulation::write_output_now() { write_output_if_due(true); }
+void Simulation::write_output_now() {
+  write_output_if_due(true);
+}
 
 void Simulation::update_positions() {
   NodalState& nodes = state_.nodes;
@@ -441,10 +446,9 @@ void Simulation::select_time_step() {
     const auto it = model_.curves.find(control.lctm);
     if (it == model_.curves.end()) {
       // The reader checks this reference; kept for models built in code.
-      throw InputError({.file = {}, .line = 0, .keyword = "*CONTROL_TIMESTEP", .card = 1,
-                        .field = "LCTM"},
-                       fmt::format("LCTM refers to load curve {}, which is not defined",
-                                   control.lctm));
+      throw InputError(
+          {.file = {}, .line = 0, .keyword = "*CONTROL_TIMESTEP", .card = 1, .field = "LCTM"},
+          fmt::format("LCTM refers to load curve {}, which is not defined", control.lctm));
     }
     dt = std::min(dt, model::evaluate(it->second, state_.time));
   }
@@ -454,10 +458,10 @@ void Simulation::select_time_step() {
     dt = std::min(dt, control.dtinit);
   }
   if (no_element_step && !std::isfinite(dt)) {
-    throw InputError({.file = {}, .line = 0, .keyword = "*CONTROL_TIMESTEP", .card = 1,
-                      .field = "DTINIT"},
-                     "the model has no deformable elements, so nothing limits the time step: "
-                     "give DTINIT (or LCTM) on *CONTROL_TIMESTEP");
+    throw InputError(
+        {.file = {}, .line = 0, .keyword = "*CONTROL_TIMESTEP", .card = 1, .field = "DTINIT"},
+        "the model has no deformable elements, so nothing limits the time step: "
+        "give DTINIT (or LCTM) on *CONTROL_TIMESTEP");
   }
   if (!std::isfinite(dt) || dt <= 0.0) {
     throw SolverError(fmt::format("no valid time step at time {:.6g}: element {} gives {:.6g}",

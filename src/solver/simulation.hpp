@@ -26,9 +26,9 @@ namespace rf::solver {
 // with r the reactions of fixed and prescribed DOFs (see docs/theory.md).
 struct EnergyAccount {
   double kinetic = 0.0;
-  double internal_work = 0.0;   // work of internal forces, hourglass included
-  double hourglass = 0.0;       // hourglass part of internal_work
-  double external_work = 0.0;   // loads, body forces and reactions
+  double internal_work = 0.0;  // work of internal forces, hourglass included
+  double hourglass = 0.0;      // hourglass part of internal_work
+  double external_work = 0.0;  // loads, body forces and reactions
   double initial_total = 0.0;
   double momentum[3] = {0, 0, 0};
   double angular_momentum[3] = {0, 0, 0};
@@ -76,12 +76,12 @@ class Simulation {
 
  private:
   // The phases of a cycle, in order.
-  void update_velocities();          // a^n -> v^{n+1/2}, constraints, rigid bodies, energy
+  void update_velocities();  // a^n -> v^{n+1/2}, constraints, rigid bodies, energy
   void write_output_if_due(bool force);
-  void update_positions();           // x^{n+1} = x^n + dt v^{n+1/2}
-  void compute_internal_forces();    // element kernels at n+1, assembly, element time step
-  void compute_external_forces();    // loads at t^{n+1}
-  void select_time_step();           // dt^{n+3/2}
+  void update_positions();         // x^{n+1} = x^n + dt v^{n+1/2}
+  void compute_internal_forces();  // element kernels at n+1, assembly, element time step
+  void compute_external_forces();  // loads at t^{n+1}
+  void select_time_step();         // dt^{n+3/2}
 
   void initialize();
   void check_breakdown();

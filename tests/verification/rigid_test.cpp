@@ -8,8 +8,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <numbers>
+#include <sstream>
 
 #include "deck_builder.hpp"
 #include "model/error.hpp"
@@ -84,11 +84,12 @@ TEST(RigidBodyDeck, IntermediateAxisFlipsMatchEulerEquations) {
   const Vector3d axis = w0.normalized();
   std::string deck = "*KEYWORD\n" + hex_text(1, 1, 1, 0, 0, 0, a, b, c) + part(1, 1, 1) +
                      "*SECTION_SOLID\n1,1\n" + rigid_material(1, rho);
-  deck += fmt::format("*INITIAL_VELOCITY_GENERATION\n1,2,{:.17g},0,0,0\n0.5,1.0,1.5,{:.17g},"
-                      "{:.17g},{:.17g}\n",
-                      w0.norm(), axis.x(), axis.y(), axis.z());
-  deck += fmt::format("*CONTROL_TIMESTEP\n{:.17g}\n*CONTROL_TERMINATION\n{:.17g},\n*END\n", dt,
-                      t_end);
+  deck += fmt::format(
+      "*INITIAL_VELOCITY_GENERATION\n1,2,{:.17g},0,0,0\n0.5,1.0,1.5,{:.17g},"
+      "{:.17g},{:.17g}\n",
+      w0.norm(), axis.x(), axis.y(), axis.z());
+  deck +=
+      fmt::format("*CONTROL_TIMESTEP\n{:.17g}\n*CONTROL_TERMINATION\n{:.17g},\n*END\n", dt, t_end);
   solver::Simulation sim(read(deck), {});
   ASSERT_EQ(sim.rigid_bodies().bodies.size(), 1u);
   const auto& body = sim.rigid_bodies().bodies[0];
@@ -111,7 +112,8 @@ TEST(RigidBodyDeck, IntermediateAxisFlipsMatchEulerEquations) {
     // After a cycle w is w^{n+1/2} and previous_rotation R^n; the body-frame rate in the axes
     // that were global at t = 0 is R0 R^nT w (w is invariant under the half-step rotation).
     const double t_half = sim.state().time - 0.5 * sim.state().dt_prev;
-    const Vector3d w_body = r0 * body.state.previous_rotation.transpose() * body.state.angular_velocity;
+    const Vector3d w_body =
+        r0 * body.state.previous_rotation.transpose() * body.state.angular_velocity;
     reference = rk4_reference(inertia, reference, t_half - reference_time);
     reference_time = t_half;
     max_error = std::max(max_error, (w_body - reference).norm() / w0.norm());
@@ -128,9 +130,10 @@ TEST(RigidBodyDeck, IntermediateAxisFlipsMatchEulerEquations) {
       last_reference_sign = -last_reference_sign;
     }
   }
-  std::printf("intermediate axis: %d flips (reference %d), max |w - w_ref|/|w0| = %.3g, "
-              "energy drift %.3g, |L| drift %.3g\n",
-              flips, reference_flips, max_error, max_energy_drift, max_momentum_drift);
+  std::printf(
+      "intermediate axis: %d flips (reference %d), max |w - w_ref|/|w0| = %.3g, "
+      "energy drift %.3g, |L| drift %.3g\n",
+      flips, reference_flips, max_error, max_energy_drift, max_momentum_drift);
   EXPECT_GE(reference_flips, 3);
   EXPECT_EQ(flips, reference_flips);
   // Second-order splitting at w dt = 1e-3: measured 4e-7 and 1.3e-8 over three flips.
@@ -212,9 +215,9 @@ TEST(RigidBodyDeck, PendulumPeriodMatchesSmallAmplitudeTheory) {
 TEST(RigidBodyDeck, MergedPartsMoveAsOneBodyAndConserveMomenta) {
   constexpr double rho = 500.0;
   std::string deck = "*KEYWORD\n" + hex_text(1, 1, 1, 0, 0, 0, 1, 1, 1) +
-                     hex_text(11, 2, 2, 2.0, 0.5, 0.0, 1, 0.5, 2) + part(1, 1, 1) +
-                     part(2, 1, 2) + "*SECTION_SOLID\n1,1\n" + rigid_material(1, rho) +
-                     rigid_material(2, 2 * rho) + "*CONSTRAINED_RIGID_BODIES\n1,2\n";
+                     hex_text(11, 2, 2, 2.0, 0.5, 0.0, 1, 0.5, 2) + part(1, 1, 1) + part(2, 1, 2) +
+                     "*SECTION_SOLID\n1,1\n" + rigid_material(1, rho) + rigid_material(2, 2 * rho) +
+                     "*CONSTRAINED_RIGID_BODIES\n1,2\n";
   // Spin about a skew axis plus a drift, applied to every node.
   deck += "*INITIAL_VELOCITY_GENERATION\n0,2,3.0,1.0,-2.0,0.5\n1.0,0.5,0.5,0.3,1.0,0.6\n";
   deck += "*CONTROL_TIMESTEP\n1e-3\n*CONTROL_TERMINATION\n5.0\n*END\n";
@@ -297,8 +300,9 @@ TEST(RigidBodyDeck, CmoHingeHoldsExactly) {
                      "*SECTION_SOLID\n1,1\n" + rigid_material(1, rho, 1.0, 7.0, 4.0);
   // A moment T_z = -200 (*LOAD_RIGID_BODY, constant in global axes) and a z force at node 7
   // (1, 2, 0.5) whose net force and x/y moments the constraints take.
-  deck += "*LOAD_RIGID_BODY\n1,7,1,-2.0\n*LOAD_NODE_POINT\n7,3,1,0.1\n"
-          "*DEFINE_CURVE\n1\n0,100.0\n10,100.0\n";
+  deck +=
+      "*LOAD_RIGID_BODY\n1,7,1,-2.0\n*LOAD_NODE_POINT\n7,3,1,0.1\n"
+      "*DEFINE_CURVE\n1\n0,100.0\n10,100.0\n";
   deck += "*LOAD_BODY_X\n1,0.5\n*CONTROL_TIMESTEP\n1e-3\n*CONTROL_TERMINATION\n2.0\n*END\n";
   solver::Simulation sim(read(deck), {});
   const auto& body = sim.rigid_bodies().bodies[0];
@@ -341,8 +345,8 @@ TEST(RigidBodyDeck, RigidEndBlockOnBarFollowsMassOnBarSolution) {
   deck += "*NODE\n";
   for (int k = 0; k < 4; ++k) {
     const int j = k & 1, kk = k >> 1;
-    deck += fmt::format("{},{:.17g},{:.17g},{:.17g}\n", 1001 + k, length + block_length,
-                        side * j, side * kk);
+    deck += fmt::format("{},{:.17g},{:.17g},{:.17g}\n", 1001 + k, length + block_length, side * j,
+                        side * kk);
   }
   // Face node order (j, k): face_x lists k-major: (0,0),(1,0),(0,1),(1,1).
   deck += fmt::format("*ELEMENT_SOLID\n1001,2,{},{},{},{},{},{},{},{}\n", face[0], 1001, 1002,
@@ -371,9 +375,10 @@ TEST(RigidBodyDeck, RigidEndBlockOnBarFollowsMassOnBarSolution) {
     max_dp = std::max(max_dp, std::abs(sim.energy().momentum[0] - energy0.momentum[0]));
   }
   const auto& e_end = sim.energy();
-  std::printf("bar with rigid end: tau %.3g s, max |v - v_analytic|/v0 %.3g, |dp| %.2e, "
-              "energy ratio %.9f\n",
-              tau, max_error, max_dp, e_end.ratio());
+  std::printf(
+      "bar with rigid end: tau %.3g s, max |v - v_analytic|/v0 %.3g, |dp| %.2e, "
+      "energy ratio %.9f\n",
+      tau, max_error, max_dp, e_end.ratio());
   EXPECT_GT(1.6 * length / c, 2.0 * tau);  // the check covers more than two decay times
   // Measured: 0.65 % (the bar's discretisation and the block's share of the face masses).
   EXPECT_LT(max_error, 0.02);
@@ -399,7 +404,8 @@ struct Cylinder {
 std::string torsion_deck(int update_type, double tssfac) {
   const Cylinder cyl;
   const double l1 = 1.0, l2 = 0.15, dz = 0.05;
-  const int n1 = static_cast<int>(std::lround(l1 / dz)), n2 = static_cast<int>(std::lround(l2 / dz));
+  const int n1 = static_cast<int>(std::lround(l1 / dz)),
+            n2 = static_cast<int>(std::lround(l2 / dz));
   std::string s = "*KEYWORD\n*NODE\n";
   for (int k = 0; k <= n1 + n2; ++k) {
     const double z = k * dz;
@@ -473,9 +479,10 @@ TorsionResult run_torsion(int update_type, double tssfac) {
 
 TEST(RigidBodyUpdate, CurvilinearKeepsRigidNodesOnTheirCircles) {
   const TorsionResult r = run_torsion(2, 0.9);
-  std::printf("torsion, update 2: %lld cycles, radial error %.3g m, angle error %.3g rad, "
-              "energy ratio %.6f\n",
-              static_cast<long long>(r.cycles), r.radial_error, r.angle_error, r.energy_ratio);
+  std::printf(
+      "torsion, update 2: %lld cycles, radial error %.3g m, angle error %.3g rad, "
+      "energy ratio %.6f\n",
+      static_cast<long long>(r.cycles), r.radial_error, r.angle_error, r.energy_ratio);
   EXPECT_LT(r.radial_error, 1e-14);
   EXPECT_LT(r.angle_error, 1e-12);
   EXPECT_NEAR(r.energy_ratio, 1.0, 1e-9);  // the balance closes at the body (round-off)
@@ -494,9 +501,8 @@ TEST(RigidBodyUpdate, LinearUpdateDriftsOutwardAtFirstOrderInTheStep) {
   EXPECT_GT(results[0].radial_error, 1e-4);  // the seed's visible geometric error
   for (const auto& r : results) EXPECT_NEAR(r.energy_ratio, 1.0, 1e-9);
   for (std::size_t k = 1; k < results.size(); ++k) {
-    const double order =
-        std::log(results[k - 1].radial_error / results[k].radial_error) /
-        std::log(static_cast<double>(results[k].cycles) / results[k - 1].cycles);
+    const double order = std::log(results[k - 1].radial_error / results[k].radial_error) /
+                         std::log(static_cast<double>(results[k].cycles) / results[k - 1].cycles);
     std::printf("observed order %.3f\n", order);
     EXPECT_NEAR(order, 1.0, 0.25);
   }
@@ -513,8 +519,8 @@ TEST(RigidBodyDeck, BodyFixedPrescribedRotationFollowsKinematics) {
                      "*SECTION_SOLID\n1,1\n" + rigid_material(1, 1000.0);
   deck += "*BOUNDARY_PRESCRIBED_MOTION_RIGID_LOCAL\n1,5,0,1,2.0\n1,6,0,2,3.0\n1,7,0,1,0.0\n";
   deck += "*DEFINE_CURVE\n1\n0,1\n10,1\n*DEFINE_CURVE\n2\n0,0\n10,10\n";
-  deck += fmt::format("*CONTROL_TIMESTEP\n{:.17g},\n*CONTROL_TERMINATION\n{:.17g},\n*END\n",
-                      dt, t_end);
+  deck +=
+      fmt::format("*CONTROL_TIMESTEP\n{:.17g},\n*CONTROL_TERMINATION\n{:.17g},\n*END\n", dt, t_end);
   solver::Simulation sim(read(deck), {});
   const auto& body = sim.rigid_bodies().bodies[0];
   // The finishing cycle (t = t_end) has advanced the body's momenta and R to the next step;
