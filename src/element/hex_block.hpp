@@ -54,6 +54,10 @@ struct HexBlock {
   // Elements of a *MAT_RIGID part: they give mass and appear in the output, but have no kernel
   // and no force slots in the assembly (the body moves their nodes).
   bool rigid = false;
+  // Polynomial order of the element's interpolation. 1: the 8-node hexahedron (elform applies);
+  // 2 or 3: tensor-product Lagrange hexahedron on Gauss-Lobatto-Legendre points with (p+1)^3
+  // nodes and GLL quadrature, total-Lagrangian (element/lagrange_hex.hpp; elform is ignored).
+  int order = 1;
 
   std::vector<model::Id> element_id;  // user IDs, size n
   std::vector<std::int32_t> conn;     // dense node indices, 8 per element
@@ -71,8 +75,24 @@ struct HexBlock {
   // Shape detected from the connectivity (initialize_hex_block), one per element.
   std::vector<HexShape> shape;
 
+  // Order > 1 only (see lagrange_hex.hpp). Per quadrature point: the inverse reference Jacobian
+  // dxi/dX (9, row-major) and the weight w_q det(dX/dxi); per element: the critical step and the
+  // characteristic length at the reference configuration, which scale the step during the run.
+  std::vector<double> reference_inverse_jacobian;
+  std::vector<double> reference_weight;
+  std::vector<double> reference_dt;
+  std::vector<double> reference_length;
+
   std::size_t size() const { return element_id.size(); }
-  int points_per_element() const { return elform == 2 ? 8 : 1; }
+  // Nodes of one element in conn: 8 for order 1 (degenerate shapes repeat IDs), (p+1)^3 above,
+  // numbered in tensor order i + (p+1) (j + (p+1) k) along the reference axes xi, eta, zeta
+  // (xi from hex node 1 to 2, eta from 1 to 4, zeta from 1 to 5).
+  int nodes_per_element() const { return order == 1 ? 8 : (order + 1) * (order + 1) * (order + 1); }
+  // Stress points: 1 (ELFORM 1), 8 (ELFORM 2), (p+1)^3 GLL points (order > 1).
+  int points_per_element() const {
+    if (order > 1) return nodes_per_element();
+    return elform == 2 ? 8 : 1;
+  }
 };
 
 // What one pass of a kernel over a block reports back to the solver.
