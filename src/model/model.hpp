@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -67,6 +68,9 @@ struct Part {
   Id mid = 0;
   Id eosid = 0;
   Id hgid = 0;
+  // IMPETUS *PART alpha_max: higher-order faces meeting at less than this angle (degrees) are
+  // smoothed into one curved surface. 0: none.
+  double smoothing_angle = 0.0;
   SourceLocation where;
   std::optional<RigidInertia> inertia;  // *PART_INERTIA
 };
@@ -157,6 +161,17 @@ struct Curve {
   SourceLocation where;
 };
 
+// IMPETUS *FUNCTION: an expression of time t, parameters already substituted. `evaluator` is
+// compiled when the deck is read (model/function.hpp), so a bad expression is an input error
+// located at its card.
+class ExpressionFunction;
+struct Function {
+  Id id = 0;
+  std::string expression;
+  std::shared_ptr<const ExpressionFunction> evaluator;
+  SourceLocation where;
+};
+
 struct NodeSet {
   Id id = 0;
   std::vector<Id> nodes;
@@ -175,8 +190,39 @@ struct SegmentSet {
   SourceLocation where;
 };
 
-// Which entity a boundary condition or load addresses.
-enum class Target { Node, NodeSet, Part, PartSet, All };
+// Which entity a boundary condition or load addresses. Geometry: the nodes of the model surface
+// picked by an IMPETUS *GEOMETRY_SEED_COORDINATE (resolved on the solver's mesh, so nodes that
+// *CHANGE_P-ORDER adds on those faces are included).
+enum class Target { Node, NodeSet, Part, PartSet, All, Geometry };
+
+// *GEOMETRY_SEED_COORDINATE: the boundary surface of the mesh that contains the face nearest
+// to the point, grown across edges where neighbouring faces turn by less than the feature angle.
+struct GeometrySeed {
+  Id id = 0;
+  std::array<double, 3> point{};
+  double feature_angle_deg = 45.0;
+  Id pid = 0;  // restricts the search to this part (0: all)
+  SourceLocation where;
+};
+
+// *CHANGE_P-ORDER (IMPETUS; also accepted in LS-DYNA decks): interpolation order of the
+// hexahedra of a part, part set or all parts.
+struct POrderChange {
+  Target target = Target::All;
+  Id id = 0;
+  int order = 1;
+  SourceLocation where;
+};
+
+// A cylinder a mesh generator produced (*COMPONENT_CYLINDER): nodes that *CHANGE_P-ORDER
+// creates on its mantle are placed on the exact surface, not on the flat facets.
+struct CylinderSurface {
+  Id pid = 0;
+  std::array<double, 3> p1{};  // centre of one end
+  std::array<double, 3> p2{};  // centre of the other end
+  double radius = 0.0;
+  double facet_angle_deg = 0.0;  // angle between neighbouring mantle faces of the linear mesh
+};
 
 struct Spc {
   Target target = Target::Node;
@@ -194,6 +240,7 @@ struct PrescribedMotion {
   int dof = 1;  // 1,2,3 translation x,y,z; -1..-3 the same with the curve reversed... see docs
   int vad = 0;  // 0 velocity, 1 acceleration, 2 displacement
   Id lcid = 0;
+  Id function = 0;  // IMPETUS *FUNCTION ID used instead of a curve (lcid 0)
   double sf = 1.0;
   Id vid = 0;
   double death = 1e28;
@@ -276,6 +323,7 @@ struct RigidPrescribedMotion {
   int dof = 1;
   int vad = 0;  // 0 velocity, 1 acceleration, 2 displacement
   Id lcid = 0;
+  Id function = 0;  // IMPETUS *FUNCTION ID used instead of a curve (lcid 0)
   double sf = 1.0;
   Id vid = 0;  // *DEFINE_VECTOR for DOF 4 and 8
   double death = 1e28;
@@ -306,6 +354,7 @@ struct TimestepControl {
   double tssfac = 0.9;
   double dt2ms = 0.0;
   Id lctm = 0;
+  double dt_max = 0.0;  // IMPETUS *TIME dt_max; 0: no cap
 };
 
 struct HourglassControl {
@@ -329,6 +378,10 @@ struct Warning {
 
 struct Model {
   std::string title;
+  std::string dialect = "lsdyna";  // "lsdyna" or "impetus"
+  std::string dialect_reason;      // why (detected from content, or the command line)
+  std::string unit_system;         // IMPETUS *UNIT_SYSTEM as written (no conversion is done)
+  std::int64_t merged_node_count = 0;  // nodes removed by *MERGE_DUPLICATED_NODES
   std::vector<std::string> files;  // every file read, main deck first
 
   std::vector<Node> nodes;           // in input order
@@ -341,6 +394,10 @@ struct Model {
   std::map<Id, NodeSet> node_sets;
   std::map<Id, PartSet> part_sets;
   std::map<Id, SegmentSet> segment_sets;
+  std::map<Id, Function> functions;  // IMPETUS *FUNCTION
+  std::map<Id, GeometrySeed> geometry_seeds;
+  std::vector<POrderChange> p_order_changes;
+  std::vector<CylinderSurface> cylinder_surfaces;
 
   std::vector<Spc> spcs;
   std::vector<PrescribedMotion> prescribed_motions;

@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mesh/surface.hpp"
 #include "model/curve.hpp"
 #include "model/error.hpp"
 #include "model/error_context.hpp"
+#include "model/function.hpp"
 
 namespace rf::solver {
 
@@ -17,18 +19,7 @@ using model::context_of;
 
 ScaledCurve make_curve(const model::Model& model, model::Id lcid, double sf, double shift,
                        const model::SourceLocation& where) {
-  ScaledCurve c;
-  c.scale = sf;
-  c.shift = shift;
-  if (lcid != 0) {
-    const auto it = model.curves.find(lcid);
-    if (it == model.curves.end()) {
-      throw InputError(context_of(where, "LCID"),
-                       fmt::format("load curve {} is not defined", lcid));
-    }
-    c.curve = &it->second;
-  }
-  return c;
+  return make_time_function(model, lcid, 0, sf, shift, where);
 }
 
 int translation_axis(int dof, const model::SourceLocation& where) {
@@ -43,8 +34,46 @@ int translation_axis(int dof, const model::SourceLocation& where) {
 
 }  // namespace
 
+ScaledCurve make_time_function(const model::Model& model, model::Id lcid, model::Id function,
+                               double sf, double shift, const model::SourceLocation& where) {
+  ScaledCurve c;
+  c.scale = sf;
+  c.shift = shift;
+  if (lcid != 0) {
+    const auto it = model.curves.find(lcid);
+    if (it == model.curves.end()) {
+      throw InputError(context_of(where, "LCID"),
+                       fmt::format("load curve {} is not defined", lcid));
+    }
+    c.curve = &it->second;
+  } else if (function != 0) {
+    const auto it = model.functions.find(function);
+    if (it == model.functions.end()) {
+      throw InputError(context_of(where, "FUNCTION"),
+                       fmt::format("function {} is not defined (*FUNCTION)", function));
+    }
+    c.function = it->second.evaluator.get();
+  }
+  return c;
+}
+
+std::vector<std::int32_t> select_geometry(const State& state, const model::GeometrySeed& seed) {
+  std::vector<mesh::HexView> hexes;
+  for (const auto& block : state.hex_blocks) {
+    const auto npe = static_cast<std::size_t>(block.nodes_per_element());
+    for (std::size_t e = 0; e < block.size(); ++e) {
+      hexes.push_back({block.order, &block.conn[npe * e], block.part_id});
+    }
+  }
+  const auto& x0 = state.nodes.x0;
+  return mesh::select_surface_by_seed(hexes, {x0.x.data(), x0.y.data(), x0.z.data()}, seed.point,
+                                      seed.feature_angle_deg, seed.pid);
+}
+
 double ScaledCurve::operator()(double t) const {
-  return curve ? scale * model::evaluate(*curve, t - shift) : scale;
+  if (curve) return scale * model::evaluate(*curve, t - shift);
+  if (function) return scale * (*function)(t - shift);
+  return scale;
 }
 
 std::vector<std::int32_t> resolve_nodes(const model::Model& model, const NodeIndex& node_index,
@@ -89,6 +118,19 @@ std::vector<std::int32_t> resolve_nodes(const model::Model& model, const NodeInd
       out.resize(state.nodes.size());
       for (std::size_t i = 0; i < out.size(); ++i) out[i] = static_cast<std::int32_t>(i);
       break;
+    case model::Target::Geometry: {
+      const auto it = model.geometry_seeds.find(id);
+      if (it == model.geometry_seeds.end()) {
+        throw InputError(context_of(where, field), fmt::format("geometry {} is not defined", id));
+      }
+      out = select_geometry(state, it->second);
+      if (out.empty()) {
+        throw InputError(context_of(it->second.where, "pid"),
+                         fmt::format("geometry {} selects no surface (no boundary face{})", id,
+                                     it->second.pid ? " of that part" : ""));
+      }
+      break;
+    }
   }
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
@@ -151,7 +193,8 @@ Boundary resolve_boundary(const model::Model& model, const NodeIndex& node_index
     }
     const auto nodes = resolve_nodes(model, node_index, state, pm.target, pm.id, pm.where,
                                      pm.target == model::Target::Node ? "NID" : "NSID");
-    const ScaledCurve value = make_curve(model, pm.lcid, pm.sf, pm.birth, pm.where);
+    const ScaledCurve value =
+        make_time_function(model, pm.lcid, pm.function, pm.sf, pm.birth, pm.where);
     for (const auto i : nodes) {
       if (rigid(i)) {
         throw InputError(context_of(pm.where, pm.target == model::Target::Node ? "NID" : "NSID"),

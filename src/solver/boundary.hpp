@@ -10,13 +10,20 @@
 
 namespace rf::solver {
 
-// A time function: SF * curve(t - BIRTH) or a constant SF when no curve is given.
+// A time function: SF * curve(t - BIRTH), SF * function(t - BIRTH) for an IMPETUS *FUNCTION, or
+// a constant SF when neither is given.
 struct ScaledCurve {
   const model::Curve* curve = nullptr;
+  const model::ExpressionFunction* function = nullptr;
   double scale = 1.0;
   double shift = 0.0;  // subtracted from t before evaluation (BIRTH for prescribed motion)
   double operator()(double t) const;
 };
+
+// The time function of a card: curve `lcid`, else *FUNCTION `function`, else the constant `sf`.
+// Throws an input error naming LCID (or FUNCTION) when the ID is not defined.
+ScaledCurve make_time_function(const model::Model& model, model::Id lcid, model::Id function,
+                               double sf, double shift, const model::SourceLocation& where);
 
 struct PrescribedDof {
   std::int32_t node = 0;
@@ -63,6 +70,10 @@ Boundary resolve_boundary(const model::Model& model, const NodeIndex& node_index
 std::vector<std::int32_t> resolve_nodes(const model::Model& model, const NodeIndex& node_index,
                                         const State& state, model::Target target, model::Id id,
                                         const model::SourceLocation& where, const char* field);
+
+// Nodes of the surface an IMPETUS *GEOMETRY_SEED_COORDINATE selects, on the solver's mesh
+// (reference coordinates; higher-order face nodes included).
+std::vector<std::int32_t> select_geometry(const State& state, const model::GeometrySeed& seed);
 
 // Applies *INITIAL_VELOCITY* cards in input order (later cards override earlier ones).
 void apply_initial_velocities(const model::Model& model, const NodeIndex& node_index, State& state);

@@ -354,9 +354,7 @@ RigidSystem build_rigid_system(const model::Model& model, const NodeIndex& node_
       m.axis = (rigid.bodies[m.body].output_axes * m.axis).normalized();
     }
     m.vad = pm.vad;
-    const model::Curve* curve = nullptr;
-    if (pm.lcid != 0) curve = &model.curves.at(pm.lcid);
-    m.value = ScaledCurve{curve, pm.sf, pm.birth};
+    m.value = make_time_function(model, pm.lcid, pm.function, pm.sf, pm.birth, pm.where);
     m.birth = pm.birth;
     m.death = pm.death <= 0.0 ? 1e28 : pm.death;
     m.reference =
@@ -385,9 +383,7 @@ RigidSystem build_rigid_system(const model::Model& model, const NodeIndex& node_
     term.body = body_index(load.pid);
     term.moment = load.dof >= 5;
     term.axis = (load.dof - 1) % 4;
-    const model::Curve* curve = nullptr;
-    if (load.lcid != 0) curve = &model.curves.at(load.lcid);
-    term.value = ScaledCurve{curve, load.sf, 0.0};
+    term.value = make_time_function(model, load.lcid, 0, load.sf, 0.0, load.where);
     rigid.loads.push_back(term);
   }
   if (rigid.bodies.empty()) rigid.body_of_node.clear();

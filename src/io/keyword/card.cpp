@@ -61,8 +61,12 @@ Card::Card(const Block& block, const DataLine& line, int card_number, const Layo
     : block_(block),
       line_(line),
       card_number_(card_number),
-      free_(line.text.find(',') != std::string_view::npos),
+      free_(block.impetus || line.text.find(',') != std::string_view::npos),
       parameters_(parameters) {
+  if (block.impetus) {
+    fields_ = split_impetus_fields(line.text);
+    return;
+  }
   if (free_) {
     std::string_view rest = line.text;
     while (true) {
@@ -102,6 +106,7 @@ model::SourceLocation Card::location() const {
 }
 
 std::optional<double> Card::substituted(std::string_view text, const char* name) const {
+  if (block_.impetus) return impetus_value(text, name);
   bool negate = false;
   if (text.size() >= 2 && text[0] == '-' && text[1] == '&') {
     negate = true;
@@ -124,6 +129,64 @@ std::optional<double> Card::substituted(std::string_view text, const char* name)
                                   quoted(text)));
   }
   return negate ? -*value : *value;
+}
+
+// IMPETUS: "[expression]" anywhere a number is expected, or a parameter "%name" on its own
+// (optionally negated). Parameter names inside expressions are written with their '%'.
+std::optional<double> Card::impetus_value(std::string_view text, const char* name) const {
+  if (text.front() == '[') {
+    if (text.back() != ']') throw error(name, fmt::format("{} has no closing ']'", quoted(text)));
+    const std::string_view inner = trim(text.substr(1, text.size() - 2));
+    if (inner.empty()) throw error(name, "the expression in [ ] is empty");
+    try {
+      return parameters_.evaluate(strip_parameter_marks(inner));
+    } catch (const std::exception& e) {
+      throw error(name, fmt::format("cannot evaluate {}: {}", quoted(text), e.what()));
+    }
+  }
+  bool negate = false;
+  if (text.size() >= 2 && text[0] == '-' && text[1] == '%') {
+    negate = true;
+    text.remove_prefix(1);
+  }
+  if (text.front() != '%') return std::nullopt;
+  const std::string_view parameter = trim(text.substr(1));
+  const auto value = parameters_.find(parameter);
+  if (!value) {
+    throw error(name, fmt::format("parameter {} is not defined (define it with *PARAMETER "
+                                  "before it is used)",
+                                  quoted(text)));
+  }
+  return negate ? -*value : *value;
+}
+
+std::vector<std::string_view> split_impetus_fields(std::string_view line) {
+  std::vector<std::string_view> fields;
+  int depth = 0;
+  bool in_quotes = false;
+  std::size_t start = 0;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (c == '"') in_quotes = !in_quotes;
+    if (in_quotes) continue;
+    if (c == '[' || c == '(') ++depth;
+    if ((c == ']' || c == ')') && depth > 0) --depth;
+    if (c == ',' && depth == 0) {
+      fields.push_back(trim(line.substr(start, i - start)));
+      start = i + 1;
+    }
+  }
+  fields.push_back(trim(line.substr(start)));
+  return fields;
+}
+
+std::string strip_parameter_marks(std::string_view expression) {
+  std::string out;
+  out.reserve(expression.size());
+  for (char c : expression) {
+    if (c != '%') out += c;
+  }
+  return out;
 }
 
 double Card::real(std::size_t i, const char* name, double fallback) const {

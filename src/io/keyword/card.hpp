@@ -40,6 +40,10 @@ struct Block {
   std::string file;
   int line = 0;
   std::vector<DataLine> lines;
+  // IMPETUS dialect: every card is comma-separated (a single field needs no comma), numbers may
+  // be "[expression]" or "%name", and a quoted line right after the command is its title.
+  bool impetus = false;
+  std::string title;
 
   bool has_option(std::string_view option) const;
   model::SourceLocation location() const { return {file, line, keyword}; }
@@ -79,6 +83,7 @@ class Card {
 
  private:
   std::optional<double> substituted(std::string_view text, const char* name) const;
+  std::optional<double> impetus_value(std::string_view text, const char* name) const;
 
   const Block& block_;
   DataLine line_;
@@ -111,6 +116,11 @@ class CardCursor {
   const ParameterTable& parameters_;
   std::size_t next_ = 0;
 };
+
+// IMPETUS card fields: split at commas that are not inside [ ], ( ) or quotes, trimmed.
+std::vector<std::string_view> split_impetus_fields(std::string_view line);
+// "%L1+%L2" -> "L1+L2": parameter names as the expression evaluator knows them.
+std::string strip_parameter_marks(std::string_view expression);
 
 // Errors about a whole block (missing cards, unsupported options).
 InputError block_error(const Block& block, int card, const char* field, const std::string& message);

@@ -1,6 +1,7 @@
 // State shared by the keyword handlers while one deck (and its includes) is read.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <string>
 #include <string_view>
@@ -10,11 +11,13 @@
 
 #include "io/keyword/card.hpp"
 #include "io/keyword/parameters.hpp"
+#include "io/keyword/reader.hpp"
 #include "model/model.hpp"
 
 namespace rf::io {
 
 struct ReaderContext {
+  ReaderContext(model::Model& m, ParameterTable& p) : model(m), parameters(p) {}
   model::Model& model;
   ParameterTable& parameters;
   // Reads an included file; `card` locates the *INCLUDE line for error messages.
@@ -42,6 +45,47 @@ struct ReaderContext {
   };
   std::vector<Exemption> exemptions;
 
+  // IMPETUS definitions resolved once the whole deck is read (finish_impetus): generated meshes
+  // need IDs above every user-defined one, and *BC_MOTION becomes different model entries for
+  // rigid and deformable parts.
+  struct Component {
+    bool cylinder = false;
+    model::Id id = 0;
+    model::Id pid = 0;
+    std::array<int, 3> divisions{};
+    std::array<double, 3> p1{};
+    std::array<double, 3> p2{};
+    double radius = 0.0;
+    model::SourceLocation where;
+  };
+  struct Merge {
+    model::Target target1 = model::Target::All;
+    model::Id id1 = 0;
+    model::Target target2 = model::Target::All;
+    model::Id id2 = 0;
+    double tolerance = 0.0;
+    model::SourceLocation where;
+  };
+  struct Motion {
+    model::Id id = 0;
+    std::string title;
+    model::Target target = model::Target::All;
+    model::Id target_id = 0;
+    std::array<bool, 6> fixed{};  // x y z rx ry rz held
+    bool has_motion = false;
+    int vad = 2;  // 0 velocity, 1 acceleration, 2 displacement
+    int dof = 0;  // 0..5: x y z rx ry rz
+    model::Id function = 0;
+    double scale = 1.0;
+    double birth = 0.0;
+    double death = 1e28;
+    model::SourceLocation where;
+  };
+  std::vector<Component> components;
+  std::vector<Merge> merges;
+  std::vector<Motion> motions;
+  double impetus_ascii_dt = 0.0;  // *OUTPUT dt_ascii
+
   void warn(const model::SourceLocation& where, std::string message) {
     model.warnings.push_back({where, std::move(message)});
   }
@@ -60,8 +104,32 @@ struct KeywordEntry {
 // with (followed by '_' or the end) and treats the remaining '_'-separated words as options.
 const KeywordEntry* find_keyword(std::string_view keyword, std::vector<std::string>& options);
 
+// IMPETUS commands (handlers_impetus.cpp): exact names, no option suffixes.
+const KeywordEntry* find_impetus_command(std::string_view command);
+
+// Which dialect a deck is written in, judged from its content, with the reason in words.
+struct DialectGuess {
+  Dialect dialect = Dialect::LsDyna;
+  std::string reason;
+};
+DialectGuess detect_dialect(std::string_view text);
+
+// Splits IMPETUS text into command blocks: '#' comment lines and blank lines are dropped, a
+// quoted line right after the command becomes the block's title, *END stops reading.
+// A deck that arrives as one long line (line breaks lost when copied from a web page) is first
+// restored to one command or card per line (reflow_single_line_deck).
+// `storage` keeps reflowed text alive as long as the blocks that view it.
+std::vector<Block> split_impetus(std::string_view text, const std::string& file_name,
+                                 std::string& storage);
+std::vector<Block> split_lines(std::string_view text, const std::string& file_name,
+                               const std::vector<int>& line_origin);
+std::string reflow_single_line_deck(std::string_view line);
+
 // Cross-reference checks and deferred resolution after every file has been read.
 void finish_model(ReaderContext& context);
+// IMPETUS part of it: generates component meshes, merges nodes, turns *BC_MOTION into
+// constraints and prescribed motions (handlers_impetus.cpp). Runs before finish_model's checks.
+void finish_impetus(ReaderContext& context);
 
 // Reports data lines a handler did not consume.
 void warn_unread_lines(const Block& block, CardCursor& cursor, ReaderContext& context);

@@ -60,6 +60,18 @@ void check_target(const model::Model& m, const std::unordered_set<Id>& nodes, mo
       break;
     case model::Target::All:
       break;
+    case model::Target::Geometry:
+      if (!m.geometry_seeds.count(id)) {
+        throw located_error(where, "ID", fmt::format("geometry {} is not defined", id));
+      }
+      break;
+  }
+}
+
+void check_function(const model::Model& m, Id function, const model::SourceLocation& where) {
+  if (function != 0 && !m.functions.count(function)) {
+    throw located_error(where, "FUNCTION",
+                        fmt::format("function {} is not defined (*FUNCTION)", function));
   }
 }
 
@@ -68,9 +80,9 @@ const model::CoordinateSystem& coordinate_system(const model::Model& m, Id cid,
                                                  const char* field) {
   const auto it = m.coordinate_systems.find(cid);
   if (it == m.coordinate_systems.end()) {
-    throw located_error(where, field,
-                        fmt::format("coordinate system {} is not defined (*DEFINE_COORDINATE_...)",
-                                    cid));
+    throw located_error(
+        where, field,
+        fmt::format("coordinate system {} is not defined (*DEFINE_COORDINATE_...)", cid));
   }
   return it->second;
 }
@@ -113,11 +125,11 @@ void check_merges(const model::Model& m) {
     const auto [it, inserted] = lead_of.try_emplace(merge.constrained, &merge);
     if (!inserted && it->second->lead != merge.lead) {
       const auto& w = it->second->where;
-      throw located_error(merge.where, "PIDC",
-                          fmt::format("part {} is merged into part {} here and into part {} at "
-                                      "{}:{}; a part can be merged into one lead part only",
-                                      merge.constrained, merge.lead, it->second->lead, w.file,
-                                      w.line));
+      throw located_error(
+          merge.where, "PIDC",
+          fmt::format("part {} is merged into part {} here and into part {} at "
+                      "{}:{}; a part can be merged into one lead part only",
+                      merge.constrained, merge.lead, it->second->lead, w.file, w.line));
     }
   }
   std::unordered_set<Id> done;
@@ -249,7 +261,10 @@ void finish_rigid(model::Model& m, const std::unordered_set<Id>& nodes) {
   }
   for (const auto& p : m.rigid_prescribed_motions) {
     check_rigid_body(m, p.pid, p.where, "*BOUNDARY_PRESCRIBED_MOTION_RIGID");
-    check_curve(m, p.lcid, p.where, "LCID");
+    if (p.function != 0)
+      check_function(m, p.function, p.where);
+    else if (p.lcid != 0 || p.where.keyword.starts_with("*BOUNDARY"))
+      check_curve(m, p.lcid, p.where, "LCID");
     if (p.vid != 0 && !m.vectors.count(p.vid)) {
       throw located_error(p.where, "VID",
                           fmt::format("vector {} is not defined (*DEFINE_VECTOR)", p.vid));
@@ -270,6 +285,8 @@ void finish_model(ReaderContext& context) {
   for (const auto& n : m.nodes) nodes.insert(n.id);
 
   // Deferred resolution.
+  finish_impetus(context);
+  for (const auto& n : m.nodes) nodes.insert(n.id);  // generated meshes
   if (context.d3plot_npltc > 0 && m.termination.endtim > 0.0) {
     m.output.d3plot_dt = m.termination.endtim / context.d3plot_npltc;
   }
@@ -362,7 +379,10 @@ void finish_model(ReaderContext& context) {
   for (const auto& s : m.spcs) check_target(m, nodes, s.target, s.id, s.where);
   for (const auto& p : m.prescribed_motions) {
     check_target(m, nodes, p.target, p.id, p.where);
-    check_curve(m, p.lcid, p.where, "LCID");
+    if (p.function != 0)
+      check_function(m, p.function, p.where);
+    else
+      check_curve(m, p.lcid, p.where, "LCID");
   }
   for (const auto& v : m.initial_velocities) check_target(m, nodes, v.target, v.id, v.where);
   for (const auto& l : m.nodal_loads) {

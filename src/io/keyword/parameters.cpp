@@ -2,6 +2,8 @@
 
 #include <muParser.h>
 
+#include "model/function.hpp"
+
 #include <cctype>
 #include <cmath>
 #include <numbers>
@@ -29,7 +31,9 @@ bool is_identifier(const std::string& name) {
 }  // namespace
 
 ParameterTable::ParameterTable(const std::map<std::string, double>& overrides) {
-  for (const auto& [name, value] : overrides) {
+  for (const auto& [written, value] : overrides) {
+    // IMPETUS parameters are written %name; --set %type=0 and --set type=0 mean the same.
+    const std::string name = written.starts_with('%') ? written.substr(1) : written;
     overrides_[to_upper(name)] = value;
     override_names_[to_upper(name)] = name;
   }
@@ -64,6 +68,7 @@ bool ParameterTable::contains(std::string_view name) const {
 double ParameterTable::evaluate(const std::string& expression) const {
   try {
     mu::Parser parser;
+    if (impetus_) model::define_impetus_intrinsics(parser);
     parser.DefineConst("pi", std::numbers::pi);
     parser.DefineConst("PI", std::numbers::pi);
     for (const auto& [key, entry] : by_key_) {

@@ -24,6 +24,8 @@ class ParameterTable {
   // Evaluates an expression with every numeric parameter defined so far as a variable and
   // pi available. Throws std::runtime_error with muparser's reason on failure.
   double evaluate(const std::string& expression) const;
+  // IMPETUS decks: expressions use IMPETUS's intrinsic functions (trigonometry in degrees).
+  void use_impetus_intrinsics(bool on) { impetus_ = on; }
 
   // Final values keyed by the name as first written in the deck.
   std::map<std::string, double> values() const;
@@ -39,6 +41,7 @@ class ParameterTable {
   std::map<std::string, Entry> by_key_;      // key: upper-case name
   std::map<std::string, double> overrides_;  // key: upper-case name
   std::map<std::string, std::string> override_names_;
+  bool impetus_ = false;
 };
 
 std::string to_upper(std::string_view text);

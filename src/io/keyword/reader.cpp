@@ -24,8 +24,9 @@ constexpr int kMaxIncludeDepth = 64;
 class DeckReader {
  public:
   DeckReader(model::Model& model, const ReadOptions& options)
-      : parameters_(options.parameter_overrides), context_{model, parameters_, {}, {}, {}, 0,
-                                                           0,     {},          {}, {}, {}} {
+      : parameters_(options.parameter_overrides),
+        context_(model, parameters_),
+        dialect_(options.dialect) {
     context_.include = [this](const std::string& filename, const Card& card) {
       include(filename, card);
     };
@@ -38,7 +39,21 @@ class DeckReader {
     const fs::path saved_dir = current_dir_;
     context_.current_file_index = file_index;
     current_dir_ = base_dir;
-    for (const Block& block : split(text, name)) dispatch(block);
+    if (dialect_ == Dialect::Auto) {
+      const DialectGuess guess = detect_dialect(text);
+      dialect_ = guess.dialect;
+      context_.model.dialect_reason = guess.reason;
+    } else if (file_index == 0) {
+      context_.model.dialect_reason = "chosen on the command line";
+    }
+    context_.model.dialect = dialect_ == Dialect::Impetus ? "impetus" : "lsdyna";
+    parameters_.use_impetus_intrinsics(dialect_ == Dialect::Impetus);
+    if (dialect_ == Dialect::Impetus) {
+      std::string reflowed;  // blocks view it: it lives until they are dispatched
+      for (const Block& block : split_impetus(text, name, reflowed)) dispatch_impetus(block);
+    } else {
+      for (const Block& block : split(text, name)) dispatch(block);
+    }
     context_.current_file_index = saved_index;
     current_dir_ = saved_dir;
   }
@@ -158,6 +173,20 @@ class DeckReader {
     entry->handler(block, context_);
   }
 
+  void dispatch_impetus(const Block& block_in) {
+    const KeywordEntry* entry = find_impetus_command(block_in.keyword);
+    if (!entry) {
+      ++context_.model.unknown_keywords[block_in.keyword];
+      context_.warn(block_in.location(),
+                    fmt::format("command {} is not supported; its {} data line(s) were skipped",
+                                block_in.keyword, block_in.lines.size()));
+      return;
+    }
+    Block block = block_in;
+    block.base = std::string(entry->name);
+    entry->handler(block, context_);
+  }
+
   void include(const std::string& filename, const Card& card) {
     if (filename.empty()) throw card.error("FILENAME", "the file name is empty");
     fs::path path(filename);
@@ -192,6 +221,7 @@ class DeckReader {
 
   ParameterTable parameters_;
   ReaderContext context_;
+  Dialect dialect_ = Dialect::Auto;  // decided by the main deck, kept for its includes
   CardFormat global_format_ = CardFormat::Standard;
   fs::path current_dir_;
   std::vector<fs::path> open_files_;
