@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "element/kernels.hpp"
+
 #include <algorithm>
 #include <map>
 #include <set>
@@ -51,23 +53,28 @@ void print_model_summary(const model::Model& model, std::FILE* out) {
     const auto& part = model.parts.at(block.part_id);
     const auto& mat = model.materials.at(part.mid);
     if (block.rigid) {
-      fmt::print(out,
-                 "  part {} '{}': {} elements, section {}, material {} {} (rho {:g}, E {:g}, "
-                 "nu {:g}), rigid\n",
-                 part.id, part.title, block.size(), part.secid, mat.id, mat.keyword, mat.rho, mat.e,
-                 mat.pr);
+      fmt::print(out, "  part {} '{}': {} elements (order {}), material {} {} (rho {:g}), rigid\n",
+                 part.id, part.title, block.size(), block.order, mat.id, mat.keyword, mat.rho);
       continue;
     }
     double dt = 0.0;
     const element::NodalView view{state.nodes.x.x.data(), state.nodes.x.y.data(),
                                   state.nodes.x.z.data(), state.nodes.v.x.data(),
                                   state.nodes.v.y.data(), state.nodes.v.z.data()};
-    dt = element::hex_critical_timestep(block, view).min_dt;
-    fmt::print(out,
-               "  part {} '{}': {} elements, section {} (ELFORM {}), material {} {} "
-               "(rho {:g}, E {:g}, nu {:g}), hourglass IHQ {} QM {:g}, element step {:.4g}\n",
-               part.id, part.title, block.size(), part.secid, block.elform, mat.id, mat.keyword,
-               mat.rho, mat.e, mat.pr, block.hourglass.ihq, block.hourglass.qm, dt);
+    dt = element::block_critical_timestep(block, view).min_dt;
+    fmt::print(
+        out,
+        "  part {} '{}': {} elements, {}, material {} {} "
+        "(rho {:g}, E {:g}, nu {:g}){}, element step {:.4g}\n",
+        part.id, part.title, block.size(),
+        block.order > 1 ? fmt::format("order {} ({} nodes, GLL, total-Lagrangian neo-Hookean)",
+                                      block.order, block.nodes_per_element())
+                        : fmt::format("section {} (ELFORM {})", part.secid, block.elform),
+        mat.id, mat.keyword, mat.rho, mat.e, mat.pr,
+        block.order > 1
+            ? std::string()
+            : fmt::format(", hourglass IHQ {} QM {:g}", block.hourglass.ihq, block.hourglass.qm),
+        dt);
   }
   fmt::print(out, "total mass: {:.6g}\n", total_mass);
   const auto& rigid = sim.rigid_bodies();

@@ -147,7 +147,8 @@ Boundary resolve_boundary(const model::Model& model, const NodeIndex& node_index
   // *NODE TC: 1 x, 2 y, 3 z, 4 xy, 5 yz, 6 zx, 7 xyz.
   static constexpr std::uint8_t kTcMask[8] = {0, 1, 2, 4, 3, 6, 5, 7};
   std::int64_t ignored_tc = 0;
-  for (std::size_t i = 0; i < n; ++i) {
+  // Generated nodes (*CHANGE_P-ORDER) follow the model's nodes and carry no TC of their own.
+  for (std::size_t i = 0; i < std::min(n, model.nodes.size()); ++i) {
     const int tc = model.nodes[i].tc;
     if (tc <= 0 || tc > 7) continue;
     if (rigid(static_cast<std::int32_t>(i))) {

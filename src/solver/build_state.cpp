@@ -4,9 +4,13 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 
+#include "element/kernels.hpp"
+#include "mesh/p_order.hpp"
 #include "model/error.hpp"
 #include "model/error_context.hpp"
 
@@ -38,6 +42,147 @@ element::HourglassSettings resolve_hourglass(const model::Model& model, const mo
   return hg;
 }
 
+// Interpolation order of each part from *CHANGE_P-ORDER cards (later cards win).
+int part_order(const model::Model& model, model::Id pid) {
+  int order = 1;
+  for (const auto& change : model.p_order_changes) {
+    bool applies = change.target == model::Target::All ||
+                   (change.target == model::Target::Part && change.id == pid);
+    if (change.target == model::Target::PartSet) {
+      const auto it = model.part_sets.find(change.id);
+      if (it == model.part_sets.end()) {
+        throw InputError(context_of(change.where, "enid"),
+                         fmt::format("part set {} is not defined", change.id));
+      }
+      for (const model::Id p : it->second.parts) applies |= p == pid;
+    }
+    if (applies) order = change.order;
+  }
+  return order;
+}
+
+// Moves nodes created on the mantle of a generated cylinder onto the exact surface, where the
+// part asks for surface smoothing (IMPETUS *PART alpha_max) wider than the angle between the
+// flat facets. A node qualifies when every corner of the edge or face it was created on lies
+// on the mantle.
+void project_onto_cylinders(const model::Model& model, const mesh::HexElevator& elevator,
+                            const std::vector<std::int64_t>& part_of_new_node,
+                            std::vector<std::array<double, 3>>& x) {
+  for (const auto& cyl : model.cylinder_surfaces) {
+    const auto part = model.parts.find(cyl.pid);
+    if (part == model.parts.end() || !(part->second.smoothing_angle > cyl.facet_angle_deg)) {
+      continue;
+    }
+    std::array<double, 3> axis{cyl.p2[0] - cyl.p1[0], cyl.p2[1] - cyl.p1[1], cyl.p2[2] - cyl.p1[2]};
+    const double length = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+    for (double& a : axis) a /= length;
+    const double tol = 1e-9 * std::max(cyl.radius, length);
+    // Radial offset of a point from the axis, and its axial coordinate.
+    auto split = [&](const std::array<double, 3>& p, std::array<double, 3>& radial) {
+      const std::array<double, 3> d{p[0] - cyl.p1[0], p[1] - cyl.p1[1], p[2] - cyl.p1[2]};
+      const double s = d[0] * axis[0] + d[1] * axis[1] + d[2] * axis[2];
+      for (int k = 0; k < 3; ++k) radial[k] = d[k] - s * axis[k];
+      return s;
+    };
+    auto on_mantle = [&](std::int32_t node) {
+      std::array<double, 3> r{};
+      const double s = split(x[static_cast<std::size_t>(node)], r);
+      const double radius = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+      return std::abs(radius - cyl.radius) < tol && s > -tol && s < length + tol;
+    };
+    const auto& parents = elevator.parents();
+    for (std::size_t i = 0; i < parents.size(); ++i) {
+      if (parents[i].size() == 8 || part_of_new_node[i] != cyl.pid) continue;
+      bool all = true;
+      for (const std::int32_t corner : parents[i]) all = all && on_mantle(corner);
+      if (!all) continue;
+      auto& p = x[static_cast<std::size_t>(elevator.first_new_node()) + i];
+      std::array<double, 3> r{};
+      const double s = split(p, r);
+      const double radius = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+      for (int k = 0; k < 3; ++k) {
+        p[k] = cyl.p1[k] + s * axis[k] + r[k] * (cyl.radius / radius);
+      }
+    }
+  }
+}
+
+// Raises the blocks whose parts have order > 1 (*CHANGE_P-ORDER) and appends the new nodes to
+// the nodal arrays with IDs above every user node ID.
+void elevate_blocks(const model::Model& model, State& state) {
+  bool any = false;
+  for (const auto& block : state.hex_blocks) any |= block.order > 1;
+  if (!any) return;
+  NodalState& nodes = state.nodes;
+  // Parts of different order must not share nodes: the mesh would not be conforming.
+  std::vector<int> order_of_node(nodes.size(), 0);
+  std::vector<model::Id> part_of_node(nodes.size(), 0);
+  for (const auto& block : state.hex_blocks) {
+    for (const std::int32_t node : block.conn) {
+      int& o = order_of_node[static_cast<std::size_t>(node)];
+      if (o != 0 && o != block.order) {
+        throw InputError(
+            context_of(model.parts.at(block.part_id).where, "order"),
+            fmt::format("part {} (order {}) shares node {} with part {} (order {}): parts "
+                        "joined by nodes must have the same order (*CHANGE_P-ORDER)",
+                        block.part_id, block.order, nodes.id[static_cast<std::size_t>(node)],
+                        part_of_node[static_cast<std::size_t>(node)], o));
+      }
+      o = block.order;
+      part_of_node[static_cast<std::size_t>(node)] = block.part_id;
+    }
+  }
+  std::vector<std::array<double, 3>> x(nodes.size());
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    x[i] = {nodes.x0.x[i], nodes.x0.y[i], nodes.x0.z[i]};
+  }
+  std::map<int, std::unique_ptr<mesh::HexElevator>> elevators;
+  std::vector<std::int64_t> part_of_new_node;
+  for (auto& block : state.hex_blocks) {
+    if (block.order == 1) continue;
+    auto& elevator = elevators[block.order];
+    if (!elevator) elevator = std::make_unique<mesh::HexElevator>(block.order, x);
+    std::vector<std::int32_t> conn;
+    conn.reserve(block.size() * static_cast<std::size_t>(block.nodes_per_element()));
+    for (std::size_t e = 0; e < block.size(); ++e) {
+      std::array<std::int32_t, 8> corners{};
+      std::copy_n(&block.conn[8 * e], 8, corners.begin());
+      try {
+        const auto elevated = elevator->elevate(corners);
+        conn.insert(conn.end(), elevated.begin(), elevated.end());
+      } catch (const std::invalid_argument& error) {
+        throw InputError(context_of(model.parts.at(block.part_id).where, "order"),
+                         fmt::format("element {} of part {}: {}", block.element_id[e],
+                                     block.part_id, error.what()));
+      }
+    }
+    block.conn = std::move(conn);
+    part_of_new_node.resize(x.size() - nodes.size(), block.part_id);
+  }
+  // One elevator per order, so new nodes of different orders interleave only by block; the
+  // projection needs each elevator's own parent list.
+  for (const auto& [order, elevator] : elevators) {
+    std::vector<std::int64_t> part_of(elevator->parents().size(), 0);
+    const std::size_t offset = static_cast<std::size_t>(elevator->first_new_node()) - nodes.size();
+    for (std::size_t i = 0; i < part_of.size() && offset + i < part_of_new_node.size(); ++i) {
+      part_of[i] = part_of_new_node[offset + i];
+    }
+    project_onto_cylinders(model, *elevator, part_of, x);
+  }
+  model::Id next_id = 0;
+  for (const model::Id id : nodes.id) next_id = std::max(next_id, id);
+  const std::size_t old_count = nodes.size();
+  nodes.id.resize(x.size());
+  for (std::size_t i = old_count; i < x.size(); ++i) nodes.id[i] = ++next_id;
+  nodes.x0.resize(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    nodes.x0.x[i] = x[i][0];
+    nodes.x0.y[i] = x[i][1];
+    nodes.x0.z[i] = x[i][2];
+  }
+  state.generated_node_count = static_cast<std::int64_t>(x.size() - old_count);
+}
+
 }  // namespace
 
 NodeIndex::NodeIndex(const model::Model& model) {
@@ -59,21 +204,21 @@ std::int32_t NodeIndex::at(model::Id id, const model::SourceLocation& where,
 State build_state(const model::Model& model, const NodeIndex& node_index) {
   State state;
   NodalState& nodes = state.nodes;
-  const std::size_t n = model.nodes.size();
-  nodes.id.resize(n);
-  nodes.x0.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
+  const std::size_t model_nodes = model.nodes.size();
+  nodes.id.resize(model_nodes);
+  nodes.x0.resize(model_nodes);
+  for (std::size_t i = 0; i < model_nodes; ++i) {
     nodes.id[i] = model.nodes[i].id;
     nodes.x0.x[i] = model.nodes[i].x[0];
     nodes.x0.y[i] = model.nodes[i].x[1];
     nodes.x0.z[i] = model.nodes[i].x[2];
   }
   nodes.x = nodes.x0;
-  nodes.v.resize(n);
-  nodes.a.resize(n);
-  nodes.f_int.resize(n);
-  nodes.f_ext.resize(n);
-  nodes.mass.assign(n, 0.0);
+  nodes.v.resize(model_nodes);
+  nodes.a.resize(model_nodes);
+  nodes.f_int.resize(model_nodes);
+  nodes.f_ext.resize(model_nodes);
+  nodes.mass.assign(model_nodes, 0.0);
 
   // Group elements by part in part-ID order; input order is kept within a part so that
   // results do not depend on how the deck interleaves parts.
@@ -116,6 +261,7 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
     block.part_index = static_cast<int>(state.parts.size());
     block.elform = sec_it->second.elform;
     block.rigid = mat.kind == model::MaterialKind::Rigid;
+    block.order = part_order(model, pid);
     // Rigid parts: the section and hourglass do not matter; E and PR only for contact later.
     if (!block.rigid) block.hourglass = resolve_hourglass(model, part);
     block.material = material::make_elastic(mat.rho, mat.e, mat.pr);
@@ -133,15 +279,27 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
     state.hex_blocks.push_back(std::move(block));
   }
 
+  elevate_blocks(model, state);
+  if (state.generated_node_count > 0) {
+    const std::size_t total = nodes.id.size();
+    nodes.x = nodes.x0;
+    nodes.v.resize(total);
+    nodes.a.resize(total);
+    nodes.f_int.resize(total);
+    nodes.f_ext.resize(total);
+    nodes.mass.assign(total, 0.0);
+  }
+  const std::size_t n_all = nodes.size();
   const element::NodalView view{nodes.x.x.data(), nodes.x.y.data(), nodes.x.z.data(),
                                 nodes.v.x.data(), nodes.v.y.data(), nodes.v.z.data()};
   for (auto& block : state.hex_blocks) {
-    element::initialize_hex_block(block, view);
-    element::add_hex_lumped_mass(block, nodes.mass);
+    element::initialize_block(block, view);
+    element::add_block_lumped_mass(block, nodes.mass);
   }
 
   // Node -> element-slot incidence, counted then filled (CSR).
   NodeIncidence& inc = state.incidence;
+  const std::size_t n = n_all;
   inc.offset.assign(n + 1, 0);
   for (const auto& block : state.hex_blocks) {
     if (block.rigid) continue;
@@ -156,7 +314,7 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
     const auto& conn = state.hex_blocks[b].conn;
     for (std::size_t k = 0; k < conn.size(); ++k) {
       const std::int64_t pos = fill[conn[k]]++;
-      inc.slot[pos] = static_cast<std::int64_t>(k) * 3;  // element*24 + local*3
+      inc.slot[pos] = static_cast<std::int64_t>(k) * 3;  // (element*npe + local)*3
       inc.block[pos] = static_cast<std::int32_t>(b);
     }
   }
@@ -178,11 +336,12 @@ AssemblyPlan make_assembly_plan(const State& state, int threads) {
   for (std::size_t b = 0; b < blocks; ++b) {
     if (state.hex_blocks[b].rigid) continue;  // no force slots: ranges stay empty
     const auto& conn = state.hex_blocks[b].conn;
-    const std::int64_t elements = static_cast<std::int64_t>(conn.size() / 8);
+    const int npe = state.hex_blocks[b].nodes_per_element();
+    const std::int64_t elements = static_cast<std::int64_t>(conn.size() / npe);
     total += elements;
     for (std::int64_t e = 0; e < elements; ++e) {
-      for (int k = 0; k < 8; ++k) {
-        const std::int64_t node = conn[8 * e + k];
+      for (int k = 0; k < npe; ++k) {
+        const std::int64_t node = conn[npe * e + k];
         // Owner of `node`: the t with node_begin[t] <= node < node_begin[t + 1].
         const auto it = std::upper_bound(plan.node_begin.begin(), plan.node_begin.end(), node);
         const std::size_t t = static_cast<std::size_t>(it - plan.node_begin.begin()) - 1;
@@ -227,6 +386,25 @@ void assemble_by_incidence(State& state) {
   }
 }
 
+// Adds the force slots of elements [first, last) to the nodes in [lo, hi). kNodes > 0 fixes the
+// element's node count at compile time (the 8-node hot path); 0 takes it from `npe`.
+template <int kNodes>
+void scatter_range(const std::int32_t* conn, const double* force, std::int64_t first,
+                   std::int64_t last, std::int64_t lo, std::int64_t hi, double* fx, double* fy,
+                   double* fz, int npe = kNodes) {
+  const int nodes = kNodes > 0 ? kNodes : npe;
+  for (std::int64_t e = first; e < last; ++e) {
+    for (int k = 0; k < nodes; ++k) {
+      const std::int64_t node = conn[nodes * e + k];
+      if (node < lo || node >= hi) continue;
+      const double* f = force + 3 * (nodes * e + k);
+      fx[node] += f[0];
+      fy[node] += f[1];
+      fz[node] += f[2];
+    }
+  }
+}
+
 // Element-order scatter (see AssemblyPlan): streams the element force slots and the
 // connectivity once instead of chasing the incidence lists, which made the CSR gather the second
 // most expensive part of a cycle after the element kernels.
@@ -248,15 +426,11 @@ void assemble_by_elements(State& state) {
       const auto [first, last] = plan.element_range[static_cast<std::size_t>(t) * blocks + b];
       const std::int32_t* conn = state.hex_blocks[b].conn.data();
       const double* force = state.hex_blocks[b].force.data();
-      for (std::int64_t e = first; e < last; ++e) {
-        for (int k = 0; k < 8; ++k) {
-          const std::int64_t node = conn[8 * e + k];
-          if (node < lo || node >= hi) continue;
-          const double* f = force + 24 * e + 3 * k;
-          fx[node] += f[0];
-          fy[node] += f[1];
-          fz[node] += f[2];
-        }
+      const int npe = state.hex_blocks[b].nodes_per_element();
+      if (npe == 8) {
+        scatter_range<8>(conn, force, first, last, lo, hi, fx, fy, fz);
+      } else {
+        scatter_range<0>(conn, force, first, last, lo, hi, fx, fy, fz, npe);
       }
     }
   }

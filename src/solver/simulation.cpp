@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 
+#include "element/kernels.hpp"
 #include "model/curve.hpp"
 #include "model/error.hpp"
 
@@ -413,7 +414,7 @@ void Simulation::compute_internal_forces() {
   element_dt_ = std::numeric_limits<double>::infinity();
   for (auto& block : state_.hex_blocks) {
     if (block.rigid) continue;  // moved by its body; no stress, no step limit
-    const element::KernelResult r = element::compute_hex_forces(block, view, state_.dt);
+    const element::KernelResult r = element::compute_block_forces(block, view, state_.dt);
     energy_.hourglass += r.hourglass_work;
     if (r.failed && breakdown_message_.empty()) {
       breakdown_message_ = fmt::format(
@@ -452,6 +453,7 @@ void Simulation::select_time_step() {
     }
     dt = std::min(dt, model::evaluate(it->second, state_.time));
   }
+  if (control.dt_max > 0.0) dt = std::min(dt, control.dt_max);
   const bool no_element_step = !std::isfinite(element_dt_);
   if (control.dtinit > 0.0 && (state_.cycle == 0 || no_element_step)) {
     // Without deformable elements DTINIT is the step throughout (capped by LCTM above).

@@ -74,6 +74,8 @@ struct State {
   double dt_prev = 0.0;  // dt^{n-1/2}
   std::int64_t cycle = 0;
   std::vector<const double*> block_force_pointers;  // scratch for assembly, sized once
+  // Nodes added by *CHANGE_P-ORDER (dense indices after the model's nodes; IDs above them).
+  std::int64_t generated_node_count = 0;
   AssemblyPlan assembly_plan;
 };
 

@@ -1,0 +1,35 @@
+// The element formulations behind one call per block: the solver asks a block for its forces,
+// step and mass, and the block's order (and ELFORM) selects the kernel. Dispatch happens once
+// per block per cycle, never per element.
+#pragma once
+
+#include "element/hex_block.hpp"
+#include "element/lagrange_hex.hpp"
+
+namespace rf::element {
+
+inline void initialize_block(HexBlock& block, const NodalView& nodes) {
+  if (block.order > 1)
+    initialize_lagrange_hex_block(block, nodes);
+  else
+    initialize_hex_block(block, nodes);
+}
+
+inline KernelResult compute_block_forces(HexBlock& block, const NodalView& nodes, double dt) {
+  return block.order > 1 ? compute_lagrange_hex_forces(block, nodes, dt)
+                         : compute_hex_forces(block, nodes, dt);
+}
+
+inline KernelResult block_critical_timestep(const HexBlock& block, const NodalView& nodes) {
+  return block.order > 1 ? lagrange_hex_critical_timestep(block, nodes)
+                         : hex_critical_timestep(block, nodes);
+}
+
+inline void add_block_lumped_mass(const HexBlock& block, std::vector<double>& nodal_mass) {
+  if (block.order > 1)
+    add_lagrange_hex_lumped_mass(block, nodal_mass);
+  else
+    add_hex_lumped_mass(block, nodal_mass);
+}
+
+}  // namespace rf::element
