@@ -195,6 +195,32 @@ VtkCell vtk_cell_from_solid(const std::int32_t* n) {
   return cell;  // other degeneracies: keep the repeated nodes, VTK still draws something
 }
 
+int vtk_lagrange_hex_index(int i, int j, int k, int p) {
+  const bool ib = i == 0 || i == p;
+  const bool jb = j == 0 || j == p;
+  const bool kb = k == 0 || k == p;
+  const int boundaries = (ib ? 1 : 0) + (jb ? 1 : 0) + (kb ? 1 : 0);
+  const int m = p - 1;  // interior nodes per edge
+  if (boundaries == 3) return (i ? (j ? 2 : 1) : (j ? 3 : 0)) + (k ? 4 : 0);
+  int offset = 8;
+  if (boundaries == 2) {
+    if (!ib) return offset + (i - 1) + (j ? 2 * m : 0) + (k ? 4 * m : 0);
+    if (!jb) return offset + (j - 1) + (i ? m : 3 * m) + (k ? 4 * m : 0);
+    offset += 8 * m;
+    return offset + (k - 1) + m * (i ? (j ? 3 : 1) : (j ? 2 : 0));
+  }
+  offset += 12 * m;
+  if (boundaries == 1) {
+    if (ib) return offset + (j - 1) + m * (k - 1) + (i ? m * m : 0);
+    offset += 2 * m * m;
+    if (jb) return offset + (i - 1) + m * (k - 1) + (j ? m * m : 0);
+    offset += 2 * m * m;
+    return offset + (i - 1) + m * (j - 1) + (k ? m * m : 0);
+  }
+  offset += 6 * m * m;
+  return offset + (i - 1) + m * ((j - 1) + m * (k - 1));
+}
+
 FieldWriter::FieldWriter(const std::filesystem::path& directory, std::string stem)
     : directory_(directory), stem_(std::move(stem)) {
   std::error_code ec;
@@ -244,10 +270,33 @@ void FieldWriter::write_frame(const solver::State& state) {
     const std::size_t points_per_element = static_cast<std::size_t>(block.points_per_element());
     // Before the first force evaluation a block may have no stress storage: report zero.
     const bool has_stress = block.stress.size() >= 6 * points_per_element * block.size();
+    const int p = block.order;
+    const std::size_t npe = static_cast<std::size_t>(block.nodes_per_element());
+    std::vector<std::int32_t> lagrange(npe);
     for (std::size_t e = 0; e < block.size(); ++e) {
-      const VtkCell cell = vtk_cell_from_solid(&block.conn[8 * e]);
-      for (int k = 0; k < cell.node_count; ++k) {
-        const std::int32_t node = cell.nodes[k];
+      VtkCell cell;
+      const std::int32_t* nodes_of_cell = cell.nodes.data();
+      int cell_nodes = 0;
+      if (p > 1) {
+        // Curved cells: ParaView draws them with their true (polynomial) geometry. VTK places
+        // Lagrange points equispaced in the cell; ours sit on GLL points, so the drawn surface
+        // passes through every node but is parametrised slightly differently inside a cell.
+        cell.type = VtkCellType::kLagrangeHexahedron;
+        for (int kk = 0; kk <= p; ++kk)
+          for (int jj = 0; jj <= p; ++jj)
+            for (int ii = 0; ii <= p; ++ii)
+              lagrange[static_cast<std::size_t>(vtk_lagrange_hex_index(ii, jj, kk, p))] =
+                  block
+                      .conn[npe * e + static_cast<std::size_t>(ii + (p + 1) * (jj + (p + 1) * kk))];
+        nodes_of_cell = lagrange.data();
+        cell_nodes = static_cast<int>(npe);
+      } else {
+        cell = vtk_cell_from_solid(&block.conn[8 * e]);
+        nodes_of_cell = cell.nodes.data();
+        cell_nodes = cell.node_count;
+      }
+      for (int k = 0; k < cell_nodes; ++k) {
+        const std::int32_t node = nodes_of_cell[k];
         if (node < 0 || static_cast<std::size_t>(node) >= node_count) {
           throw std::runtime_error(
               fmt::format("d3plot: element {} of part {} refers to node index {} outside 0..{}",

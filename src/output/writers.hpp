@@ -113,7 +113,18 @@ class NodoutWriter {
 };
 
 // VTK linear cell types used for solids.
-enum class VtkCellType : std::uint8_t { kTetra = 10, kHexahedron = 12, kWedge = 13, kPyramid = 14 };
+enum class VtkCellType : std::uint8_t {
+  kTetra = 10,
+  kHexahedron = 12,
+  kWedge = 13,
+  kPyramid = 14,
+  kLagrangeHexahedron = 72,  // VTK_LAGRANGE_HEXAHEDRON: (p+1)^3 points, order from the count
+};
+
+// Position of tensor node (i, j, k) of an order-p hexahedron in VTK's Lagrange hexahedron point
+// order: 8 corners, then the edge, face and interior nodes (vtkHigherOrderHexahedron's
+// PointIndexFromIJK for equal orders in the three directions).
+int vtk_lagrange_hex_index(int i, int j, int k, int p);
 
 // A solid element as VTK wants it: cell type and the distinct nodes in VTK order.
 struct VtkCell {

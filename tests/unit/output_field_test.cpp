@@ -478,3 +478,83 @@ TEST(OutputField, CollectionListsEveryFrame) {
 
 }  // namespace
 }  // namespace rf::output
+
+namespace rf::output {
+namespace {
+
+TEST(OutputFieldLagrange, PointOrderIsAPermutationMatchingVtk) {
+  for (int p = 2; p <= 3; ++p) {
+    const int n = p + 1;
+    std::vector<int> seen(static_cast<std::size_t>(n * n * n), 0);
+    for (int k = 0; k <= p; ++k)
+      for (int j = 0; j <= p; ++j)
+        for (int i = 0; i <= p; ++i)
+          ++seen[static_cast<std::size_t>(vtk_lagrange_hex_index(i, j, k, p))];
+    for (int s : seen) EXPECT_EQ(s, 1) << "order " << p;
+    // VTK's layout: corners 0..7, then the i-edge at j = k = 0, the j-edge at i = p, ...
+    EXPECT_EQ(vtk_lagrange_hex_index(p, p, 0, p), 2);
+    EXPECT_EQ(vtk_lagrange_hex_index(0, p, p, p), 7);
+    EXPECT_EQ(vtk_lagrange_hex_index(1, 0, 0, p), 8);
+    EXPECT_EQ(vtk_lagrange_hex_index(p, 1, 0, p), 8 + (p - 1));
+    EXPECT_EQ(vtk_lagrange_hex_index(0, 0, 1, p), 8 + 8 * (p - 1));   // first vertical edge
+    EXPECT_EQ(vtk_lagrange_hex_index(0, 1, 1, p), 8 + 12 * (p - 1));  // first i-normal face
+    EXPECT_EQ(vtk_lagrange_hex_index(1, 1, 1, p), 8 + 12 * (p - 1) + 6 * (p - 1) * (p - 1));
+  }
+}
+
+TEST(OutputFieldLagrange, HigherOrderBlockIsWrittenAsLagrangeCells) {
+  solver::State state;
+  const int p = 2, n = 3;
+  auto& nodes = state.nodes;
+  for (auto* v : {&nodes.x0, &nodes.x, &nodes.v, &nodes.a, &nodes.f_int, &nodes.f_ext}) {
+    v->resize(27);
+  }
+  nodes.mass.assign(27, 1.0);
+  element::HexBlock block;
+  block.part_id = 3;
+  block.order = p;
+  block.element_id = {9};
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const int a = i + n * (j + n * k);
+        nodes.id.push_back(100 + a);
+        nodes.x0.x[a] = nodes.x.x[a] = 0.5 * i;
+        nodes.x0.y[a] = nodes.x.y[a] = 0.5 * j;
+        nodes.x0.z[a] = nodes.x.z[a] = 0.5 * k;
+        block.conn.push_back(26 - a);  // any numbering: tensor slot a holds node 26 - a
+      }
+  // conn maps slot -> node; place node coordinates to match their slot.
+  for (int a = 0; a < 27; ++a) {
+    const int node = 26 - a;
+    nodes.x0.x[node] = nodes.x.x[node] = 0.5 * (a % 3);
+    nodes.x0.y[node] = nodes.x.y[node] = 0.5 * ((a / 3) % 3);
+    nodes.x0.z[node] = nodes.x.z[node] = 0.5 * (a / 9);
+  }
+  state.hex_blocks = {block};
+  const auto dir = fresh_directory("field_lagrange");
+  FieldWriter writer(dir);
+  writer.write_frame(state);
+  const std::string file = read_file(dir / "d3plot_0000.vtu");
+  XmlDocument doc = XmlReader(file).read();
+  const XmlElement& piece = doc.root.child("UnstructuredGrid").child("Piece");
+  const XmlElement& cells = piece.child("Cells");
+  const auto types = decode<std::uint8_t>(file, doc, cells.data_array("types"), "UInt8");
+  const auto conn = decode<std::int64_t>(file, doc, cells.data_array("connectivity"), "Int64");
+  ASSERT_EQ(types, std::vector<std::uint8_t>{72});
+  ASSERT_EQ(conn.size(), 27u);
+  // VTK point k of the cell must be where VTK expects it: corners at the cube's corners, point
+  // 8 (first i-edge node) at (0.5, 0, 0), the last (body) point at the centre.
+  auto at = [&](std::size_t k) {
+    const auto node = static_cast<std::size_t>(conn[k]);
+    return std::array<double, 3>{nodes.x.x[node], nodes.x.y[node], nodes.x.z[node]};
+  };
+  EXPECT_EQ(at(0), (std::array<double, 3>{0, 0, 0}));
+  EXPECT_EQ(at(2), (std::array<double, 3>{1, 1, 0}));
+  EXPECT_EQ(at(6), (std::array<double, 3>{1, 1, 1}));
+  EXPECT_EQ(at(8), (std::array<double, 3>{0.5, 0, 0}));
+  EXPECT_EQ(at(26), (std::array<double, 3>{0.5, 0.5, 0.5}));
+}
+
+}  // namespace
+}  // namespace rf::output

@@ -144,13 +144,14 @@ TEST(ConstantNodalForce, ImpulseAndExternalWork) {
   mesh.nx = mesh.ny = mesh.nz = 2;
   mesh.lx = mesh.ly = mesh.lz = 0.1;
   const double force = 1000.0;
-  std::string deck = "*KEYWORD\n" + mesh.keyword_text() + elastic_part(kRho, kE, 0.3, 1, 6) +
-                     fmt::format("*LOAD_NODE_POINT\n{},1,1,{}\n", mesh.node_id(2, 2, 2), force) +
-                     "*DEFINE_CURVE\n1\n0.0,1.0\n1.0,1.0\n*CONTROL_TERMINATION\n2.0e-4\n"
-                     // A constant step (LCTM curve below the stable step): the sum of
-                     // half-step increments then telescopes to the node's travel exactly.
-                     "*CONTROL_TIMESTEP\n0.0,0.9,0,0.0,0.0,2\n*DEFINE_CURVE\n2\n0.0,5.0e-6\n1.0,5.0e-6\n"
-                     "*END\n";
+  std::string deck =
+      "*KEYWORD\n" + mesh.keyword_text() + elastic_part(kRho, kE, 0.3, 1, 6) +
+      fmt::format("*LOAD_NODE_POINT\n{},1,1,{}\n", mesh.node_id(2, 2, 2), force) +
+      "*DEFINE_CURVE\n1\n0.0,1.0\n1.0,1.0\n*CONTROL_TERMINATION\n2.0e-4\n"
+      // A constant step (LCTM curve below the stable step): the sum of
+      // half-step increments then telescopes to the node's travel exactly.
+      "*CONTROL_TIMESTEP\n0.0,0.9,0,0.0,0.0,2\n*DEFINE_CURVE\n2\n0.0,5.0e-6\n1.0,5.0e-6\n"
+      "*END\n";
   solver::Simulation sim(read(deck), {});
   const auto& nodes = sim.state().nodes;
   std::size_t loaded = 0;
@@ -160,8 +161,7 @@ TEST(ConstantNodalForce, ImpulseAndExternalWork) {
   while (!sim.finished()) sim.cycle();
   // After the final cycle the step was not taken: v is v^{n+1/2} at t^n.
   const double t = sim.state().time;
-  EXPECT_NEAR(sim.energy().momentum[0], force * (t + 0.5 * sim.state().dt),
-              1e-6 * force * t);
+  EXPECT_NEAR(sim.energy().momentum[0], force * (t + 0.5 * sim.state().dt), 1e-6 * force * t);
   EXPECT_NEAR(sim.energy().momentum[1], 0.0, 1e-9 * force * t);
   // Work of the force up to the last half step: F (x^{n+1/2} - x0) with x^{n+1/2} from x^n and
   // v, less the first half step's F dt/4 v^{1/2} (the scheme starts from v^0 = 0).

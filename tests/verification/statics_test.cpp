@@ -58,8 +58,8 @@ TEST_P(PatchTest, DistortedMeshReproducesConstantStress) {
         velocities += fmt::format("{},{:.17g},{:.17g},{:.17g}\n", id, u[0], u[1], u[2]);
         if (i == 1 && j == 1 && k == 1) continue;  // interior node is free
         for (int r = 0; r < 3; ++r) {
-          deck += fmt::format("*BOUNDARY_PRESCRIBED_MOTION_NODE\n{},{},2,1,{:.17g}\n", id, r + 1,
-                              u[r]);
+          deck +=
+              fmt::format("*BOUNDARY_PRESCRIBED_MOTION_NODE\n{},{},2,1,{:.17g}\n", id, r + 1, u[r]);
         }
       }
   deck += velocities + "*CONTROL_TERMINATION\n0.5\n*CONTROL_TIMESTEP\n0.0,0.5\n*END\n";
@@ -126,9 +126,10 @@ CantileverResult run_cantilever(int elform, int ihq, int refine) {
   mesh.lx = length;
   mesh.ly = mesh.lz = h;
   const double inertia = h * h * h * h / 12.0, area = h * h;
-  const double reference =
-      load * std::pow(length, 3) / (3.0 * e * inertia) + load * length / (5.0 / 6.0 * e / 2.0 * area);
-  const double omega1 = 1.875104 * 1.875104 * std::sqrt(e * inertia / (rho * area * std::pow(length, 4)));
+  const double reference = load * std::pow(length, 3) / (3.0 * e * inertia) +
+                           load * length / (5.0 / 6.0 * e / 2.0 * area);
+  const double omega1 =
+      1.875104 * 1.875104 * std::sqrt(e * inertia / (rho * area * std::pow(length, 4)));
   const double period = 2.0 * M_PI / omega1;
   const auto tip = mesh.face_x(mesh.nx);
   // QM = 1 for IHQ 6: the Belytschko-Bindeman stiffness is then exact in pure bending of a
@@ -144,7 +145,8 @@ CantileverResult run_cantilever(int elform, int ihq, int refine) {
   solver::Simulation sim(read(deck), {});
   std::vector<std::size_t> tip_index;
   for (std::size_t i = 0; i < sim.state().nodes.size(); ++i) {
-    if (std::find(tip.begin(), tip.end(), sim.state().nodes.id[i]) != tip.end()) tip_index.push_back(i);
+    if (std::find(tip.begin(), tip.end(), sim.state().nodes.id[i]) != tip.end())
+      tip_index.push_back(i);
   }
   double weighted = 0.0, span = 0.0;
   while (!sim.finished()) {
@@ -163,9 +165,10 @@ CantileverResult run_cantilever(int elform, int ihq, int refine) {
 
 TEST(Cantilever, Ihq6TipDeflectionMatchesBeamTheory) {
   const auto r = run_cantilever(1, 6, 1);
-  std::printf("cantilever ELFORM 1 IHQ 6 (20x2x2): tip %.6g, Timoshenko %.6g, ratio %.4f, "
-              "hourglass/internal %.3g\n",
-              r.deflection, r.reference, r.deflection / r.reference, r.hourglass_fraction);
+  std::printf(
+      "cantilever ELFORM 1 IHQ 6 (20x2x2): tip %.6g, Timoshenko %.6g, ratio %.4f, "
+      "hourglass/internal %.3g\n",
+      r.deflection, r.reference, r.deflection / r.reference, r.hourglass_fraction);
   EXPECT_NEAR(r.deflection / r.reference, 1.0, 0.03);
 }
 

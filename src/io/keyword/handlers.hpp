@@ -16,6 +16,7 @@ void hourglass(const Block&, ReaderContext&);
 void set_node_list(const Block&, ReaderContext&);
 void set_part_list(const Block&, ReaderContext&);
 void set_segment(const Block&, ReaderContext&);
+void change_p_order(const Block&, ReaderContext&);  // extension, see docs/keywords.md
 
 // handlers_loads.cpp
 void boundary_spc(const Block&, ReaderContext&);

@@ -360,3 +360,38 @@ void set_segment(const Block& block, ReaderContext& context) {
 }
 
 }  // namespace rf::io::handlers
+
+namespace rf::io::handlers {
+
+// RigidFlex extension in LS-DYNA decks: the IMPETUS *CHANGE_P-ORDER card, fields TYPE ID ORDER
+// (10 wide, or comma-separated). TYPE is P/PART, PS/PSET or ALL.
+void change_p_order(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  int n = 0;
+  while (true) {
+    cursor.skip_blank_lines();
+    if (cursor.at_end()) break;
+    const Card card = cursor.next(++n, kEightByTen, "TYPE ID ORDER");
+    model::POrderChange change;
+    const std::string type = to_upper(card.text(0));
+    if (type == "P" || type == "PART") {
+      change.target = model::Target::Part;
+    } else if (type == "PS" || type == "PSET") {
+      change.target = model::Target::PartSet;
+    } else if (type == "ALL") {
+      change.target = model::Target::All;
+    } else {
+      throw card.error(
+          "TYPE", fmt::format("'{}' is not P, PART, PS, PSET or ALL", std::string(card.text(0))));
+    }
+    change.id = card.id(1, "ID");
+    change.order = card.flag(2, "ORDER", 0);
+    if (change.order < 1 || change.order > 3) {
+      throw card.error("ORDER", fmt::format("order {} is not supported (1, 2 or 3)", change.order));
+    }
+    change.where = card.location();
+    context.model.p_order_changes.push_back(change);
+  }
+}
+
+}  // namespace rf::io::handlers

@@ -23,6 +23,7 @@ const std::vector<KeywordEntry>& table() {
       {"*SET_PART", set_part_list, {"TITLE"}},
       {"*SET_PART_LIST", set_part_list, {"TITLE"}},
       {"*SET_SEGMENT", set_segment, {"TITLE"}},
+      {"*CHANGE_P-ORDER", change_p_order, {}},
       {"*BOUNDARY_SPC_NODE", boundary_spc, {"ID"}},
       {"*BOUNDARY_SPC_SET", boundary_spc, {"ID"}},
       {"*BOUNDARY_PRESCRIBED_MOTION_NODE", boundary_prescribed_motion, {"ID"}},
