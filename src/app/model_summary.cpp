@@ -41,9 +41,20 @@ void print_model_summary(const model::Model& model, std::FILE* out) {
   for (const auto& e : model.solids) ++shapes[shape_of(e)];
 
   fmt::print(out, "title: {}\n", model.title.empty() ? "(none)" : model.title);
+  fmt::print(out, "dialect: {} ({})\n", model.dialect == "impetus" ? "IMPETUS" : "LS-DYNA",
+             model.dialect_reason);
+  if (!model.unit_system.empty()) fmt::print(out, "unit system: {}\n", model.unit_system);
   fmt::print(out, "files: {}\n", model.files.size());
   for (const auto& f : model.files) fmt::print(out, "  {}\n", f);
-  fmt::print(out, "nodes: {}\n", model.nodes.size());
+  fmt::print(out, "nodes: {}", model.nodes.size());
+  if (model.merged_node_count > 0) {
+    fmt::print(out, " (after merging {} duplicated nodes)", model.merged_node_count);
+  }
+  if (state.generated_node_count > 0) {
+    fmt::print(out, ", plus {} created by *CHANGE_P-ORDER ({} in all)", state.generated_node_count,
+               state.nodes.size());
+  }
+  fmt::print(out, "\n");
   fmt::print(out, "solid elements: {}\n", model.solids.size());
   for (const auto& [shape, count] : shapes) fmt::print(out, "  {}: {}\n", shape, count);
   fmt::print(out, "parts: {}\n", model.parts.size());

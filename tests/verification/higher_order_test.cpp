@@ -16,10 +16,12 @@
 #include <cstdio>
 #include <numbers>
 #include <random>
+#include <set>
 
 #include "element/kernels.hpp"
 #include "io/keyword/reader.hpp"
 #include "model/error.hpp"
+#include "solver/boundary.hpp"
 #include "solver/build_state.hpp"
 #include "solver/simulation.hpp"
 
@@ -209,6 +211,48 @@ TEST(HigherOrder, GeneratedCylinderVolumeConverges) {
   EXPECT_LT(e2, 1e-3);
   EXPECT_LT(e3, 1e-5);
   EXPECT_NEAR(e3_flat, errors[1], 1e-12);  // no smoothing: the same facets as p = 1
+}
+
+}  // namespace
+}  // namespace rf
+
+namespace rf {
+namespace {
+
+TEST(HigherOrder, SeedMeshIsConformingAndTheSeedPointPicksTheEndFace) {
+  const model::Model m =
+      io::read_deck(std::string(RIGIDFLEX_EXAMPLES) + "/seed_rigid_body_update.k");
+  solver::NodeIndex index(m);
+  const solver::State state = solver::build_state(m, index);
+  // A conforming cubic mesh of the two merged cylinders: 70 GLL layers (20 x 3 + 3 x 3 + 1)
+  // of 457 nodes (57 corners, 2 per each of the 104 cross-section edges, 4 per each of the
+  // 48 faces). Anything not shared across an element face or the merged interface adds nodes.
+  EXPECT_EQ(state.nodes.size(), 70u * 457u);
+  std::set<std::int32_t> deformable, rigid;
+  for (const auto& block : state.hex_blocks) {
+    (block.rigid ? rigid : deformable).insert(block.conn.begin(), block.conn.end());
+  }
+  std::vector<std::int32_t> shared;
+  std::set_intersection(deformable.begin(), deformable.end(), rigid.begin(), rigid.end(),
+                        std::back_inserter(shared));
+  EXPECT_EQ(shared.size(), 457u);  // the whole interface face, every GLL node of it
+  for (const auto i : shared) EXPECT_NEAR(state.nodes.x0.z[i], 1.0, 1e-12);
+  // Geometry 1 (seed point at the origin): exactly the nodes of the z = 0 end face.
+  std::vector<std::int32_t> end_face;
+  for (std::size_t i = 0; i < state.nodes.size(); ++i) {
+    if (std::abs(state.nodes.x0.z[i]) < 1e-12) end_face.push_back(static_cast<std::int32_t>(i));
+  }
+  EXPECT_EQ(solver::select_geometry(state, m.geometry_seeds.at(1)), end_face);
+  // A seed on the mantle picks the whole deformable mantle (neighbouring facets turn by
+  // 22.5 deg < 45) but neither end face (90 deg).
+  model::GeometrySeed mantle = m.geometry_seeds.at(1);
+  mantle.point = {0.05, 0.0, 0.5};
+  mantle.pid = 1;
+  const auto picked = solver::select_geometry(state, mantle);
+  for (const auto i : picked) {
+    EXPECT_NEAR(std::hypot(state.nodes.x0.x[i], state.nodes.x0.y[i]), 0.05, 1e-12);
+  }
+  EXPECT_EQ(picked.size(), 61u * 4u * 4u * 3u);  // 61 layers x 48 nodes around
 }
 
 }  // namespace
