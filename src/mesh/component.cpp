@@ -1,5 +1,6 @@
 #include "mesh/component.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -18,13 +19,27 @@ struct CellKey {
 };
 struct CellHash {
   std::size_t operator()(const CellKey& c) const {
-    return static_cast<std::size_t>(c.i * 73856093LL ^ c.j * 19349663LL ^ c.k * 83492791LL);
+    // Unsigned: the products wrap instead of overflowing.
+    return static_cast<std::size_t>(static_cast<std::uint64_t>(c.i) * 73856093ULL ^
+                                    static_cast<std::uint64_t>(c.j) * 19349663ULL ^
+                                    static_cast<std::uint64_t>(c.k) * 83492791ULL);
   }
 };
+// Callers choose h so that |x / h| stays far below 2^63 (see nearest_within).
 CellKey cell_of(const std::array<double, 3>& x, double h) {
   return {static_cast<std::int64_t>(std::floor(x[0] / h)),
           static_cast<std::int64_t>(std::floor(x[1] / h)),
           static_cast<std::int64_t>(std::floor(x[2] / h))};
+}
+
+// Generated coordinates overflow when the input is near the range of double.
+void check_finite(const GeneratedMesh& mesh) {
+  for (const auto& x : mesh.nodes) {
+    if (!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2])) {
+      throw std::invalid_argument(
+          "the generated node coordinates overflow (the dimensions are too large)");
+    }
+  }
 }
 
 // Collects 2D points, merging those closer than tol (block boundaries are generated twice).
@@ -61,6 +76,10 @@ class PointPool {
 GeneratedMesh generate_box(const std::array<double, 3>& lo, const std::array<double, 3>& hi, int nx,
                            int ny, int nz) {
   if (nx < 1 || ny < 1 || nz < 1) throw std::invalid_argument("element counts must be >= 1");
+  // Node indices are 32-bit.
+  if (static_cast<double>(nx + 1) * (ny + 1) * (nz + 1) > 2.0e9) {
+    throw std::invalid_argument("too many elements");
+  }
   GeneratedMesh mesh;
   const std::array<double, 3> a{std::min(lo[0], hi[0]), std::min(lo[1], hi[1]),
                                 std::min(lo[2], hi[2])};
@@ -86,6 +105,7 @@ GeneratedMesh generate_box(const std::array<double, 3>& lo, const std::array<dou
       }
     }
   }
+  check_finite(mesh);
   return mesh;
 }
 
@@ -95,6 +115,11 @@ GeneratedMesh generate_cylinder(const std::array<double, 3>& p1, const std::arra
     throw std::invalid_argument("element counts must be >= 1");
   }
   if (!(radius > 0.0)) throw std::invalid_argument("the radius must be positive");
+  // Node indices are 32-bit.
+  const double per_layer_estimate =
+      (d.square + 1.0) * (d.square + 1.0) + 4.0 * (d.square + 1.0) * (d.radial + 1.0);
+  if (per_layer_estimate * (d.axial + 1.0) > 2.0e9)
+    throw std::invalid_argument("too many elements");
   std::array<double, 3> axis{p2[0] - p1[0], p2[1] - p1[1], p2[2] - p1[2]};
   const double length = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
   if (!(length > 0.0)) throw std::invalid_argument("the two end points coincide");
@@ -194,6 +219,7 @@ GeneratedMesh generate_cylinder(const std::array<double, 3>& p1, const std::arra
           {b + q[0], b + q[1], b + q[2], b + q[3], t + q[0], t + q[1], t + q[2], t + q[3]});
     }
   }
+  check_finite(mesh);
   return mesh;
 }
 
@@ -202,7 +228,18 @@ std::vector<std::int64_t> nearest_within(const std::vector<std::array<double, 3>
                                          double tolerance) {
   std::vector<std::int64_t> out(points.size(), -1);
   if (candidates.empty() || !(tolerance > 0.0)) return out;
-  const double h = tolerance;
+  // Cells of the tolerance's size, but not so small against the coordinates that the cell
+  // indices overflow (a larger cell only costs time; the distance test below decides).
+  double extent = 0.0;
+  for (const auto* list : {&candidates, &points}) {
+    for (const auto& x : *list) {
+      for (const double c : x) {
+        if (!std::isfinite(c)) throw std::invalid_argument("a node coordinate is not finite");
+        extent = std::max(extent, std::abs(c));
+      }
+    }
+  }
+  const double h = std::max(tolerance, 1e-12 * extent);
   std::unordered_map<CellKey, std::vector<std::int64_t>, CellHash> cells;
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     cells[cell_of(candidates[i], h)].push_back(static_cast<std::int64_t>(i));

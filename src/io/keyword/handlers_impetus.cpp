@@ -232,6 +232,40 @@ void output(const Block& block, ReaderContext& context) {
   warn_unread_lines(block, cursor, context);
 }
 
+// Generated meshes are refused above this many elements (all components together) before
+// anything is allocated: a slip such as N_1 = 1e6 would otherwise take gigabytes and hours.
+constexpr double kMaxGeneratedElements = 50.0e6;
+
+// Radial layers of a generated cylinder for the "mesh density parameter" N_2 (ours: IMPETUS
+// does not define the topology), see generate_components.
+int cylinder_radial_layers(int n2) {
+  return std::max(1, n2 / 2);
+}
+
+double component_elements(const ReaderContext::Component& c) {
+  const double n0 = c.divisions[0], n1 = c.divisions[1];
+  if (c.cylinder) return n0 * (n1 * n1 + 4.0 * n1 * cylinder_radial_layers(c.divisions[1]));
+  return n0 * n1 * c.divisions[2];
+}
+
+void check_generated_size(const Card& card, const ReaderContext::Component& c,
+                          const ReaderContext& context, const char* field) {
+  const double elements = component_elements(c);
+  double total = elements;
+  for (const auto& other : context.components) total += component_elements(other);
+  if (elements > kMaxGeneratedElements) {
+    throw card.error(field, fmt::format("the component would have {:.3g} elements; at most {:g} "
+                                        "million generated elements are supported",
+                                        elements, kMaxGeneratedElements / 1e6));
+  }
+  if (total > kMaxGeneratedElements) {
+    throw card.error(field, fmt::format("with this component the generated meshes would have "
+                                        "{:.3g} elements together; at most {:g} million are "
+                                        "supported",
+                                        total, kMaxGeneratedElements / 1e6));
+  }
+}
+
 void component(const Block& block, ReaderContext& context, bool cylinder) {
   CardCursor cursor(block, context.parameters);
   ReaderContext::Component c;
@@ -244,6 +278,7 @@ void component(const Block& block, ReaderContext& context, bool cylinder) {
     c.divisions[1] = count_field(first, 3, "N_2");
     reject_if_set(first, 4, "csysid", "give the end points in global coordinates");
     reject_if_set(first, 5, "symmetry", "only full cylinders (symmetry 0) are generated");
+    check_generated_size(first, c, context, "N_1");
     const Card second = cursor.next(2, kFree, "x_1 y_1 z_1 x_2 y_2 z_2 R_1");
     c.p1 = {second.real(0, "x_1", 0.0), second.real(1, "y_1", 0.0), second.real(2, "z_1", 0.0)};
     c.p2 = {second.real(3, "x_2", 0.0), second.real(4, "y_2", 0.0), second.real(5, "z_2", 0.0)};
@@ -261,6 +296,7 @@ void component(const Block& block, ReaderContext& context, bool cylinder) {
     c.divisions = {count_field(first, 2, "N_x"), count_field(first, 3, "N_y"),
                    count_field(first, 4, "N_z")};
     reject_if_set(first, 5, "csysid", "give the corners in global coordinates");
+    check_generated_size(first, c, context, "N_x");
     const Card second = cursor.next(2, kFree, "x_1 y_1 z_1 x_2 y_2 z_2");
     c.p1 = {second.real(0, "x_1", 0.0), second.real(1, "y_1", 0.0), second.real(2, "z_1", 0.0)};
     c.p2 = {second.real(3, "x_2", 0.0), second.real(4, "y_2", 0.0), second.real(5, "z_2", 0.0)};
@@ -703,7 +739,7 @@ void generate_components(ReaderContext& context) {
         // IMPETUS calls N_2 a "mesh density parameter" without defining the topology; ours:
         // a central N_2 x N_2 square and max(1, N_2 / 2) radial layers, 4 N_2 elements around.
         d.square = c.divisions[1];
-        d.radial = std::max(1, c.divisions[1] / 2);
+        d.radial = cylinder_radial_layers(c.divisions[1]);
         generated = mesh::generate_cylinder(c.p1, c.p2, c.radius, d);
         m.cylinder_surfaces.push_back({c.pid, c.p1, c.p2, c.radius, 360.0 / (4.0 * d.square)});
       } else {
@@ -759,6 +795,8 @@ void merge_nodes(ReaderContext& context) {
     std::unordered_set<Id> seen_slave, seen_master;
     for (const auto& e : m.solids) {
       for (Id n : e.nodes) {
+        // An undefined node is reported with its element by the model checks that follow.
+        if (!index_of.count(n)) continue;
         if (slave_parts.count(e.pid) && seen_slave.insert(n).second) slave_ids.push_back(n);
         if (master_parts.count(e.pid) && seen_master.insert(n).second) master_ids.push_back(n);
       }
@@ -777,9 +815,32 @@ void merge_nodes(ReaderContext& context) {
       context.warn(merge.where, "no nodes were close enough to merge (check tol)");
       continue;
     }
+    // A master node that is itself replaced (overlapping entities): follow to the end.
+    for (auto& [from, to] : replace) {
+      for (std::size_t hops = 0; hops < replace.size(); ++hops) {
+        const auto next = replace.find(to);
+        if (next == replace.end() || next->second == to) break;
+        to = next->second;
+      }
+    }
     for (auto& e : m.solids) {
+      bool changed = false;
       for (Id& n : e.nodes) {
-        if (const auto it = replace.find(n); it != replace.end()) n = it->second;
+        if (const auto it = replace.find(n); it != replace.end()) {
+          n = it->second;
+          changed = true;
+        }
+      }
+      if (!changed) continue;
+      for (std::size_t a = 0; a < e.nodes.size(); ++a) {
+        for (std::size_t b = a + 1; b < e.nodes.size(); ++b) {
+          if (e.nodes[a] != e.nodes[b]) continue;
+          throw located_error(merge.where, "tol",
+                              fmt::format("merging within tol = {:g} makes two corners of "
+                                          "element {} one node ({}): the tolerance must be "
+                                          "well below the element size",
+                                          merge.tolerance, e.id, e.nodes[a]));
+        }
       }
     }
     for (auto& [sid, set] : m.node_sets) {
@@ -916,6 +977,11 @@ void finish_impetus(ReaderContext& context) {
   generate_components(context);
   merge_nodes(context);
   resolve_motions(context);
+  // IMPETUS's default frame interval (*OUTPUT dt_imp blank or no *OUTPUT): t_term / 100.
+  auto& m = context.model;
+  if (m.output.d3plot_dt <= 0.0 && m.termination.endtim > 0.0) {
+    m.output.d3plot_dt = m.termination.endtim / 100.0;
+  }
   // IMPETUS writes rigid body histories with its ASCII output; so do we (rbdout.csv).
   for (const auto& [mid, mat] : context.model.materials) {
     if (mat.kind == model::MaterialKind::Rigid) {
