@@ -213,12 +213,6 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
     nodes.x0.y[i] = model.nodes[i].x[1];
     nodes.x0.z[i] = model.nodes[i].x[2];
   }
-  nodes.x = nodes.x0;
-  nodes.v.resize(model_nodes);
-  nodes.a.resize(model_nodes);
-  nodes.f_int.resize(model_nodes);
-  nodes.f_ext.resize(model_nodes);
-  nodes.mass.assign(model_nodes, 0.0);
 
   // Group elements by part in part-ID order; input order is kept within a part so that
   // results do not depend on how the deck interleaves parts.
@@ -279,16 +273,15 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
     state.hex_blocks.push_back(std::move(block));
   }
 
+  // p-elevation appends nodes; the nodal arrays are sized once all nodes exist.
   elevate_blocks(model, state);
-  if (state.generated_node_count > 0) {
-    const std::size_t total = nodes.id.size();
-    nodes.x = nodes.x0;
-    nodes.v.resize(total);
-    nodes.a.resize(total);
-    nodes.f_int.resize(total);
-    nodes.f_ext.resize(total);
-    nodes.mass.assign(total, 0.0);
-  }
+  const std::size_t total = nodes.id.size();
+  nodes.x = nodes.x0;
+  nodes.v.resize(total);
+  nodes.a.resize(total);
+  nodes.f_int.resize(total);
+  nodes.f_ext.resize(total);
+  nodes.mass.assign(total, 0.0);
   const std::size_t n_all = nodes.size();
   const element::NodalView view{nodes.x.x.data(), nodes.x.y.data(), nodes.x.z.data(),
                                 nodes.v.x.data(), nodes.v.y.data(), nodes.v.z.data()};

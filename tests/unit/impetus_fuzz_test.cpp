@@ -7,9 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
-#include <random>
 #include <regex>
 
+#include "deck_mutation.hpp"
 #include "keyword_test_util.hpp"
 #include "solver/boundary.hpp"
 #include "solver/build_state.hpp"
@@ -31,23 +31,6 @@ std::string replace_all(std::string text, const std::string& from, const std::st
   return text;
 }
 
-std::vector<std::string> split_lines(const std::string& text) {
-  std::vector<std::string> lines;
-  std::size_t pos = 0;
-  while (pos < text.size()) {
-    const auto end = text.find('\n', pos);
-    lines.push_back(text.substr(pos, end == std::string::npos ? std::string::npos : end - pos));
-    pos = end == std::string::npos ? text.size() : end + 1;
-  }
-  return lines;
-}
-
-std::string join_lines(const std::vector<std::string>& lines) {
-  std::string out;
-  for (const auto& l : lines) out += l + '\n';
-  return out;
-}
-
 // Spans of numbers, [expressions] and %names: the fields a mutation replaces.
 std::vector<std::pair<std::size_t, std::size_t>> value_spans(const std::string& text) {
   static const std::regex value(R"(\[[^\]\n]*\]|%[A-Za-z_][A-Za-z0-9_]*|[-+]?[0-9][0-9.eE+-]*)");
@@ -60,50 +43,30 @@ std::vector<std::pair<std::size_t, std::size_t>> value_spans(const std::string& 
   return spans;
 }
 
-std::string mutate(const std::string& original, std::mt19937_64& rng) {
-  auto pick = [&](std::size_t n) {
-    return n == 0 ? 0 : std::uniform_int_distribution<std::size_t>(0, n - 1)(rng);
-  };
+std::string mutate(const std::string& original, rf::test::DeckMutator& m) {
+  const auto pick = [&](std::size_t n) { return m.pick(n); };
   std::string text = original;
   const int edits = 1 + static_cast<int>(pick(3));
   for (int e = 0; e < edits; ++e) {
     switch (pick(12)) {
-      case 0:  // truncate
-        text.resize(pick(text.size() + 1));
+      case 0:
+        m.truncate(text);
         break;
-      case 1: {  // delete a line
-        auto lines = split_lines(text);
-        if (!lines.empty()) lines.erase(lines.begin() + static_cast<long>(pick(lines.size())));
-        text = join_lines(lines);
+      case 1:
+        m.delete_line(text);
         break;
-      }
-      case 2: {  // duplicate a line
-        auto lines = split_lines(text);
-        if (!lines.empty()) {
-          const auto i = pick(lines.size());
-          lines.insert(lines.begin() + static_cast<long>(i), lines[i]);
-        }
-        text = join_lines(lines);
+      case 2:
+        m.duplicate_line(text);
         break;
-      }
-      case 3: {  // swap two lines
-        auto lines = split_lines(text);
-        if (lines.size() > 1) std::swap(lines[pick(lines.size())], lines[pick(lines.size())]);
-        text = join_lines(lines);
+      case 3:
+        m.swap_lines(text);
         break;
-      }
-      case 4:  // a character that matters to the IMPETUS reader
-        if (!text.empty()) {
-          static const std::string interesting = "0123456789.,-+eE*/^%[]()\"# \tPGNSXYZ_=\n";
-          text[pick(text.size())] = interesting[pick(interesting.size())];
-        }
+      case 4:
+        m.replace_character(text, "0123456789.,-+eE*/^%[]()\"# \tPGNSXYZ_=\n");
         break;
-      case 5: {  // random bytes, NUL and high bytes included
-        std::string junk(1 + pick(16), '\0');
-        for (char& c : junk) c = static_cast<char>(pick(256));
-        text.insert(pick(text.size() + 1), junk);
+      case 5:
+        m.insert_junk(text);
         break;
-      }
       case 6:
       case 7: {  // replace a value by something odd
         const auto spans = value_spans(text);
@@ -194,7 +157,7 @@ std::string mutate(const std::string& original, std::mt19937_64& rng) {
                                                "*END",
                                                "*KEYWORD",
                                                "*RIGID_BODY_UPDATE"};
-        auto lines = split_lines(text);
+        auto lines = rf::test::DeckMutator::split_lines(text);
         std::vector<std::size_t> command_lines;
         for (std::size_t i = 0; i < lines.size(); ++i) {
           if (!lines[i].empty() && lines[i][0] == '*') command_lines.push_back(i);
@@ -202,7 +165,7 @@ std::string mutate(const std::string& original, std::mt19937_64& rng) {
         if (!command_lines.empty()) {
           lines[command_lines[pick(command_lines.size())]] = commands[pick(std::size(commands))];
         }
-        text = join_lines(lines);
+        text = rf::test::DeckMutator::join_lines(lines);
         break;
       }
       case 11: {  // an undefined parameter
@@ -281,7 +244,7 @@ TEST(ImpetusFuzz, DamagedDecksGiveModelOrInputError) {
     EXPECT_EQ(model.dialect, "impetus");
     EXPECT_EQ(set_up(model), "");
   }
-  std::mt19937_64 rng(20250611);
+  rf::test::DeckMutator mutator(20250611);
   const auto start = std::chrono::steady_clock::now();
   double set_up_seconds = 0.0;
   int models = 0, errors = 0, set_ups = 0;
@@ -289,7 +252,7 @@ TEST(ImpetusFuzz, DamagedDecksGiveModelOrInputError) {
   for (int i = 0; i < kVariants; ++i) {
     // The full seed deck generates 32 000 nodes per read: one variant in 16 uses it.
     const std::size_t which = i % 16 == 0 ? 0 : 1 + static_cast<std::size_t>(i) % 3;
-    const std::string text = mutate(decks[which], rng);
+    const std::string text = mutate(decks[which], mutator);
     rf::model::Model model;
     try {
       model = rf::io::read_deck_text(text, "fuzz.k", RIGIDFLEX_TEST_DECKS);
