@@ -554,7 +554,8 @@ void Simulation::select_time_step() {
     throw InputError(
         {.file = {}, .line = 0, .keyword = "*CONTROL_TIMESTEP", .card = 1, .field = "DTINIT"},
         "the model has no deformable elements, so nothing limits the time step: "
-        "give DTINIT (or LCTM) on *CONTROL_TIMESTEP");
+        "give DTINIT (or LCTM) on *CONTROL_TIMESTEP, or DTMAX on the "
+        "*DEFORMABLE_TO_RIGID_AUTOMATIC set that made every part rigid");
   }
   if (!std::isfinite(dt) || dt <= 0.0) {
     throw SolverError(fmt::format("no valid time step at time {:.6g}: element {} gives {:.6g}",

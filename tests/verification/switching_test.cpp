@@ -204,5 +204,97 @@ TEST(PartSwitching, FrozenStressReturnsRotatedByTheBodyRotation) {
   }
 }
 
+
+// Two separate blocks: deformable part 1 at the origin, *MAT_RIGID part 2 two metres away,
+// moving and spinning differently. Part 1 is merged into part 2's body (LRB) at t = 0.05.
+std::string two_block_deck(const std::string& switching) {
+  BoxMesh a;
+  a.nx = a.ny = a.nz = 2;
+  std::string deck = "*KEYWORD\n" + a.keyword_text(1) + elastic_part(1000.0, 1e7, 0.3, 1, 4);
+  // Part 2: one hexahedron [2, 3] x [0, 1] x [0, 0.5], nodes 101..108, element 101.
+  deck += "*NODE\n";
+  const double xs[2] = {2.0, 3.0}, ys[2] = {0.0, 1.0}, zs[2] = {0.0, 0.5};
+  const int order[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                           {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  for (int k = 0; k < 8; ++k) {
+    deck += fmt::format("{},{},{},{}\n", 101 + k, xs[order[k][0]], ys[order[k][1]],
+                        zs[order[k][2]]);
+  }
+  deck += "*ELEMENT_SOLID\n101,2,101,102,103,104,105,106,107,108\n";
+  deck += "*PART\nrigid\n2,1,2\n*MAT_RIGID\n2,3000.0,1e7,0.3\n";
+  // ID STYP(2: part) OMEGA VX VY VZ / XC YC ZC NX NY NZ: the rigid block spins about z.
+  deck += "*INITIAL_VELOCITY_GENERATION\n2,2,3.0,-1.0,0.5,0.0\n2.5,0.5,0.25,0,0,1\n";
+  deck += "*INITIAL_VELOCITY_GENERATION\n1,2,0.0,4.0,0.3,0.2\n0.5,0.5,0.5,0,0,1\n";
+  return deck + switching + "*CONTROL_TERMINATION\n0.15\n*END\n";
+}
+
+TEST(PartSwitching, MergeIntoMovingLeadRigidBodyConservesMomenta) {
+  const std::string merge =
+      "*DEFORMABLE_TO_RIGID_AUTOMATIC\n11,0,0.05\n0,0,0,0.004,1,0\n1,2\n";
+  solver::Simulation sim(read(two_block_deck(merge)), {});
+  ASSERT_EQ(sim.rigid_bodies().bodies.size(), 1u);
+  const auto total = [&] {
+    // Free nodes plus bodies, at the same time levels (x^n, v^{n-1/2}).
+    Vector3d p = Vector3d::Zero(), h = Vector3d::Zero();
+    const auto& s = sim.state();
+    const auto& rigid = sim.rigid_bodies();
+    for (std::size_t i = 0; i < s.nodes.size(); ++i) {
+      if (rigid.is_rigid(static_cast<std::int32_t>(i))) continue;
+      const Vector3d x(s.nodes.x.x[i], s.nodes.x.y[i], s.nodes.x.z[i]);
+      const Vector3d v(s.nodes.v.x[i], s.nodes.v.y[i], s.nodes.v.z[i]);
+      p += s.nodes.mass[i] * v;
+      h += x.cross(s.nodes.mass[i] * v);
+    }
+    for (const auto& b : rigid.bodies) {
+      p += b.state.mass * b.state.velocity;
+      h += b.state.centre.cross(b.state.mass * b.state.velocity) + b.state.angular_momentum;
+    }
+    return std::pair{p, h};
+  };
+  sim.cycle();
+  const auto [p0, h0] = total();
+  const double mass_rigid = sim.rigid_bodies().bodies[0].state.mass;
+  EXPECT_NEAR(mass_rigid, 3000.0 * 0.5, 1e-9);
+  while (sim.switch_events().empty()) sim.cycle();
+  ASSERT_EQ(sim.rigid_bodies().bodies.size(), 1u);  // merged into part 2's body
+  const auto& body = sim.rigid_bodies().bodies[0];
+  EXPECT_EQ(body.id, 2);
+  ASSERT_EQ(body.parts.size(), 2u);
+  EXPECT_NEAR(body.state.mass, 1500.0 + 1000.0 * 1.0, 1e-9);
+  while (!sim.finished()) sim.cycle();
+  const auto [p1, h1] = total();
+  EXPECT_NEAR((p1 - p0).norm(), 0.0, 1e-12 * p0.norm());
+  EXPECT_NEAR((h1 - h0).norm(), 0.0, 1e-11 * h0.norm());
+  // Energy: what the merge removed is reported, the balance closes.
+  EXPECT_GT(sim.energy().switch_energy, 0.0);
+  EXPECT_NEAR(sim.energy().ratio(), 1.0, 1e-6);
+}
+
+// *DEFORMABLE_TO_RIGID at the start with *DEFORMABLE_TO_RIGID_INERTIA: the body takes the
+// card's mass, and moves as a free rigid body (constant momentum and centre velocity).
+TEST(PartSwitching, SwitchedAtStartWithInertiaCard) {
+  const std::string at_start =
+      "*DEFORMABLE_TO_RIGID\n1\n"
+      "*DEFORMABLE_TO_RIGID_INERTIA\n1\n1.0,1.0,1.0,2000.0\n400.0,0,0,400.0,0,400.0\n"
+      "*CONTROL_TIMESTEP\n0.004\n";
+  solver::Simulation sim(read(two_block_deck(at_start)), {});
+  ASSERT_EQ(sim.rigid_bodies().bodies.size(), 2u);
+  ASSERT_EQ(sim.switch_events().size(), 1u);
+  EXPECT_EQ(sim.switch_events()[0].swset, 0);
+  const solver::RigidBody* switched = nullptr;
+  for (const auto& b : sim.rigid_bodies().bodies) {
+    if (b.id == 1) switched = &b;
+  }
+  ASSERT_NE(switched, nullptr);
+  EXPECT_DOUBLE_EQ(switched->state.mass, 2000.0);
+  // Momentum of the part's nodes (4, 0.3, 0.2 m/s on 1000 kg of lumped mass) is kept.
+  EXPECT_NEAR(switched->state.velocity.x(), 4.0 * 1000.0 / 2000.0, 1e-12);
+  const Vector3d v0 = switched->state.velocity;
+  while (!sim.finished()) sim.cycle();
+  for (const auto& b : sim.rigid_bodies().bodies) {
+    if (b.id == 1) EXPECT_NEAR((b.state.velocity - v0).norm(), 0.0, 1e-12);
+  }
+}
+
 }  // namespace
 }  // namespace rf::test
