@@ -216,7 +216,19 @@ void Simulation::switch_parts_if_due() {
   for (const int k : due) {
     const auto& set = model_.switching.automatic[k];
     apply_switch(set.swset, set.to_rigid, set.to_deformable, set.dtmax);
+    // NRBF: the nodal rigid bodies besides those merged by the switch (remark 4: all of them).
+    double activation = 0.0;
+    if (set.nrbf == 1) activation = switcher_->delete_nodal_rigid_bodies(state_.time, state_, rigid_);
+    if (set.nrbf == 2) {
+      activation = switcher_->activate_nodal_rigid_bodies(state_.time, state_, rigid_);
+    }
+    energy_.switch_energy -= activation;
+    energy_.kinetic += activation;
     automatic_switching_->fired(k, state_.time);
+  }
+  if (!due.empty()) {
+    for (auto& notice : switcher_->notices) warnings_.push_back({{}, std::move(notice)});
+    switcher_->notices.clear();
   }
 }
 
@@ -232,6 +244,19 @@ void Simulation::apply_switch(model::Id swset, const std::vector<model::PartSwit
   }
   std::vector<bool> was_rigid;
   for (const auto& block : state_.hex_blocks) was_rigid.push_back(block.rigid);
+  // Constraints on nodes that now move with a body do not act (docs/switching.md): say so.
+  if (!to_rigid.empty() && !events.empty()) {
+    std::int64_t held = 0;
+    for (std::size_t i = 0; i < state_.nodes.size(); ++i) {
+      if (rigid_.is_rigid(static_cast<std::int32_t>(i)) && boundary_.fixed[i] != 0) ++held;
+    }
+    if (held > 0) {
+      warnings_.push_back({{}, fmt::format("t = {:.6g}: {} nodes with SPCs move with rigid "
+                                           "bodies after switch set {}; the SPCs do not act "
+                                           "on them while they are rigid",
+                                           state_.time, held, swset)});
+    }
+  }
   if (!to_deformable.empty()) {
     events.push_back(switcher_->to_deformable(to_deformable, state_.time, state_, rigid_));
   }
@@ -366,6 +391,8 @@ void Simulation::update_velocities() {
   double reaction_work = 0.0;
   if (dt_avg > 0.0) {
     for (const auto i : boundary_.constrained_nodes) {
+      // A node of a part switched rigid moves with its body; its SPC does not act meanwhile.
+      if (body_of && body_of[i] >= 0) continue;
       const double m = nodes.mass[i];
       const double dvx = nodes.v.x[i] - vp.x[i];
       const double dvy = nodes.v.y[i] - vp.y[i];

@@ -504,6 +504,68 @@ SwitchEvent PartSwitcher::to_deformable(const std::vector<model::PartSwitch>& ca
   return event;
 }
 
+double PartSwitcher::delete_nodal_rigid_bodies(double time, State& state, RigidSystem& rigid) {
+  std::set<int> gone;
+  for (std::size_t b = 0; b < rigid.bodies.size(); ++b) {
+    RigidBody& body = rigid.bodies[b];
+    // Nodal bodies that shared nodes with a switched part were merged into its body already
+    // (the manual: "for all values of NRBF"); a nodal body holding switched parts stays.
+    if (!body.nodal || !body.parts.empty()) continue;
+    auto& nodes = state.nodes;
+    rigid::rigid_node_velocities(body.state.velocity, body.state.angular_velocity,
+                                 body.state.centre, body.nodes, nodes.x.x.data(),
+                                 nodes.x.y.data(), nodes.x.z.data(), nodes.v.x.data(),
+                                 nodes.v.y.data(), nodes.v.z.data());
+    for (const auto i : body.nodes) rigid.body_of_node[i] = -1;
+    notices.push_back(fmt::format("t = {:.6g}: nodal rigid body {} deleted (NRBF = 1)", time,
+                                  body.id));
+    deleted_nodal_.push_back(body);
+    gone.insert(static_cast<int>(b));
+  }
+  remove_bodies(rigid, gone, {});
+  return 0.0;  // the nodes keep the field: no kinetic energy changes
+}
+
+double PartSwitcher::activate_nodal_rigid_bodies(double time, State& state, RigidSystem& rigid) {
+  double change = 0.0;
+  for (RigidBody& body : deleted_nodal_) {
+    Momenta m;
+    bool free = true;
+    for (const auto i : body.nodes) free = free && rigid.body_of_node[i] < 0;
+    if (!free) {
+      notices.push_back(fmt::format("t = {:.6g}: nodal rigid body {} not activated (NRBF = 2): "
+                                    "a node of it belongs to another rigid body now",
+                                    time, body.id));
+      continue;
+    }
+    for (const auto i : body.nodes) m.add_node(state, i);
+    rigid::MassProperties props;
+    if (body.inertia_from_card) {
+      // The card's mass and tensor travel with the nodes' centroid (turned as the body was).
+      props = body_properties(body.state);
+      Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+      for (const auto i : body.nodes) centroid += node_position(state, i);
+      props.centre = centroid / static_cast<double>(body.nodes.size());
+    } else {
+      props = rigid::mass_properties(body.nodes, state.nodes.mass.data(), state.nodes.x.x.data(),
+                                     state.nodes.x.y.data(), state.nodes.x.z.data());
+    }
+    const int index = static_cast<int>(rigid.bodies.size());
+    rigid.bodies.push_back(body);
+    RigidBody& fresh = rigid.bodies.back();
+    define_body(fresh, props, m, body_rotation(body), model_.rigid_body_update, state);
+    for (const auto i : fresh.nodes) rigid.body_of_node[i] = index;
+    change += rigid::kinetic_energy(fresh.state) - m.kinetic;
+    notices.push_back(fmt::format("t = {:.6g}: nodal rigid body {} activated (NRBF = 2)", time,
+                                  body.id));
+  }
+  std::erase_if(deleted_nodal_, [&](const RigidBody& b) {
+    return std::any_of(rigid.bodies.begin(), rigid.bodies.end(),
+                       [&](const RigidBody& r) { return r.nodal && r.id == b.id; });
+  });
+  return change;
+}
+
 AutomaticSwitching::AutomaticSwitching(const std::vector<model::AutomaticSwitchSet>& sets)
     : sets_(sets), state_(sets.size()) {
   for (std::size_t k = 0; k < sets.size(); ++k) state_[k].armed = sets[k].paired != -1;

@@ -48,6 +48,14 @@ class PartSwitcher {
   SwitchEvent to_deformable(const std::vector<model::PartSwitch>& cards, double time,
                             solver::State& state, solver::RigidSystem& rigid);
 
+  // NRBF = 1: nodal rigid bodies that share no node with a body made by switching are
+  // deleted (kept for NRBF = 2); their nodes go on with the body's velocity field.
+  // NRBF = 2: deleted nodal rigid bodies are made again from their nodes' current state,
+  // conserving momenta. Both return the kinetic energy change (<= 0 for activation).
+  double delete_nodal_rigid_bodies(double time, solver::State& state, solver::RigidSystem& rigid);
+  double activate_nodal_rigid_bodies(double time, solver::State& state,
+                                     solver::RigidSystem& rigid);
+
   // Strain energy held by the elements of parts that are rigid by switching (computed from
   // their frozen stresses, linear elasticity).
   double frozen_energy() const;
@@ -66,6 +74,7 @@ class PartSwitcher {
   const model::Model& model_;
   std::map<model::Id, int> block_of_part_;
   std::map<model::Id, SwitchedPart> switched_;
+  std::vector<solver::RigidBody> deleted_nodal_;  // NRBF = 1, for NRBF = 2
 };
 
 // Physical rotation of a body since its reference (R R0^T): continuous across re-definitions

@@ -296,5 +296,43 @@ TEST(PartSwitching, SwitchedAtStartWithInertiaCard) {
   }
 }
 
+
+// NRBF: a nodal rigid body on the top face of block 1 is deleted when block 2 switches rigid
+// (NRBF = 1; it shares no node with block 2) and made again when block 2 switches back
+// (NRBF = 2). Momenta are conserved through all of it.
+TEST(PartSwitching, NodalRigidBodiesDeletedAndActivatedByNrbf) {
+  std::string deck = two_block_deck(
+      "*DEFORMABLE_TO_RIGID_AUTOMATIC\n31,0,0.02,0,0,0,32,1\n1,0,0,0.004,1,0\n2\n"
+      "*DEFORMABLE_TO_RIGID_AUTOMATIC\n32,0,0.06,0,0,0,31,-1\n2,0,0,0,0,1\n2\n");
+  // Part 2 deformable instead of *MAT_RIGID, and the nodal rigid body.
+  deck.replace(deck.find("*PART\nrigid\n2,1,2\n"), 18, "*PART\nsoft\n2,1,1\n");
+  BoxMesh a;
+  a.nx = a.ny = a.nz = 2;
+  std::vector<int> top;
+  for (int j = 0; j <= 2; ++j)
+    for (int i = 0; i <= 2; ++i) top.push_back(a.node_id(i, j, 2));
+  deck.insert(deck.find("*CONTROL_TERMINATION"),
+              node_set(5, top) + "*CONSTRAINED_NODAL_RIGID_BODY\n50,0,5\n");
+  solver::Simulation sim(read(deck), {});
+  auto nodal_count = [&] {
+    int n = 0;
+    for (const auto& b : sim.rigid_bodies().bodies) n += b.nodal ? 1 : 0;
+    return n;
+  };
+  ASSERT_EQ(nodal_count(), 1);
+  const NodalMomenta start = nodal_momenta(sim.state());
+  while (sim.switch_events().empty()) sim.cycle();
+  sim.cycle();
+  EXPECT_EQ(nodal_count(), 0);
+  while (sim.switch_events().size() < 2) sim.cycle();
+  EXPECT_EQ(nodal_count(), 1);
+  while (!sim.finished()) sim.cycle();
+  // Free nodes carry the velocities of their bodies: nodal sums are the totals.
+  const NodalMomenta end = nodal_momenta(sim.state());
+  EXPECT_NEAR((end.p - start.p).norm(), 0.0, 1e-12 * start.p.norm());
+  EXPECT_NEAR((end.h - start.h).norm(), 0.0, 1e-11 * start.h.norm());
+  EXPECT_NEAR(sim.energy().ratio(), 1.0, 1e-3);
+}
+
 }  // namespace
 }  // namespace rf::test
