@@ -111,12 +111,14 @@ void print_model_summary(const model::Model& model, std::FILE* out) {
   }
   if (model.switching.flagged) {
     const auto& sw = model.switching;
-    fmt::print(out, "part switching: {} switched at the start, {} automatic set(s), {} inertia "
-                    "card(s)\n",
+    fmt::print(out,
+               "part switching: {} switched at the start, {} automatic set(s), {} inertia "
+               "card(s)\n",
                sw.at_start.size(), sw.automatic.size(), sw.inertia.size());
     for (const auto& set : sw.automatic) {
-      fmt::print(out, "  set {}: CODE {}, TIME1 {:g}, TIME2 {:g}, TIME3 {:g}{}, {} to rigid, {} to "
-                      "deformable{}\n",
+      fmt::print(out,
+                 "  set {}: CODE {}, TIME1 {:g}, TIME2 {:g}, TIME3 {:g}{}, {} to rigid, {} to "
+                 "deformable{}\n",
                  set.swset, set.code, set.time1, set.time2, set.time3,
                  set.paired != 0 ? fmt::format(", paired with {} ({})", set.relsw,
                                                set.paired > 0 ? "first" : "second")

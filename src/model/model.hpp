@@ -384,10 +384,10 @@ struct SwitchInertia {
 };
 
 struct PartSwitching {
-  bool flagged = false;                    // any *DEFORMABLE_TO_RIGID* keyword (restart needs it)
-  std::vector<PartSwitch> at_start;        // *DEFORMABLE_TO_RIGID
+  bool flagged = false;              // any *DEFORMABLE_TO_RIGID* keyword (restart needs it)
+  std::vector<PartSwitch> at_start;  // *DEFORMABLE_TO_RIGID
   std::vector<AutomaticSwitchSet> automatic;
-  std::map<Id, SwitchInertia> inertia;     // by PID
+  std::map<Id, SwitchInertia> inertia;  // by PID
 };
 
 struct Termination {
@@ -425,11 +425,11 @@ struct Warning {
 
 struct Model {
   std::string title;
-  std::string dialect = "lsdyna";  // "lsdyna" or "impetus"
-  std::string dialect_reason;      // why (detected from content, or the command line)
-  std::string unit_system;         // IMPETUS *UNIT_SYSTEM as written (no conversion is done)
+  std::string dialect = "lsdyna";      // "lsdyna" or "impetus"
+  std::string dialect_reason;          // why (detected from content, or the command line)
+  std::string unit_system;             // IMPETUS *UNIT_SYSTEM as written (no conversion is done)
   std::int64_t merged_node_count = 0;  // nodes removed by *MERGE_DUPLICATED_NODES
-  std::vector<std::string> files;  // every file read, main deck first
+  std::vector<std::string> files;      // every file read, main deck first
 
   std::vector<Node> nodes;           // in input order
   std::vector<SolidElement> solids;  // in input order

@@ -27,8 +27,8 @@ struct GlstatRow {
   double energy_ratio = 1.0;   // total / (initial total + external work)
   double momentum[3] = {0, 0, 0};
   double angular_momentum[3] = {0, 0, 0};  // about the global origin
-  double switch_energy = 0.0;  // kinetic energy removed by deformable-to-rigid switches
-  double frozen_energy = 0.0;  // strain energy held by parts rigid by switching
+  double switch_energy = 0.0;              // kinetic energy removed by deformable-to-rigid switches
+  double frozen_energy = 0.0;              // strain energy held by parts rigid by switching
 };
 
 // Plain CSV file with a fixed header; rows are flushed at close. Numbers use %.9g or

@@ -98,7 +98,8 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
                                                        std::move(dense));
     }
     if (model.switching.flagged) {
-      switch_csv_ = std::make_unique<output::SwitchWriter>(options_.output_directory / "switch.csv");
+      switch_csv_ =
+          std::make_unique<output::SwitchWriter>(options_.output_directory / "switch.csv");
     }
     if (!rigid_.empty() || model.switching.flagged) {
       // *DATABASE_RBDOUT interval, else about 1000 rows per body and run.
@@ -112,7 +113,9 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
   }
   if (model.switching.flagged) {
     switcher_ = std::make_unique<switching::PartSwitcher>(model_, state_);
-    automatic_switching_ = std::make_unique<switching::AutomaticSwitching>(model_.switching.automatic);
+    automatic_switching_ =
+        std::make_unique<switching::AutomaticSwitching>(model_.switching.automatic);
+    switch_due_.reserve(model_.switching.automatic.size());
   }
   initialize();
 }
@@ -211,14 +214,15 @@ void Simulation::run(const std::function<void(const Simulation&)>& on_progress) 
 
 void Simulation::switch_parts_if_due() {
   if (!automatic_switching_ || automatic_switching_->empty()) return;
-  switching::SwitchQueries queries;  // wall and sensor conditions arrive with those features
-  const auto due = automatic_switching_->due(state_.time, queries);
+  automatic_switching_->due(state_.time, switch_queries_, switch_due_);
+  const auto& due = switch_due_;
   for (const int k : due) {
     const auto& set = model_.switching.automatic[k];
     apply_switch(set.swset, set.to_rigid, set.to_deformable, set.dtmax);
     // NRBF: the nodal rigid bodies besides those merged by the switch (remark 4: all of them).
     double activation = 0.0;
-    if (set.nrbf == 1) activation = switcher_->delete_nodal_rigid_bodies(state_.time, state_, rigid_);
+    if (set.nrbf == 1)
+      activation = switcher_->delete_nodal_rigid_bodies(state_.time, state_, rigid_);
     if (set.nrbf == 2) {
       activation = switcher_->activate_nodal_rigid_bodies(state_.time, state_, rigid_);
     }
@@ -251,10 +255,11 @@ void Simulation::apply_switch(model::Id swset, const std::vector<model::PartSwit
       if (rigid_.is_rigid(static_cast<std::int32_t>(i)) && boundary_.fixed[i] != 0) ++held;
     }
     if (held > 0) {
-      warnings_.push_back({{}, fmt::format("t = {:.6g}: {} nodes with SPCs move with rigid "
-                                           "bodies after switch set {}; the SPCs do not act "
-                                           "on them while they are rigid",
-                                           state_.time, held, swset)});
+      warnings_.push_back({{},
+                           fmt::format("t = {:.6g}: {} nodes with SPCs move with rigid "
+                                       "bodies after switch set {}; the SPCs do not act "
+                                       "on them while they are rigid",
+                                       state_.time, held, swset)});
     }
   }
   if (!to_deformable.empty()) {

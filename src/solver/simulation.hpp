@@ -147,6 +147,8 @@ class Simulation {
   std::unique_ptr<switching::PartSwitcher> switcher_;
   std::unique_ptr<switching::AutomaticSwitching> automatic_switching_;
   std::vector<switching::SwitchEvent> switch_events_;
+  switching::SwitchQueries switch_queries_;  // wall and sensor conditions (set once)
+  std::vector<int> switch_due_;              // scratch: sets due this cycle
   std::unique_ptr<output::SwitchWriter> switch_csv_;
   double switch_dt_cap_ = 0.0;  // DTMAX of the last switch set that fired (0: none)
 };

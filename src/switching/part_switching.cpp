@@ -85,8 +85,8 @@ double strain_energy(const element::HexBlock& block) {
     for (int q = 0; q < points; ++q) {
       const double* s = &block.stress[(e * points + q) * 6];
       const double trace = s[0] + s[1] + s[2];
-      const double ss = s[0] * s[0] + s[1] * s[1] + s[2] * s[2] +
-                        2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
+      const double ss =
+          s[0] * s[0] + s[1] * s[1] + s[2] * s[2] + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
       double weight = block.volume[e] / points;
       if (block.order > 1) weight = block.reference_weight[e * points + q];
       sum += weight * ((1.0 + nu) * ss - nu * trace * trace) / (2.0 * young);
@@ -125,7 +125,8 @@ void rotate_block_state(element::HexBlock& block, const Eigen::Matrix3d& q) {
 }
 
 // Removes the bodies whose index is in `gone` and renumbers every reference to bodies.
-void remove_bodies(RigidSystem& rigid, const std::set<int>& gone, const std::map<int, int>& moved_to) {
+void remove_bodies(RigidSystem& rigid, const std::set<int>& gone,
+                   const std::map<int, int>& moved_to) {
   if (gone.empty()) return;
   std::vector<int> new_index(rigid.bodies.size(), -1);
   int next = 0;
@@ -244,11 +245,11 @@ SwitchEvent PartSwitcher::to_rigid(const std::vector<model::PartSwitch>& cards, 
     for (const Id pid : expand({card})) {
       const bool already_rigid = switched_.count(pid) != 0;
       const auto blk = block_of_part_.find(pid);
-      const bool mat_rigid = blk != block_of_part_.end() && state.hex_blocks[blk->second].rigid &&
-                             !already_rigid;
+      const bool mat_rigid =
+          blk != block_of_part_.end() && state.hex_blocks[blk->second].rigid && !already_rigid;
       if ((already_rigid || mat_rigid) && card.lrb == 0) {
-        notices.push_back(fmt::format("t = {:.6g}: part {} is rigid already; nothing to switch",
-                                      time, pid));
+        notices.push_back(
+            fmt::format("t = {:.6g}: part {} is rigid already; nothing to switch", time, pid));
         continue;
       }
       if (blk == block_of_part_.end()) {
@@ -295,9 +296,10 @@ SwitchEvent PartSwitcher::to_rigid(const std::vector<model::PartSwitch>& cards, 
     if (group.lead_part != 0) {
       lead_body = body_of_part(group.lead_part);
       if (lead_body < 0) {
-        throw SolverError(fmt::format("at time {:.6g}: part {} is to be merged into the rigid "
-                                      "body of part {} (LRB), which is not rigid now",
-                                      time, group.parts.front(), group.lead_part));
+        throw SolverError(
+            fmt::format("at time {:.6g}: part {} is to be merged into the rigid "
+                        "body of part {} (LRB), which is not rigid now",
+                        time, group.parts.front(), group.lead_part));
       }
       bodies.insert(lead_body);
     }
@@ -513,12 +515,12 @@ double PartSwitcher::delete_nodal_rigid_bodies(double time, State& state, RigidS
     if (!body.nodal || !body.parts.empty()) continue;
     auto& nodes = state.nodes;
     rigid::rigid_node_velocities(body.state.velocity, body.state.angular_velocity,
-                                 body.state.centre, body.nodes, nodes.x.x.data(),
-                                 nodes.x.y.data(), nodes.x.z.data(), nodes.v.x.data(),
-                                 nodes.v.y.data(), nodes.v.z.data());
+                                 body.state.centre, body.nodes, nodes.x.x.data(), nodes.x.y.data(),
+                                 nodes.x.z.data(), nodes.v.x.data(), nodes.v.y.data(),
+                                 nodes.v.z.data());
     for (const auto i : body.nodes) rigid.body_of_node[i] = -1;
-    notices.push_back(fmt::format("t = {:.6g}: nodal rigid body {} deleted (NRBF = 1)", time,
-                                  body.id));
+    notices.push_back(
+        fmt::format("t = {:.6g}: nodal rigid body {} deleted (NRBF = 1)", time, body.id));
     deleted_nodal_.push_back(body);
     gone.insert(static_cast<int>(b));
   }
@@ -533,9 +535,10 @@ double PartSwitcher::activate_nodal_rigid_bodies(double time, State& state, Rigi
     bool free = true;
     for (const auto i : body.nodes) free = free && rigid.body_of_node[i] < 0;
     if (!free) {
-      notices.push_back(fmt::format("t = {:.6g}: nodal rigid body {} not activated (NRBF = 2): "
-                                    "a node of it belongs to another rigid body now",
-                                    time, body.id));
+      notices.push_back(
+          fmt::format("t = {:.6g}: nodal rigid body {} not activated (NRBF = 2): "
+                      "a node of it belongs to another rigid body now",
+                      time, body.id));
       continue;
     }
     for (const auto i : body.nodes) m.add_node(state, i);
@@ -556,8 +559,8 @@ double PartSwitcher::activate_nodal_rigid_bodies(double time, State& state, Rigi
     define_body(fresh, props, m, body_rotation(body), model_.rigid_body_update, state);
     for (const auto i : fresh.nodes) rigid.body_of_node[i] = index;
     change += rigid::kinetic_energy(fresh.state) - m.kinetic;
-    notices.push_back(fmt::format("t = {:.6g}: nodal rigid body {} activated (NRBF = 2)", time,
-                                  body.id));
+    notices.push_back(
+        fmt::format("t = {:.6g}: nodal rigid body {} activated (NRBF = 2)", time, body.id));
   }
   std::erase_if(deleted_nodal_, [&](const RigidBody& b) {
     return std::any_of(rigid.bodies.begin(), rigid.bodies.end(),
@@ -567,13 +570,16 @@ double PartSwitcher::activate_nodal_rigid_bodies(double time, State& state, Rigi
 }
 
 AutomaticSwitching::AutomaticSwitching(const std::vector<model::AutomaticSwitchSet>& sets)
-    : sets_(sets), state_(sets.size()) {
-  for (std::size_t k = 0; k < sets.size(); ++k) state_[k].armed = sets[k].paired != -1;
+    : sets_(sets), state_(sets.size()), released_parts_(sets.size()) {
+  for (std::size_t k = 0; k < sets.size(); ++k) {
+    state_[k].armed = sets[k].paired != -1;
+    for (const auto& c : sets[k].to_deformable) released_parts_[k].push_back(c.pid);
+  }
 }
 
-std::vector<int> AutomaticSwitching::due(double t, const SwitchQueries& queries) const {
-  std::vector<int> out;
-  if (t < blocked_until_) return out;
+void AutomaticSwitching::due(double t, const SwitchQueries& queries, std::vector<int>& out) const {
+  out.clear();
+  if (t < blocked_until_) return;
   for (std::size_t k = 0; k < sets_.size(); ++k) {
     const auto& set = sets_[k];
     const auto& st = state_[k];
@@ -587,22 +593,20 @@ std::vector<int> AutomaticSwitching::due(double t, const SwitchQueries& queries)
       } else if (set.code == 1 || set.code == 3) {
         const double force = queries.wall_force ? queries.wall_force(set.entno) : -1.0;
         if (force < 0.0) {
-          throw SolverError(fmt::format("switch set {}: rigid wall {} does not exist", set.swset,
-                                        set.entno));
+          throw SolverError(
+              fmt::format("switch set {}: rigid wall {} does not exist", set.swset, set.entno));
         }
         if (set.code == 1) {
           fire = force == 0.0;
         } else {
-          std::vector<Id> parts;
-          for (const auto& c : set.to_deformable) parts.push_back(c.pid);
-          fire = force > 0.0 || (set.offset > 0.0 && queries.wall_within_offset &&
-                                 queries.wall_within_offset(set.entno, set.offset, parts));
+          fire = force > 0.0 ||
+                 (set.offset > 0.0 && queries.wall_within_offset &&
+                  queries.wall_within_offset(set.entno, set.offset, released_parts_[k]));
         }
       }
     }
     if (fire) out.push_back(static_cast<int>(k));
   }
-  return out;
 }
 
 void AutomaticSwitching::fired(int k, double t) {

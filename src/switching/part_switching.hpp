@@ -53,8 +53,7 @@ class PartSwitcher {
   // NRBF = 2: deleted nodal rigid bodies are made again from their nodes' current state,
   // conserving momenta. Both return the kinetic energy change (<= 0 for activation).
   double delete_nodal_rigid_bodies(double time, solver::State& state, solver::RigidSystem& rigid);
-  double activate_nodal_rigid_bodies(double time, solver::State& state,
-                                     solver::RigidSystem& rigid);
+  double activate_nodal_rigid_bodies(double time, solver::State& state, solver::RigidSystem& rigid);
 
   // Strain energy held by the elements of parts that are rigid by switching (computed from
   // their frozen stresses, linear elasticity).
@@ -66,7 +65,7 @@ class PartSwitcher {
 
  private:
   struct SwitchedPart {
-    model::Id body_id = 0;          // the body it belongs to (its first part's ID)
+    model::Id body_id = 0;            // the body it belongs to (its first part's ID)
     Eigen::Matrix3d rotation_offset;  // Q = Phi_body * offset: rotation since the switch
     double frozen_energy = 0.0;
   };
@@ -102,8 +101,9 @@ struct SwitchQueries {
 class AutomaticSwitching {
  public:
   explicit AutomaticSwitching(const std::vector<model::AutomaticSwitchSet>& sets);
-  // Indices of the sets whose conditions hold at time t (in deck order). Call once per cycle.
-  std::vector<int> due(double t, const SwitchQueries& queries) const;
+  // Indices of the sets whose conditions hold at time t (in deck order) into `out` (cleared;
+  // no allocation once it has grown). Call once per cycle.
+  void due(double t, const SwitchQueries& queries, std::vector<int>& out) const;
   // Records that set k fired at time t: delay and pairing.
   void fired(int k, double t);
   bool empty() const { return sets_.empty(); }
@@ -112,7 +112,8 @@ class AutomaticSwitching {
  private:
   const std::vector<model::AutomaticSwitchSet>& sets_;
   std::vector<AutomaticSwitchState> state_;
-  double blocked_until_ = -1e300;  // TIME3 of the last switch
+  std::vector<std::vector<model::Id>> released_parts_;  // R2D part IDs per set (OFFSET test)
+  double blocked_until_ = -1e300;                       // TIME3 of the last switch
 };
 
 }  // namespace rf::switching

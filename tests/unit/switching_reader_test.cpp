@@ -79,7 +79,8 @@ TEST(SwitchingReader, ReadsEveryFieldOfAPairedSet) {
   EXPECT_EQ(in.xc[2], 3.0);
   EXPECT_EQ(in.inertia[4], 0.3);
   // An empty *DEFORMABLE_TO_RIGID only flags switching (for a restart).
-  EXPECT_TRUE(rf::io::read_deck_text(base() + "*DEFORMABLE_TO_RIGID\n", "flag.k").switching.flagged);
+  EXPECT_TRUE(
+      rf::io::read_deck_text(base() + "*DEFORMABLE_TO_RIGID\n", "flag.k").switching.flagged);
 }
 
 struct BadCase {
@@ -92,19 +93,23 @@ TEST(SwitchingReader, BadValuesNameFileLineKeywordAndField) {
   const int first = 1 + static_cast<int>(std::count(head.begin(), head.end(), '\n'));
   const std::string d2r = "*DEFORMABLE_TO_RIGID_AUTOMATIC\n";
   const std::vector<BadCase> cases = {
-      {"*DEFORMABLE_TO_RIGID\n99\n", fmt::format("bad.k:{}: *DEFORMABLE_TO_RIGID field PID: part 99 is not defined", first + 1)},
+      {"*DEFORMABLE_TO_RIGID\n99\n",
+       fmt::format("bad.k:{}: *DEFORMABLE_TO_RIGID field PID: part 99 is not defined", first + 1)},
       {"*DEFORMABLE_TO_RIGID\n8,0,PSET\n", "field PID: part set 8 (PTYPE PSET) is not defined"},
       {"*DEFORMABLE_TO_RIGID\n1,0,PARTS\n", "field PTYPE: 'PARTS' is not PART or PSET"},
       {"*DEFORMABLE_TO_RIGID\n3\n", "field PID: part 3 is *MAT_RIGID"},
       {"*DEFORMABLE_TO_RIGID\n1,2\n", "field LRB: part 2 is neither *MAT_RIGID nor switched"},
       {d2r + "5,0,0,0,0,0,0,1\n0,0,0,0,1,0\n1\n", "field RELSW: PAIRED = 1 needs the related"},
       {d2r + "5,0,0,0,0,0,6,0\n0,0,0,0,1,0\n1\n", "field PAIRED: RELSW = 6 names a related set"},
-      {d2r + "5,0,0,0,0,0,6,1\n0,0,0,0,1,0\n1\n", "field RELSW: related switch set 6 is not defined"},
+      {d2r + "5,0,0,0,0,0,6,1\n0,0,0,0,1,0\n1\n",
+       "field RELSW: related switch set 6 is not defined"},
       {d2r + "5,0,0,0,0,0,6,1\n0,0,0,0,1,0\n1\n" + d2r + "6,0,0,0,0,0,5,1\n0,0,0,0,0,1\n1\n",
        "a pair names each other"},
-      {d2r + "5,5\n0,0,0,0,1,0\n1\n", "field CODE: CODE 5: switch set 5 is controlled by *SENSOR_CONTROL"},
+      {d2r + "5,5\n0,0,0,0,1,0\n1\n",
+       "field CODE: CODE 5: switch set 5 is controlled by *SENSOR_CONTROL"},
       {d2r + "5,2,0,0,0,3\n0,0,0,0,1,0\n1\n", "field CODE: CODE 2 switches on a contact force"},
-      {d2r + "5,3,0,0,0,0\n0,0,0,0,1,0\n1\n", "field ENTNO: CODE 3 needs the number of the rigid wall"},
+      {d2r + "5,3,0,0,0,0\n0,0,0,0,1,0\n1\n",
+       "field ENTNO: CODE 3 needs the number of the rigid wall"},
       {d2r + "5,1,0,0,0,1\n0,0,0,0,1,0\n1\n", "defines no *RIGIDWALL_PLANAR"},
       {d2r + "5,6\n0,0,0,0,1,0\n1\n", "field CODE: value 6 is not one of 0..5"},
       {d2r + "5,0,2.0,1.0\n0,0,0,0,1,0\n1\n", "field TIME2: TIME2 = 1 is before TIME1 = 2"},
@@ -117,16 +122,20 @@ TEST(SwitchingReader, BadValuesNameFileLineKeywordAndField) {
       {d2r + "5,0\n0,0,0,0,0,1\n3\n", "field PID: part 3 is *MAT_RIGID: parts defined rigid"},
       {d2r + "5,0\n0,0,0,0,1,0\n1\n" + d2r + "5,0\n0,0,0,0,1,0\n2\n",
        "field SWSET: switch set 5 is already defined"},
-      {"*DEFORMABLE_TO_RIGID_INERTIA\n1\n0,0,0\n1,0,0,1,0,1\n", "field TM: the translational mass is required"},
-      {"*DEFORMABLE_TO_RIGID_INERTIA\n1\n0,0,0,-2\n1,0,0,1,0,1\n", "field TM: mass -2 must be positive"},
+      {"*DEFORMABLE_TO_RIGID_INERTIA\n1\n0,0,0\n1,0,0,1,0,1\n",
+       "field TM: the translational mass is required"},
+      {"*DEFORMABLE_TO_RIGID_INERTIA\n1\n0,0,0,-2\n1,0,0,1,0,1\n",
+       "field TM: mass -2 must be positive"},
       {"*DEFORMABLE_TO_RIGID_INERTIA\n1\n0,0,0,2\n1,0,0,,0,1\n", "field IYY: is required"},
-      {"*DEFORMABLE_TO_RIGID_INERTIA\n3\n0,0,0,2\n1,0,0,1,0,1\n", "field PID: part 3 is *MAT_RIGID"},
-      {"*DEFORMABLE_TO_RIGID_INERTIA\n9\n0,0,0,2\n1,0,0,1,0,1\n", "field PID: part 9 is not defined"},
+      {"*DEFORMABLE_TO_RIGID_INERTIA\n3\n0,0,0,2\n1,0,0,1,0,1\n",
+       "field PID: part 3 is *MAT_RIGID"},
+      {"*DEFORMABLE_TO_RIGID_INERTIA\n9\n0,0,0,2\n1,0,0,1,0,1\n",
+       "field PID: part 9 is not defined"},
   };
   for (const auto& c : cases) {
     const std::string message = input_error_of(base() + c.cards, "bad.k");
-    EXPECT_NE(message.find(c.expected), std::string::npos)
-        << "deck tail:\n" << c.cards << "\nmessage: " << message;
+    EXPECT_NE(message.find(c.expected), std::string::npos) << "deck tail:\n"
+                                                           << c.cards << "\nmessage: " << message;
     EXPECT_NE(message.find("bad.k:"), std::string::npos) << message;
   }
 }

@@ -64,7 +64,8 @@ std::string spinning_block_deck(int elform, int ihq, const std::string& switchin
     y -= 0.4;
     z -= 0.2;
   };
-  std::string deck = "*KEYWORD\n" + mesh.keyword_text() + elastic_part(1000.0, 1e7, 0.3, elform, ihq);
+  std::string deck =
+      "*KEYWORD\n" + mesh.keyword_text() + elastic_part(1000.0, 1e7, 0.3, elform, ihq);
   deck += "*INITIAL_VELOCITY_NODE\n";
   const double w = 10.0;
   for (int k = 0; k <= mesh.nz; ++k)
@@ -74,8 +75,8 @@ std::string spinning_block_deck(int elform, int ihq, const std::string& switchin
         mesh.coordinates(i, j, k, x, y, z);
         const Vector3d v = Vector3d(1.0, 0.5, 0.2) + Vector3d(0, 0, w).cross(Vector3d(x, y, z)) +
                            Vector3d(0.8 * x, 0.0, 0.0);
-        deck += fmt::format("{},{:.17g},{:.17g},{:.17g}\n", mesh.node_id(i, j, k), v.x(), v.y(),
-                            v.z());
+        deck +=
+            fmt::format("{},{:.17g},{:.17g},{:.17g}\n", mesh.node_id(i, j, k), v.x(), v.y(), v.z());
       }
   deck += switching;
   deck += "*CONTROL_TERMINATION\n0.2\n*END\n";
@@ -108,7 +109,7 @@ TEST(PartSwitching, SpinningBlockSwitchedRigidAndBackConservesMomentaAndRotatesS
     double stress_scale = 0.0;
     for (double s : stress_before) stress_scale = std::max(stress_scale, std::abs(s));
     ASSERT_GT(stress_scale, 1e3);  // a real stress state is carried through the rigid phase
-    sim.cycle();  // switches first
+    sim.cycle();                   // switches first
     ASSERT_EQ(sim.switch_events().size(), 1u);
     const auto& to_rigid = sim.switch_events()[0];
     EXPECT_TRUE(to_rigid.to_rigid);
@@ -175,9 +176,9 @@ TEST(PartSwitching, FrozenStressReturnsRotatedByTheBodyRotation) {
   ASSERT_EQ(rigid.bodies.size(), 1u);
   EXPECT_TRUE(block.rigid);
   EXPECT_GT(switcher.frozen_energy(), 0.0);
-  const Matrix3d q = (Eigen::AngleAxisd(0.7, Vector3d::UnitZ()) *
-                      Eigen::AngleAxisd(0.4, Vector3d::UnitX()))
-                         .toRotationMatrix();
+  const Matrix3d q =
+      (Eigen::AngleAxisd(0.7, Vector3d::UnitZ()) * Eigen::AngleAxisd(0.4, Vector3d::UnitX()))
+          .toRotationMatrix();
   rigid.bodies[0].state.rotation = q * rigid.bodies[0].state.rotation;
   switcher.to_deformable({part}, 1.0, state, rigid);
   EXPECT_FALSE(block.rigid);
@@ -204,7 +205,6 @@ TEST(PartSwitching, FrozenStressReturnsRotatedByTheBodyRotation) {
   }
 }
 
-
 // Two separate blocks: deformable part 1 at the origin, *MAT_RIGID part 2 two metres away,
 // moving and spinning differently. Part 1 is merged into part 2's body (LRB) at t = 0.05.
 std::string two_block_deck(const std::string& switching) {
@@ -217,8 +217,8 @@ std::string two_block_deck(const std::string& switching) {
   const int order[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
                            {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
   for (int k = 0; k < 8; ++k) {
-    deck += fmt::format("{},{},{},{}\n", 101 + k, xs[order[k][0]], ys[order[k][1]],
-                        zs[order[k][2]]);
+    deck +=
+        fmt::format("{},{},{},{}\n", 101 + k, xs[order[k][0]], ys[order[k][1]], zs[order[k][2]]);
   }
   deck += "*ELEMENT_SOLID\n101,2,101,102,103,104,105,106,107,108\n";
   deck += "*PART\nrigid\n2,1,2\n*MAT_RIGID\n2,3000.0,1e7,0.3\n";
@@ -229,8 +229,7 @@ std::string two_block_deck(const std::string& switching) {
 }
 
 TEST(PartSwitching, MergeIntoMovingLeadRigidBodyConservesMomenta) {
-  const std::string merge =
-      "*DEFORMABLE_TO_RIGID_AUTOMATIC\n11,0,0.05\n0,0,0,0.004,1,0\n1,2\n";
+  const std::string merge = "*DEFORMABLE_TO_RIGID_AUTOMATIC\n11,0,0.05\n0,0,0,0.004,1,0\n1,2\n";
   solver::Simulation sim(read(two_block_deck(merge)), {});
   ASSERT_EQ(sim.rigid_bodies().bodies.size(), 1u);
   const auto total = [&] {
@@ -295,7 +294,6 @@ TEST(PartSwitching, SwitchedAtStartWithInertiaCard) {
     if (b.id == 1) EXPECT_NEAR((b.state.velocity - v0).norm(), 0.0, 1e-12);
   }
 }
-
 
 // NRBF: a nodal rigid body on the top face of block 1 is deleted when block 2 switches rigid
 // (NRBF = 1; it shares no node with block 2) and made again when block 2 switches back

@@ -290,8 +290,8 @@ void finish_switching(const model::Model& m) {
     if (s.part_set) {
       const auto it = m.part_sets.find(s.pid);
       if (it == m.part_sets.end()) {
-        throw located_error(s.where, "PID", fmt::format("part set {} (PTYPE PSET) is not defined",
-                                                        s.pid));
+        throw located_error(s.where, "PID",
+                            fmt::format("part set {} (PTYPE PSET) is not defined", s.pid));
       }
       parts = it->second.parts;
     } else {

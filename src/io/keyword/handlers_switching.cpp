@@ -92,13 +92,12 @@ void deformable_to_rigid_automatic(const Block& block, ReaderContext& context) {
   switching.flagged = true;
   CardCursor cursor(block, context.parameters);
   model::AutomaticSwitchSet set;
-  const Card first =
-      cursor.next(1, kEightByTen, "SWSET CODE TIME1 TIME2 TIME3 ENTNO RELSW PAIRED");
+  const Card first = cursor.next(1, kEightByTen, "SWSET CODE TIME1 TIME2 TIME3 ENTNO RELSW PAIRED");
   set.swset = positive(first, 0, "SWSET", "switch set");
   for (const auto& other : switching.automatic) {
     if (other.swset == set.swset) {
-      throw first.error("SWSET", fmt::format("switch set {} is already defined at {}:{}",
-                                             set.swset, other.where.file, other.where.line));
+      throw first.error("SWSET", fmt::format("switch set {} is already defined at {}:{}", set.swset,
+                                             other.where.file, other.where.line));
     }
   }
   set.code = flag_of(first, 1, "CODE", 0, 5,
@@ -133,8 +132,8 @@ void deformable_to_rigid_automatic(const Block& block, ReaderContext& context) {
     set.relsw = non_negative(first, 6, "RELSW");
     set.paired = flag_of(first, 7, "PAIRED", -1, 1, "0 not paired, 1 first, -1 second");
     if (set.paired != 0 && set.relsw == 0) {
-      throw first.error("RELSW", fmt::format("PAIRED = {} needs the related switch set RELSW",
-                                             set.paired));
+      throw first.error("RELSW",
+                        fmt::format("PAIRED = {} needs the related switch set RELSW", set.paired));
     }
     if (set.paired == 0 && set.relsw != 0) {
       throw first.error("PAIRED", fmt::format("RELSW = {} names a related set but PAIRED is 0: "
@@ -174,12 +173,12 @@ void deformable_to_rigid_automatic(const Block& block, ReaderContext& context) {
     set.to_rigid.push_back(read_part_switch(cursor.next(n, kEightByTen, "PID LRB PTYPE"), true));
   }
   for (int k = 0; k < r2d; ++k) {
-    set.to_deformable.push_back(read_part_switch(cursor.next(n + 1, kEightByTen, "PID PTYPE"),
-                                                 false));
+    set.to_deformable.push_back(
+        read_part_switch(cursor.next(n + 1, kEightByTen, "PID PTYPE"), false));
   }
   if (d2r == 0 && r2d == 0) {
-    context.warn(second.location(), fmt::format("switch set {} names no parts (D2R = R2D = 0)",
-                                                set.swset));
+    context.warn(second.location(),
+                 fmt::format("switch set {} names no parts (D2R = R2D = 0)", set.swset));
   }
   set.where = first.location();
   if (!blank_lines_only(cursor, block)) {
