@@ -11,6 +11,8 @@
 #include "element/kernels.hpp"
 #include "model/curve.hpp"
 #include "model/error.hpp"
+#include "sensor/sensor.hpp"
+#include "sensor/sensor_output.hpp"
 
 namespace rf::solver {
 
@@ -83,6 +85,9 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
       std::unique(boundary_.constrained_nodes.begin(), boundary_.constrained_nodes.end()),
       boundary_.constrained_nodes.end());
 
+  sensors_ = std::make_unique<sensor::SensorSystem>(
+      sensor::build_sensor_system(model_, node_index_, state_));
+
   if (!options_.output_directory.empty()) {
     std::filesystem::create_directories(options_.output_directory);
     const double span = end_time_ > 0.0 ? end_time_ : 1.0;
@@ -102,6 +107,10 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
       rbdout_schedule_.interval = default_interval(model.output.rbdout_dt, span, 1000.0);
       rbdout_ = std::make_unique<output::RbdoutWriter>(options_.output_directory / "rbdout.csv");
     }
+    if (!sensors_->empty()) {
+      sensor_csv_ = std::make_unique<sensor::SensorCsv>(options_.output_directory / "sensor.csv",
+                                                        glstat_schedule_.interval);
+    }
     if (options_.write_fields) {
       d3plot_schedule_.interval = default_interval(model.output.d3plot_dt, span, 20.0);
       fields_ = std::make_unique<output::FieldWriter>(options_.output_directory);
@@ -120,6 +129,7 @@ void Simulation::initialize() {
   compute_internal_forces();
   compute_external_forces();
   check_breakdown();
+  update_sensors();
   // Initial kinetic energy and momenta at t = 0 (v^0 plays the role of v^{-1/2}); rigid-body
   // nodes are counted through their bodies.
   const NodalState& nodes = state_.nodes;
@@ -172,6 +182,7 @@ void Simulation::cycle() {
   compute_internal_forces();
   compute_external_forces();
   check_breakdown();
+  update_sensors();
   select_time_step();
   ++state_.cycle;
 }
@@ -189,11 +200,13 @@ void Simulation::run(const std::function<void(const Simulation&)>& on_progress) 
     if (glstat_) glstat_->flush();
     if (nodout_) nodout_->flush();
     if (rbdout_) rbdout_->flush();
+    if (sensor_csv_) sensor_csv_->flush();
     throw;
   }
   if (glstat_) glstat_->flush();
   if (nodout_) nodout_->flush();
   if (rbdout_) rbdout_->flush();
+  if (sensor_csv_) sensor_csv_->flush();
 }
 
 void Simulation::update_velocities() {
@@ -437,6 +450,19 @@ void Simulation::compute_external_forces() {
 
 void Simulation::check_breakdown() {
   if (!breakdown_message_.empty()) throw SolverError(breakdown_message_);
+}
+
+// After the forces at t^{n+1}, before the next step is chosen: state_.dt is still the step just
+// taken, as evaluate_sensors expects. DEF2RIG status changes of this cycle are then available
+// through sensor::def2rig_events(sensors()).
+void Simulation::update_sensors() {
+  if (sensors_->empty()) return;
+  sensor::evaluate_sensors(*sensors_, state_, state_.time);
+  if (sensor_csv_) {
+    const bool last = (end_time_ > 0.0 && state_.time >= end_time_ * (1.0 - 1e-12)) ||
+                      (end_cycle_ > 0 && state_.cycle + 1 >= end_cycle_);
+    sensor_csv_->write(*sensors_, last);
+  }
 }
 
 void Simulation::select_time_step() {

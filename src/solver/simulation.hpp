@@ -17,6 +17,11 @@
 #include "solver/rigid_bodies.hpp"
 #include "solver/state.hpp"
 
+namespace rf::sensor {
+struct SensorSystem;
+class SensorCsv;
+}  // namespace rf::sensor
+
 namespace rf::solver {
 
 // Energy bookkeeping. Kinetic energy and the work terms are evaluated at half steps so that
@@ -73,6 +78,8 @@ class Simulation {
   const std::vector<model::Warning>& warnings() const { return warnings_; }
   // User ID and part of the element that controls the step (for messages and progress).
   model::Id controlling_element() const { return controlling_element_; }
+  // Sensors, switches and controls as of the last evaluation (DEF2RIG events included).
+  const sensor::SensorSystem& sensors() const { return *sensors_; }
 
  private:
   // The phases of a cycle, in order.
@@ -82,6 +89,7 @@ class Simulation {
   void compute_internal_forces();  // element kernels at n+1, assembly, element time step
   void compute_external_forces();  // loads at t^{n+1}
   void select_time_step();         // dt^{n+3/2}
+  void update_sensors();           // sensors, switches, controls at t^{n+1} (sensor/sensor.hpp)
 
   void initialize();
   void check_breakdown();
@@ -129,6 +137,8 @@ class Simulation {
   std::vector<output::RbdoutRow> rbdout_rows_;
   std::unique_ptr<output::FieldWriter> fields_;
   std::vector<double> reduction_scratch_;
+  std::unique_ptr<sensor::SensorSystem> sensors_;
+  std::unique_ptr<sensor::SensorCsv> sensor_csv_;
 };
 
 }  // namespace rf::solver
