@@ -138,6 +138,22 @@ void print_model_summary(const model::Model& model, std::FILE* out) {
              "initial velocities: {}\n",
              model.spcs.size(), model.prescribed_motions.size(), model.nodal_loads.size(),
              model.body_loads.size(), model.initial_velocities.size());
+  if (!model.sensors.empty() || !model.sensor_controls.empty()) {
+    int kinds[3] = {0, 0, 0};  // node, element, function
+    for (const auto& [id, s] : model.sensors) ++kinds[static_cast<int>(s.kind)];
+    fmt::print(out, "sensors: {} ({} node, {} element, {} function), switches: {}, controls: {}\n",
+               model.sensors.size(), kinds[0], kinds[1], kinds[2], model.sensor_switches.size(),
+               model.sensor_controls.size());
+    for (const auto& [id, c] : model.sensor_controls) {
+      std::string switches;
+      for (const auto w : c.switches) switches += fmt::format(" {}", w);
+      fmt::print(out, "  control {}: {} switch set {}, initially {}, switches{}{}\n", id, c.type,
+                 c.type_id, c.initially_on ? "ON" : "OFF", switches.empty() ? " none" : switches,
+                 c.nrep == -1 ? ", repeated without end"
+                 : c.nrep > 1 ? fmt::format(", {} passes", c.nrep)
+                              : "");
+    }
+  }
   fmt::print(
       out, "termination: ENDTIM {:g}{}\n", model.termination.endtim,
       model.termination.endcyc > 0 ? fmt::format(", ENDCYC {}", model.termination.endcyc) : "");

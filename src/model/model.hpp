@@ -390,6 +390,77 @@ struct PartSwitching {
   std::map<Id, SwitchInertia> inertia;  // by PID
 };
 
+// --- Sensors (*SENSOR_...; docs/sensors.md). Read as written; sensor/sensor.hpp evaluates them.
+
+// *DEFINE_FUNCTION: "name(a, b, ...) = expression". The keyword that uses the function binds the
+// arguments by position (sensor values for *SENSOR_DEFINE_FUNCTION). `evaluator` is compiled when
+// the deck is read (model/function.hpp); when that fails, `compile_error` says why and using the
+// function is an error located at its card (an unused one is only a warning).
+class ArgumentFunction;
+struct DefinedFunction {
+  Id id = 0;
+  std::string heading;
+  std::string text;  // as written, lines joined
+  std::shared_ptr<const ArgumentFunction> evaluator;
+  std::string compile_error;
+  SourceLocation where;  // the FID card
+  int text_line = 0;     // first line of the function text
+};
+
+enum class SensorKind { Node, Element, Function };
+enum class NodeQuantity { Acceleration, Velocity, Coordinate };  // CTYPE ACC, VEL, COORD
+enum class ElementQuantity { Stress, Strain };                   // CTYPE STRESS, STRAIN
+
+// *SENSOR_DEFINE_NODE / _ELEMENT / _FUNCTION.
+struct Sensor {
+  Id id = 0;
+  SensorKind kind = SensorKind::Node;
+  std::string title;
+  // Node: value of NODE1 minus value of NODE2 (NODE2 0: none), along *DEFINE_VECTOR VID or its
+  // magnitude (VID 0).
+  Id node1 = 0;
+  Id node2 = 0;
+  Id vid = 0;
+  NodeQuantity node_quantity = NodeQuantity::Acceleration;
+  // Element: solid ELEMID; component 0..5 = XX YY ZZ XY YZ ZX, 6 = von Mises (COMP VM).
+  Id element = 0;
+  ElementQuantity element_quantity = ElementQuantity::Strain;
+  int component = 0;
+  // Function: *DEFINE_FUNCTION FUNC of the values of `inputs` (sensor IDs, in argument order).
+  Id function = 0;
+  std::vector<Id> inputs;
+  SourceLocation where;
+};
+
+// *SENSOR_SWITCH (compare a sensor or the time with VALUE) or *SENSOR_SWITCH_CALC-LOGIC
+// (`logic_inputs`: positive IDs are combined with AND, negative with OR).
+struct SensorSwitch {
+  Id id = 0;
+  std::string title;
+  bool calc_logic = false;
+  bool time = false;  // TYPE TIME: the time is compared, SENSID unused
+  Id sensor = 0;
+  bool greater = false;  // LOGIC GT (else LT)
+  double value = 0.0;
+  double time_window = 0.0;  // TIMWIN
+  double delay = 0.0;        // TDELAY
+  std::vector<Id> logic_inputs;
+  SourceLocation where;
+};
+
+// *SENSOR_CONTROL. Only TYPE DEF2RIG is accepted by the reader (TYPEID = SWSET of
+// *DEFORMABLE_TO_RIGID_AUTOMATIC with CODE 5).
+struct SensorControl {
+  Id id = 0;
+  std::string title;
+  std::string type;  // as written, upper case
+  Id type_id = 0;
+  int nrep = 0;              // passes over SWIT1..n: 0 or 1 once, N > 1 N times, -1 without end
+  bool initially_on = true;  // INITSTT
+  std::vector<Id> switches;  // SWIT1..SWIT7, blanks removed
+  SourceLocation where;
+};
+
 struct Termination {
   double endtim = 0.0;
   int endcyc = 0;
@@ -461,6 +532,11 @@ struct Model {
   std::vector<RigidLoad> rigid_loads;
   int rigid_body_update = 0;  // *RIGID_BODY_UPDATE type (0, 1, 2)
   PartSwitching switching;
+
+  std::map<Id, DefinedFunction> defined_functions;  // *DEFINE_FUNCTION
+  std::map<Id, Sensor> sensors;
+  std::map<Id, SensorSwitch> sensor_switches;
+  std::map<Id, SensorControl> sensor_controls;
 
   Termination termination;
   TimestepControl timestep;

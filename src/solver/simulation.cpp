@@ -11,6 +11,8 @@
 #include "element/kernels.hpp"
 #include "model/curve.hpp"
 #include "model/error.hpp"
+#include "sensor/sensor.hpp"
+#include "sensor/sensor_output.hpp"
 
 namespace rf::solver {
 
@@ -83,6 +85,9 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
       std::unique(boundary_.constrained_nodes.begin(), boundary_.constrained_nodes.end()),
       boundary_.constrained_nodes.end());
 
+  sensors_ = std::make_unique<sensor::SensorSystem>(
+      sensor::build_sensor_system(model_, node_index_, state_));
+
   if (!options_.output_directory.empty()) {
     std::filesystem::create_directories(options_.output_directory);
     const double span = end_time_ > 0.0 ? end_time_ : 1.0;
@@ -105,6 +110,10 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
       // *DATABASE_RBDOUT interval, else about 1000 rows per body and run.
       rbdout_schedule_.interval = default_interval(model.output.rbdout_dt, span, 1000.0);
       rbdout_ = std::make_unique<output::RbdoutWriter>(options_.output_directory / "rbdout.csv");
+    }
+    if (!sensors_->empty()) {
+      sensor_csv_ = std::make_unique<sensor::SensorCsv>(options_.output_directory / "sensor.csv",
+                                                        glstat_schedule_.interval);
     }
     if (options_.write_fields) {
       d3plot_schedule_.interval = default_interval(model.output.d3plot_dt, span, 20.0);
@@ -130,6 +139,7 @@ void Simulation::initialize() {
   compute_internal_forces();
   compute_external_forces();
   check_breakdown();
+  update_sensors();
   // Initial kinetic energy and momenta at t = 0 (v^0 plays the role of v^{-1/2}); rigid-body
   // nodes are counted through their bodies.
   const NodalState& nodes = state_.nodes;
@@ -186,6 +196,7 @@ void Simulation::cycle() {
   compute_internal_forces();
   compute_external_forces();
   check_breakdown();
+  update_sensors();
   select_time_step();
   ++state_.cycle;
 }
@@ -203,17 +214,33 @@ void Simulation::run(const std::function<void(const Simulation&)>& on_progress) 
     if (glstat_) glstat_->flush();
     if (nodout_) nodout_->flush();
     if (rbdout_) rbdout_->flush();
+    if (sensor_csv_) sensor_csv_->flush();
     if (switch_csv_) switch_csv_->flush();
     throw;
   }
   if (glstat_) glstat_->flush();
   if (nodout_) nodout_->flush();
   if (rbdout_) rbdout_->flush();
+  if (sensor_csv_) sensor_csv_->flush();
   if (switch_csv_) switch_csv_->flush();
 }
 
 void Simulation::switch_parts_if_due() {
   if (!automatic_switching_ || automatic_switching_->empty()) return;
+  // CODE 5: the DEF2RIG control of the set changed status at the last sensor evaluation. ON
+  // applies the set, OFF undoes it (docs/sensors.md, docs/switching.md).
+  for (const auto& event : sensor::def2rig_events(*sensors_)) {
+    for (const auto& set : model_.switching.automatic) {
+      if (set.code != 5 || set.swset != event.swset) continue;
+      if (event.status_on) {
+        apply_switch(set.swset, set.to_rigid, set.to_deformable, set.dtmax);
+      } else {
+        std::vector<model::PartSwitch> back_to_rigid = set.to_deformable;
+        std::vector<model::PartSwitch> back_to_deformable = set.to_rigid;
+        apply_switch(set.swset, back_to_rigid, back_to_deformable, set.dtmax);
+      }
+    }
+  }
   automatic_switching_->due(state_.time, switch_queries_, switch_due_);
   const auto& due = switch_due_;
   for (const int k : due) {
@@ -559,6 +586,19 @@ void Simulation::compute_external_forces() {
 
 void Simulation::check_breakdown() {
   if (!breakdown_message_.empty()) throw SolverError(breakdown_message_);
+}
+
+// After the forces at t^{n+1}, before the next step is chosen: state_.dt is still the step just
+// taken, as evaluate_sensors expects. DEF2RIG status changes of this cycle are then available
+// through sensor::def2rig_events(sensors()).
+void Simulation::update_sensors() {
+  if (sensors_->empty()) return;
+  sensor::evaluate_sensors(*sensors_, state_, state_.time);
+  if (sensor_csv_) {
+    const bool last = (end_time_ > 0.0 && state_.time >= end_time_ * (1.0 - 1e-12)) ||
+                      (end_cycle_ > 0 && state_.cycle + 1 >= end_cycle_);
+    sensor_csv_->write(*sensors_, last);
+  }
 }
 
 void Simulation::select_time_step() {

@@ -18,6 +18,11 @@
 #include "solver/state.hpp"
 #include "switching/part_switching.hpp"
 
+namespace rf::sensor {
+struct SensorSystem;
+class SensorCsv;
+}  // namespace rf::sensor
+
 namespace rf::solver {
 
 // Energy bookkeeping. Kinetic energy and the work terms are evaluated at half steps so that
@@ -81,6 +86,8 @@ class Simulation {
   const std::vector<switching::SwitchEvent>& switch_events() const { return switch_events_; }
   // User ID and part of the element that controls the step (for messages and progress).
   model::Id controlling_element() const { return controlling_element_; }
+  // Sensors, switches and controls as of the last evaluation (DEF2RIG events included).
+  const sensor::SensorSystem& sensors() const { return *sensors_; }
 
  private:
   // The phases of a cycle, in order.
@@ -90,6 +97,7 @@ class Simulation {
   void compute_internal_forces();  // element kernels at n+1, assembly, element time step
   void compute_external_forces();  // loads at t^{n+1}
   void select_time_step();         // dt^{n+3/2}
+  void update_sensors();           // sensors, switches, controls at t^{n+1} (sensor/sensor.hpp)
 
   void switch_parts_if_due();  // *DEFORMABLE_TO_RIGID_AUTOMATIC, between cycles
 
@@ -151,6 +159,8 @@ class Simulation {
   std::vector<int> switch_due_;              // scratch: sets due this cycle
   std::unique_ptr<output::SwitchWriter> switch_csv_;
   double switch_dt_cap_ = 0.0;  // DTMAX of the last switch set that fired (0: none)
+  std::unique_ptr<sensor::SensorSystem> sensors_;
+  std::unique_ptr<sensor::SensorCsv> sensor_csv_;
 };
 
 }  // namespace rf::solver

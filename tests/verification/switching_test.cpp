@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "deck_builder.hpp"
+#include "sensor/sensor.hpp"
 #include "switching/part_switching.hpp"
 
 namespace rf::test {
@@ -330,6 +331,29 @@ TEST(PartSwitching, NodalRigidBodiesDeletedAndActivatedByNrbf) {
   EXPECT_NEAR((end.p - start.p).norm(), 0.0, 1e-12 * start.p.norm());
   EXPECT_NEAR((end.h - start.h).norm(), 0.0, 1e-11 * start.h.norm());
   EXPECT_NEAR(sim.energy().ratio(), 1.0, 1e-3);
+}
+
+
+// CODE 5: the example's DEF2RIG control turns on when switch 10 has seen the bar's stress
+// above 100 MPa for TIMWIN = 10 us; the block must become rigid at the next cycle start.
+TEST(PartSwitching, SensorControlledSetFiresWhenTheControlTurnsOn) {
+  const auto model = io::read_deck(std::string(RIGIDFLEX_EXAMPLES) + "/sensor_def2rig.k");
+  solver::Simulation sim(model, {});
+  double crossing = -1.0, dt = 0.0;
+  while (!sim.finished() && sim.switch_events().empty()) {
+    dt = sim.state().dt;
+    sim.cycle();
+    if (crossing < 0.0 && sensor::sensor_value(sim.sensors(), 1) > 100.0) {  // MPa: mm, t, s
+      crossing = sim.state().time;
+    }
+  }
+  ASSERT_GT(crossing, 0.0);
+  ASSERT_EQ(sim.switch_events().size(), 1u);
+  const auto& event = sim.switch_events()[0];
+  EXPECT_EQ(event.swset, 10);
+  EXPECT_TRUE(event.to_rigid);
+  EXPECT_GE(event.time, crossing + 1e-5 - 1e-12);
+  EXPECT_LE(event.time, crossing + 1e-5 + 2.0 * dt);
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 
 #include "io/keyword/context.hpp"
 #include "io/keyword/geometry.hpp"
+#include "io/keyword/handlers.hpp"
 
 namespace rf::io {
 
@@ -395,7 +396,11 @@ void finish_switching(const model::Model& m) {
                                       "*RIGIDWALL_PLANAR",
                                       set.code, set.entno));
     }
-    if (set.code == 5) {
+    const bool has_control = std::any_of(
+        m.sensor_controls.begin(), m.sensor_controls.end(), [&](const auto& entry) {
+          return entry.second.type == "DEF2RIG" && entry.second.type_id == set.swset;
+        });
+    if (set.code == 5 && !has_control) {
       throw located_error(set.where, "CODE",
                           fmt::format("CODE 5: switch set {} is controlled by *SENSOR_CONTROL "
                                       "TYPE = DEF2RIG, TYPEID = {}, and this deck defines none",
@@ -524,6 +529,7 @@ void finish_model(ReaderContext& context) {
   }
   finish_rigid(m, nodes);
   finish_switching(m);
+  handlers::finish_sensors(context, nodes);
 }
 
 }  // namespace rf::io

@@ -1,6 +1,8 @@
 // Keyword handlers: each reads one block into the model. Registered in keyword_table.cpp.
 #pragma once
 
+#include <unordered_set>
+
 #include "io/keyword/context.hpp"
 
 namespace rf::io::handlers {
@@ -56,6 +58,18 @@ void deformable_to_rigid(const Block&, ReaderContext&);
 void deformable_to_rigid_automatic(const Block&, ReaderContext&);
 void deformable_to_rigid_inertia(const Block&, ReaderContext&);
 void control_rigid(const Block&, ReaderContext&);
+
+// handlers_sensor.cpp
+void define_function(const Block&, ReaderContext&);
+void skip_unsupported(const Block&, ReaderContext&);  // as an unknown keyword: a warning
+void sensor_define_node(const Block&, ReaderContext&);
+void sensor_define_element(const Block&, ReaderContext&);
+void sensor_define_function(const Block&, ReaderContext&);
+void sensor_switch(const Block&, ReaderContext&);
+void sensor_switch_calc_logic(const Block&, ReaderContext&);
+void sensor_control(const Block&, ReaderContext&);
+// Checks references of sensors, switches, controls and functions (finish_model).
+void finish_sensors(ReaderContext& context, const std::unordered_set<model::Id>& nodes);
 
 // Cards shared by *MAT_RIGID, *PART_INERTIA and *CONSTRAINED_NODAL_RIGID_BODY.
 struct RigidConstraints {
