@@ -11,11 +11,17 @@
 #include <string>
 
 #include "model/model.hpp"
+#include "model/restart_switch.hpp"
 #include "output/writers.hpp"
 #include "solver/boundary.hpp"
 #include "solver/build_state.hpp"
 #include "solver/rigid_bodies.hpp"
 #include "solver/state.hpp"
+
+namespace rf::restart {
+class Dumper;
+struct SimulationAccess;
+}  // namespace rf::restart
 
 namespace rf::solver {
 
@@ -44,6 +50,11 @@ struct EnergyAccount {
 struct SimulationOptions {
   std::filesystem::path output_directory;  // empty: no files written
   bool write_fields = true;                // d3plot VTU frames
+  // Restart (restart/restart.hpp): the state is read from a dump afterwards, so the constructor
+  // does not initialise it, and the CSV files are continued from the sizes they had at the dump
+  // (negative: start the file anew).
+  bool from_dump = false;
+  output::CsvContinuation continuation;
 };
 
 class Simulation {
@@ -74,6 +85,12 @@ class Simulation {
   // User ID and part of the element that controls the step (for messages and progress).
   model::Id controlling_element() const { return controlling_element_; }
 
+  // Restart dumps (restart/dumper.hpp), written by run() between cycles when due.
+  void enable_restart_dumps(std::unique_ptr<restart::Dumper> dumper);
+  const restart::Dumper* restart_dumper() const { return dumper_.get(); }
+  // Part switching requested by a restart deck, applied to the state read from the dump.
+  void apply_restart_switches(const std::vector<model::RestartSwitch>& switches);
+
  private:
   // The phases of a cycle, in order.
   void update_velocities();  // a^n -> v^{n+1/2}, constraints, rigid bodies, energy
@@ -86,6 +103,9 @@ class Simulation {
   void initialize();
   void check_breakdown();
   void write_output_now();
+  bool end_reached() const;
+  // Dumps read and write every member below (restart/simulation_access.hpp).
+  friend struct restart::SimulationAccess;
 
   const model::Model model_;
   SimulationOptions options_;
@@ -129,6 +149,7 @@ class Simulation {
   std::vector<output::RbdoutRow> rbdout_rows_;
   std::unique_ptr<output::FieldWriter> fields_;
   std::vector<double> reduction_scratch_;
+  std::unique_ptr<restart::Dumper> dumper_;
 };
 
 }  // namespace rf::solver
