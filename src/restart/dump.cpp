@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <span>
 #include <stdexcept>
@@ -234,26 +235,51 @@ void visit_body_doubles(Visit&& visit) {
   visit("mid_angular_velocity", 3, [](auto& b) { return b.mid_angular_velocity.data(); });
   visit("force", 3, [](auto& b) { return b.force.data(); });
   visit("torque", 3, [](auto& b) { return b.torque.data(); });
-  // Velocity constraints: the permanent ones and the last step's (prescribed motion).
-  for (int k = 0; k < 3; ++k) {
-    const std::string n = std::to_string(k);
-    visit("constraint_translation_axis_" + n, 3,
-          [k](auto& b) { return b.state.constraints.translation_axis[k].data(); });
-    visit("constraint_rotation_axis_" + n, 3,
-          [k](auto& b) { return b.state.constraints.rotation_axis[k].data(); });
-    visit("step_constraint_translation_axis_" + n, 3,
-          [k](auto& b) { return b.step_constraints.translation_axis[k].data(); });
-    visit("step_constraint_rotation_axis_" + n, 3,
-          [k](auto& b) { return b.step_constraints.rotation_axis[k].data(); });
+}
+
+// Velocity constraints, 2 counts and 24 numbers per body: axes and values of the rows in use,
+// zeros in the unused slots (which hold indeterminate values in memory, and would make equal
+// states give different dumps).
+constexpr int kConstraintNumbers = 24;
+
+void pack_constraints(const rigid::VelocityConstraints& c, std::int64_t* counts, double* numbers) {
+  counts[0] = c.translation_count;
+  counts[1] = c.rotation_count;
+  std::fill(numbers, numbers + kConstraintNumbers, 0.0);
+  for (int k = 0; k < c.translation_count; ++k) {
+    for (int d = 0; d < 3; ++d) numbers[3 * k + d] = c.translation_axis[k][d];
+    numbers[18 + k] = c.translation_value[k];
   }
-  visit("constraint_translation_value", 3,
-        [](auto& b) { return b.state.constraints.translation_value.data(); });
-  visit("constraint_rotation_value", 3,
-        [](auto& b) { return b.state.constraints.rotation_value.data(); });
-  visit("step_constraint_translation_value", 3,
-        [](auto& b) { return b.step_constraints.translation_value.data(); });
-  visit("step_constraint_rotation_value", 3,
-        [](auto& b) { return b.step_constraints.rotation_value.data(); });
+  for (int k = 0; k < c.rotation_count; ++k) {
+    for (int d = 0; d < 3; ++d) numbers[9 + 3 * k + d] = c.rotation_axis[k][d];
+    numbers[21 + k] = c.rotation_value[k];
+  }
+}
+
+// False when a count is outside 0..3.
+bool unpack_constraints(const std::int64_t* counts, const double* numbers,
+                        rigid::VelocityConstraints& c) {
+  if (counts[0] < 0 || counts[0] > 3 || counts[1] < 0 || counts[1] > 3) return false;
+  c.translation_count = static_cast<int>(counts[0]);
+  c.rotation_count = static_cast<int>(counts[1]);
+  for (int k = 0; k < 3; ++k) {
+    for (int d = 0; d < 3; ++d) {
+      c.translation_axis[k][d] = numbers[3 * k + d];
+      c.rotation_axis[k][d] = numbers[9 + 3 * k + d];
+    }
+    c.translation_value[k] = numbers[18 + k];
+    c.rotation_value[k] = numbers[21 + k];
+  }
+  return true;
+}
+
+// The permanent constraints (CMO, _SPC) and the last step's (prescribed motion) of each body.
+template <class Visit>
+void visit_body_constraints(Visit&& visit) {
+  visit(
+      "constraints", [](auto& b) -> auto& { return b.state.constraints; });
+  visit(
+      "step_constraints", [](auto& b) -> auto& { return b.step_constraints; });
 }
 
 // Integer-valued members, the same way (stored as int64).
@@ -277,22 +303,6 @@ void visit_body_integers(Visit&& visit) {
       [](Body& b, std::int64_t v) {
         b.update = v == 0 ? solver::NodeUpdate::kLinear : solver::NodeUpdate::kCurvilinear;
       });
-  visit(
-      "constraint_translation_count",
-      [](const Body& b) { return std::int64_t{b.state.constraints.translation_count}; },
-      [](Body& b, std::int64_t v) { b.state.constraints.translation_count = static_cast<int>(v); });
-  visit(
-      "constraint_rotation_count",
-      [](const Body& b) { return std::int64_t{b.state.constraints.rotation_count}; },
-      [](Body& b, std::int64_t v) { b.state.constraints.rotation_count = static_cast<int>(v); });
-  visit(
-      "step_constraint_translation_count",
-      [](const Body& b) { return std::int64_t{b.step_constraints.translation_count}; },
-      [](Body& b, std::int64_t v) { b.step_constraints.translation_count = static_cast<int>(v); });
-  visit(
-      "step_constraint_rotation_count",
-      [](const Body& b) { return std::int64_t{b.step_constraints.rotation_count}; },
-      [](Body& b, std::int64_t v) { b.step_constraints.rotation_count = static_cast<int>(v); });
 }
 
 void write_bodies(const Group& g, const std::vector<solver::RigidBody>& bodies) {
@@ -304,6 +314,15 @@ void write_bodies(const Group& g, const std::vector<solver::RigidBody>& bodies) 
     std::vector<std::int64_t> column;
     for (const auto& b : bodies) column.push_back(get(b));
     write_vector(g, name, column);
+  });
+  visit_body_constraints([&](const std::string& name, auto get) {
+    std::vector<std::int64_t> counts(2 * bodies.size());
+    std::vector<double> numbers(kConstraintNumbers * bodies.size());
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      pack_constraints(get(bodies[i]), &counts[2 * i], &numbers[kConstraintNumbers * i]);
+    }
+    write_vector(g, name + "_counts", counts);
+    write_vector(g, name + "_numbers", numbers);
   });
   // Lists of varying length: offsets (count + 1) and the concatenated entries.
   std::vector<std::int64_t> part_offset{0}, node_offset{0}, parts;
@@ -347,18 +366,15 @@ std::vector<solver::RigidBody> read_bodies(const Group& g, std::size_t node_coun
     const auto column = read_exact<std::int64_t>(g, name, n);
     for (std::size_t i = 0; i < n; ++i) set(bodies[i], column[i]);
   });
-  for (const auto& b : bodies) {
-    const auto& c = b.state.constraints;
-    const auto& s = b.step_constraints;
-    for (int count :
-         {c.translation_count, c.rotation_count, s.translation_count, s.rotation_count}) {
-      if (count < 0 || count > 3) {
-        g.fail("constraint_translation_count",
-               "holds a constraint count outside 0..3 (the dump "
-               "is damaged)");
+  visit_body_constraints([&](const std::string& name, auto get) {
+    const auto counts = read_exact<std::int64_t>(g, name + "_counts", 2 * n);
+    const auto numbers = read_exact<double>(g, name + "_numbers", kConstraintNumbers * n);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!unpack_constraints(&counts[2 * i], &numbers[kConstraintNumbers * i], get(bodies[i]))) {
+        g.fail(name + "_counts", "holds a constraint count outside 0..3 (the dump is damaged)");
       }
     }
-  }
+  });
   const auto parts = g.read_int64("parts");
   const auto nodes = g.read_int32("nodes");
   const auto part_offset = read_offsets(g, "part_offset", n, parts.size());

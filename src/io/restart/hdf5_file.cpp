@@ -284,7 +284,12 @@ File File::open(const std::filesystem::path& path) {
   if (!std::filesystem::is_regular_file(path, ec)) {
     throw InputError({path.string(), 0, "", 0, ""}, "the restart dump does not exist");
   }
-  if (H5Fis_hdf5(path.c_str()) <= 0) {
+#if H5_VERSION_GE(1, 12, 0)
+  const htri_t is_hdf5 = H5Fis_accessible(path.c_str(), H5P_DEFAULT);
+#else
+  const htri_t is_hdf5 = H5Fis_hdf5(path.c_str());
+#endif
+  if (is_hdf5 <= 0) {
     throw InputError({path.string(), 0, "", 0, ""},
                      "not a restart dump: the file is not an HDF5 file, or it is truncated or "
                      "damaged");
