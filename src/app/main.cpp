@@ -67,7 +67,9 @@ std::string format_seconds(double s) {
 // Progress: a rewritten line on a terminal, plain lines every 10% otherwise.
 class ProgressPrinter {
  public:
-  explicit ProgressPrinter(bool quiet) : quiet_(quiet), tty_(isatty(fileno(stdout)) != 0) {}
+  // `start_fraction`: the part of the run already done (a restart), for the time left.
+  explicit ProgressPrinter(bool quiet, double start_fraction = 0.0)
+      : quiet_(quiet), tty_(isatty(fileno(stdout)) != 0), start_fraction_(start_fraction) {}
 
   void operator()(const rf::solver::Simulation& sim) {
     if (quiet_) return;
@@ -87,7 +89,8 @@ class ProgressPrinter {
     printed_final_ = sim.finished();
     last_ = now;
     const double wall = std::chrono::duration<double>(now - start_).count();
-    const double left = fraction > 0.0 ? wall * (1.0 - fraction) / fraction : 0.0;
+    const double done = fraction - start_fraction_;
+    const double left = done > 0.0 ? wall * (1.0 - fraction) / done : 0.0;
     const std::string line = fmt::format(
         "t = {:.5e} ({:5.1f}%)  cycle {:>9}  dt = {:.3e}  wall {}  left {}", t, 100.0 * fraction,
         sim.state().cycle, sim.state().dt, format_seconds(wall), format_seconds(left));
@@ -103,6 +106,7 @@ class ProgressPrinter {
  private:
   bool quiet_;
   bool tty_;
+  double start_fraction_ = 0.0;
   Clock::time_point start_ = Clock::now();
   Clock::time_point last_{};
   double next_fraction_ = 0.0;
@@ -134,7 +138,8 @@ int run_to_termination(rf::solver::Simulation& sim, const fs::path& out,
     rf::output::write_run_json(out / "run.json", summary);
   };
   try {
-    ProgressPrinter progress(quiet);
+    const double end = sim.end_time();
+    ProgressPrinter progress(quiet, end > 0.0 ? std::min(1.0, sim.state().time / end) : 0.0);
     sim.run(std::ref(progress));
   } catch (const std::exception& e) {
     summary.status = "error termination";

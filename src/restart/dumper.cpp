@@ -26,8 +26,8 @@ void Dumper::write_if_due(solver::Simulation& sim) {
   if (directory.empty() || schedule_.last_cycle == state.cycle) return;
   // Same tolerance as the output schedules (Simulation::OutputSchedule::due).
   const bool scheduled = schedule_.interval > 0.0 && state.time >= schedule_.next * (1.0 - 1e-12);
-  const bool final = schedule_.at_termination && SimulationAccess::end_reached(sim);
-  if (!scheduled && !final) return;
+  const bool at_end = schedule_.at_termination && SimulationAccess::end_reached(sim);
+  if (!scheduled && !at_end) return;
 
   const auto start = std::chrono::steady_clock::now();
   // Count the dump and move the schedule before writing, so the dump holds the schedule as it
