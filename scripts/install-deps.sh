@@ -10,6 +10,7 @@ PACKAGES=(
   libmuparser-dev    # *PARAMETER_EXPRESSION and function expressions
   libcli11-dev       # command line
   libfmt-dev         # formatting of messages and output files
+  libhdf5-dev        # restart dumps (HDF5 C API)
   libgtest-dev       # unit and verification tests
   libbenchmark-dev   # kernel benchmarks
 )

@@ -1,5 +1,6 @@
 // rigidflex: command-line entry point.
-//   rigidflex run DECK [-o DIR] [--threads N] [--quiet] [--set name=value]...
+//   rigidflex run DECK [-o DIR] [--threads N] [--quiet] [--set name=value]... [--dump-every T]
+//   rigidflex restart DUMP [RESTART_DECK] [-o DIR] [--threads N] [--quiet] [--dump-every T]
 //   rigidflex check DECK
 #include <fmt/format.h>
 #include <omp.h>
@@ -9,6 +10,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +18,8 @@
 #include "io/keyword/reader.hpp"
 #include "model/error.hpp"
 #include "output/writers.hpp"
+#include "restart/dumper.hpp"
+#include "restart/restart.hpp"
 #include "solver/simulation.hpp"
 
 namespace {
@@ -63,7 +67,9 @@ std::string format_seconds(double s) {
 // Progress: a rewritten line on a terminal, plain lines every 10% otherwise.
 class ProgressPrinter {
  public:
-  explicit ProgressPrinter(bool quiet) : quiet_(quiet), tty_(isatty(fileno(stdout)) != 0) {}
+  // `start_fraction`: the part of the run already done (a restart), for the time left.
+  explicit ProgressPrinter(bool quiet, double start_fraction = 0.0)
+      : quiet_(quiet), tty_(isatty(fileno(stdout)) != 0), start_fraction_(start_fraction) {}
 
   void operator()(const rf::solver::Simulation& sim) {
     if (quiet_) return;
@@ -83,7 +89,8 @@ class ProgressPrinter {
     printed_final_ = sim.finished();
     last_ = now;
     const double wall = std::chrono::duration<double>(now - start_).count();
-    const double left = fraction > 0.0 ? wall * (1.0 - fraction) / fraction : 0.0;
+    const double done = fraction - start_fraction_;
+    const double left = done > 0.0 ? wall * (1.0 - fraction) / done : 0.0;
     const std::string line = fmt::format(
         "t = {:.5e} ({:5.1f}%)  cycle {:>9}  dt = {:.3e}  wall {}  left {}", t, 100.0 * fraction,
         sim.state().cycle, sim.state().dt, format_seconds(wall), format_seconds(left));
@@ -99,6 +106,7 @@ class ProgressPrinter {
  private:
   bool quiet_;
   bool tty_;
+  double start_fraction_ = 0.0;
   Clock::time_point start_ = Clock::now();
   Clock::time_point last_{};
   double next_fraction_ = 0.0;
@@ -111,8 +119,62 @@ int command_check(const std::string& deck, const rf::io::ReadOptions& read_optio
   return 0;
 }
 
+// Runs a constructed simulation to termination with progress output, writes run.json and the
+// closing lines. `summary` arrives with status-independent fields (threads, warnings) filled.
+int run_to_termination(rf::solver::Simulation& sim, const fs::path& out,
+                       rf::output::RunSummary& summary, bool quiet) {
+  const auto start = Clock::now();
+  const std::int64_t first_cycle = sim.state().cycle;  // > 0 on restart
+  auto finish = [&] {
+    summary.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    summary.final_time = sim.state().time;
+    summary.cycles = sim.state().cycle;
+    summary.nodes = static_cast<std::int64_t>(sim.state().nodes.size());
+    summary.elements = sim.element_count();
+    const double element_cycles =
+        static_cast<double>(summary.elements) *
+        static_cast<double>(std::max<std::int64_t>(1, summary.cycles - first_cycle));
+    summary.ns_per_element_cycle = 1e9 * summary.wall_seconds / element_cycles;
+    rf::output::write_run_json(out / "run.json", summary);
+  };
+  try {
+    const double end = sim.end_time();
+    ProgressPrinter progress(quiet, end > 0.0 ? std::min(1.0, sim.state().time / end) : 0.0);
+    sim.run(std::ref(progress));
+  } catch (const std::exception& e) {
+    summary.status = "error termination";
+    summary.message = e.what();
+    finish();
+    throw;
+  }
+  summary.status = "normal termination";
+  finish();
+  if (!quiet) {
+    std::printf(
+        "normal termination: t = %g after %lld cycles, %.2f s wall, %.1f ns per "
+        "element-cycle\n",
+        summary.final_time, static_cast<long long>(summary.cycles), summary.wall_seconds,
+        summary.ns_per_element_cycle);
+    if (const rf::restart::Dumper* dumper = sim.restart_dumper();
+        dumper && !dumper->written().empty()) {
+      std::printf("restart dumps: %zu written (last %s), %.2f s\n", dumper->written().size(),
+                  dumper->written().back().filename().string().c_str(), dumper->seconds());
+    }
+    std::printf(
+        "results in %s/ (glstat.csv, d3plot.pvd, run.json); open d3plot.pvd in "
+        "ParaView\n",
+        fs::absolute(out).lexically_normal().string().c_str());
+  }
+  return 0;
+}
+
+void report_warning(rf::output::RunSummary& summary, const rf::model::Warning& w, bool quiet) {
+  summary.warnings.push_back(rf::app::format_warning(w));
+  if (!quiet) std::fprintf(stderr, "warning: %s\n", summary.warnings.back().c_str());
+}
+
 int command_run(const std::string& deck, std::string output_dir, int threads, bool quiet,
-                const rf::io::ReadOptions& read_options) {
+                rf::io::ReadOptions read_options, const std::string& dialect, double dump_every) {
   if (threads > 0) omp_set_num_threads(threads);
   if (output_dir.empty()) output_dir = fs::path(deck).stem().string() + "_out";
   const fs::path out = output_dir;
@@ -120,69 +182,68 @@ int command_run(const std::string& deck, std::string output_dir, int threads, bo
 
   rf::output::RunSummary summary;
   summary.threads = omp_get_max_threads();
-  const auto start = Clock::now();
-  auto finish = [&](const rf::solver::Simulation* sim) {
-    summary.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    if (sim) {
-      summary.final_time = sim->state().time;
-      summary.cycles = sim->state().cycle;
-      summary.nodes = static_cast<std::int64_t>(sim->state().nodes.size());
-      summary.elements = sim->element_count();
-      const double element_cycles = static_cast<double>(summary.elements) *
-                                    static_cast<double>(std::max<std::int64_t>(1, summary.cycles));
-      summary.ns_per_element_cycle = 1e9 * summary.wall_seconds / element_cycles;
-    }
-    rf::output::write_run_json(out / "run.json", summary);
-  };
 
+  // With restart dumps the deck texts are kept: a dump carries them (restart/model_input.hpp).
+  rf::restart::ModelInput input;
+  if (dump_every > 0.0) read_options.record_files = &input.files;
   rf::model::Model model;
   try {
     model = rf::io::read_deck(deck, read_options);
   } catch (const rf::InputError& e) {
     summary.status = "error termination";
     summary.message = e.what();
-    finish(nullptr);
+    rf::output::write_run_json(out / "run.json", summary);
     throw;
   }
-  for (const auto& w : model.warnings) {
-    summary.warnings.push_back(rf::app::format_warning(w));
-    if (!quiet) std::fprintf(stderr, "warning: %s\n", summary.warnings.back().c_str());
-  }
+  for (const auto& w : model.warnings) report_warning(summary, w, quiet);
 
   std::unique_ptr<rf::solver::Simulation> sim;
   try {
     sim = std::make_unique<rf::solver::Simulation>(model, rf::solver::SimulationOptions{out, true});
-    for (const auto& w : sim->warnings()) {
-      summary.warnings.push_back(rf::app::format_warning(w));
-      if (!quiet) std::fprintf(stderr, "warning: %s\n", summary.warnings.back().c_str());
-    }
-    if (!quiet) {
-      std::printf("rigidflex %s: %zu nodes, %lld elements, end time %g, %d thread(s)\n",
-                  RIGIDFLEX_VERSION, sim->state().nodes.size(),
-                  static_cast<long long>(sim->element_count()), sim->end_time(), summary.threads);
-    }
-    ProgressPrinter progress(quiet);
-    sim->run(std::ref(progress));
   } catch (const std::exception& e) {
     summary.status = "error termination";
     summary.message = e.what();
-    finish(sim.get());
+    rf::output::write_run_json(out / "run.json", summary);
     throw;
   }
-  summary.status = "normal termination";
-  finish(sim.get());
+  for (const auto& w : sim->warnings()) report_warning(summary, w, quiet);
+  if (dump_every > 0.0) {
+    input.main_deck = deck;
+    input.dialect = dialect;
+    input.overrides = read_options.parameter_overrides;
+    sim->enable_restart_dumps(std::make_unique<rf::restart::Dumper>(
+        std::move(input), rf::restart::Dumper::every(dump_every)));
+  }
+  if (!quiet) {
+    std::printf("rigidflex %s: %zu nodes, %lld elements, end time %g, %d thread(s)\n",
+                RIGIDFLEX_VERSION, sim->state().nodes.size(),
+                static_cast<long long>(sim->element_count()), sim->end_time(), summary.threads);
+  }
+  return run_to_termination(*sim, out, summary, quiet);
+}
+
+int command_restart(const std::string& dump, const std::string& restart_deck,
+                    const std::string& output_dir, int threads, bool quiet,
+                    std::optional<double> dump_every) {
+  rf::restart::RestartOptions options;
+  options.dump = dump;
+  options.restart_deck = restart_deck;
+  options.output_directory = output_dir;
+  options.threads = threads;
+  options.dump_interval = dump_every;
+  rf::restart::Restarted restarted = rf::restart::restart_from_dump(options);
+  rf::output::RunSummary summary;
+  summary.threads = restarted.threads;
+  for (const auto& w : restarted.warnings) report_warning(summary, w, quiet);
+  rf::solver::Simulation& sim = *restarted.simulation;
   if (!quiet) {
     std::printf(
-        "normal termination: t = %g after %lld cycles, %.2f s wall, %.1f ns per "
-        "element-cycle\n",
-        summary.final_time, static_cast<long long>(summary.cycles), summary.wall_seconds,
-        summary.ns_per_element_cycle);
-    std::printf(
-        "results in %s/ (glstat.csv, d3plot.pvd, run.json); open d3plot.pvd in "
-        "ParaView\n",
-        fs::absolute(out).lexically_normal().string().c_str());
+        "rigidflex %s: restart from %s at t = %g (cycle %lld), end time %g, %d "
+        "thread(s)\n",
+        RIGIDFLEX_VERSION, dump.c_str(), restarted.header.time,
+        static_cast<long long>(restarted.header.cycle), sim.end_time(), summary.threads);
   }
-  return 0;
+  return run_to_termination(sim, restarted.output_directory, summary, quiet);
 }
 
 }  // namespace
@@ -192,10 +253,11 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string(RIGIDFLEX_VERSION));
   app.require_subcommand(1);
 
-  std::string deck, output_dir, dialect = "auto";
+  std::string deck, output_dir, dialect = "auto", dump, restart_deck;
   int threads = 0;
   bool quiet = false;
   std::vector<std::string> assignments;
+  double dump_every = 0.0;
 
   auto* run = app.add_subcommand("run", "Run the analysis a deck describes");
   run->add_option("deck", deck, "Keyword deck")->required();
@@ -206,6 +268,24 @@ int main(int argc, char** argv) {
   run->add_option("--set", assignments, "Override a *PARAMETER: name=value (repeatable)");
   run->add_option("--dialect", dialect, "Input dialect")
       ->check(CLI::IsMember({"auto", "lsdyna", "impetus"}));
+  run->add_option("--dump-every", dump_every,
+                  "Write a restart dump DIR/d3dump_NNNN.h5 every T of simulated time and at the "
+                  "end")
+      ->check(CLI::PositiveNumber);
+
+  auto* restart = app.add_subcommand("restart", "Continue a run from a restart dump");
+  restart->add_option("dump", dump, "Restart dump (d3dump_NNNN.h5)")->required();
+  restart->add_option("restart_deck", restart_deck,
+                      "Restart deck: *CONTROL_TERMINATION, *DEFORMABLE_TO_RIGID, "
+                      "*RIGID_TO_DEFORMABLE");
+  restart->add_option("-o,--output", output_dir, "Output directory (default: the dump's)");
+  restart->add_option("--threads", threads, "OpenMP threads (default: as the dumped run)")
+      ->check(CLI::NonNegativeNumber);
+  restart->add_flag("--quiet", quiet, "Print nothing but errors");
+  auto* restart_dump_every = restart
+                                 ->add_option("--dump-every", dump_every,
+                                              "Restart dump interval (default: as the dumped run)")
+                                 ->check(CLI::PositiveNumber);
 
   auto* check = app.add_subcommand("check", "Read and validate a deck, print a model summary");
   check->add_option("deck", deck, "Keyword deck")->required();
@@ -220,7 +300,12 @@ int main(int argc, char** argv) {
     read_options.dialect = parse_dialect(dialect);
     read_options.parameter_overrides = parse_overrides(assignments);
     if (*check) return command_check(deck, read_options);
-    return command_run(deck, output_dir, threads, quiet, read_options);
+    if (*restart) {
+      std::optional<double> interval;
+      if (restart_dump_every->count() > 0) interval = dump_every;
+      return command_restart(dump, restart_deck, output_dir, threads, quiet, interval);
+    }
+    return command_run(deck, output_dir, threads, quiet, read_options, dialect, dump_every);
   } catch (const rf::InputError& e) {
     std::fprintf(stderr, "input error: %s\n", e.what());
     return kExitInputError;

@@ -3,7 +3,9 @@
 // solver held; conservation checks downstream can then work at round-off level.
 #include <fmt/format.h>
 
+#include <filesystem>
 #include <stdexcept>
+#include <system_error>
 #include <utility>
 
 #include "output/writers.hpp"
@@ -21,15 +23,31 @@ void append_number(fmt::memory_buffer& out, double value) {
 
 }  // namespace
 
-CsvFile::CsvFile(const std::filesystem::path& path, const std::string& header) : path_(path) {
-  file_ = std::fopen(path.c_str(), "wb");
+CsvFile::CsvFile(const std::filesystem::path& path, const std::string& header,
+                 std::int64_t continue_at)
+    : path_(path) {
+  if (continue_at >= 0) {
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(path, ec);
+    if (ec || size < static_cast<std::uintmax_t>(continue_at)) {
+      throw std::runtime_error(
+          fmt::format("cannot continue output file '{}': it is missing or shorter than {} bytes",
+                      path.string(), continue_at));
+    }
+    std::filesystem::resize_file(path, static_cast<std::uintmax_t>(continue_at), ec);
+    if (ec) {
+      throw std::runtime_error(
+          fmt::format("cannot cut output file '{}': {}", path.string(), ec.message()));
+    }
+  }
+  file_ = std::fopen(path.c_str(), continue_at >= 0 ? "ab" : "wb");
   if (file_ == nullptr) {
     throw std::runtime_error(
         fmt::format("cannot open output file '{}' for writing", path.string()));
   }
   // Full buffering with a big buffer: rows are small and many.
   std::setvbuf(file_, nullptr, _IOFBF, kCsvBufferBytes);
-  write_line(header);
+  if (continue_at < 0) write_line(header);
 }
 
 CsvFile::CsvFile(CsvFile&& other) noexcept
@@ -75,8 +93,13 @@ void CsvFile::flush() {
   }
 }
 
-GlstatWriter::GlstatWriter(const std::filesystem::path& path)
-    : csv_(path, std::string(kGlstatHeader)) {}
+std::int64_t CsvFile::flushed_size() {
+  flush();
+  return file_ != nullptr ? static_cast<std::int64_t>(std::ftell(file_)) : 0;
+}
+
+GlstatWriter::GlstatWriter(const std::filesystem::path& path, std::int64_t continue_at)
+    : csv_(path, std::string(kGlstatHeader), continue_at) {}
 
 void GlstatWriter::write(const GlstatRow& row) {
   fmt::memory_buffer line;
@@ -99,8 +122,9 @@ void GlstatWriter::write(const GlstatRow& row) {
   csv_.write_text(std::string_view(line.data(), line.size()));
 }
 
-NodoutWriter::NodoutWriter(const std::filesystem::path& path, std::vector<std::int32_t> dense_nodes)
-    : csv_(path, std::string(kNodoutHeader)), nodes_(std::move(dense_nodes)) {}
+NodoutWriter::NodoutWriter(const std::filesystem::path& path, std::vector<std::int32_t> dense_nodes,
+                           std::int64_t continue_at)
+    : csv_(path, std::string(kNodoutHeader), continue_at), nodes_(std::move(dense_nodes)) {}
 
 void NodoutWriter::write(const solver::State& state) {
   write_rows(state, nullptr);
@@ -157,8 +181,8 @@ void SwitchWriter::write(const SwitchRow& row) {
   csv_.write_text(std::string_view(line.data(), line.size()));
 }
 
-RbdoutWriter::RbdoutWriter(const std::filesystem::path& path)
-    : csv_(path, std::string(kRbdoutHeader)) {}
+RbdoutWriter::RbdoutWriter(const std::filesystem::path& path, std::int64_t continue_at)
+    : csv_(path, std::string(kRbdoutHeader), continue_at) {}
 
 void RbdoutWriter::write(const std::vector<RbdoutRow>& rows) {
   fmt::memory_buffer text;

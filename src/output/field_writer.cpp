@@ -403,6 +403,11 @@ void FieldWriter::write_frame(const solver::State& state) {
   write_collection();
 }
 
+void FieldWriter::resume(std::vector<double> times, std::vector<std::string> files) {
+  times_ = std::move(times);
+  files_ = std::move(files);
+}
+
 void FieldWriter::write_collection() const {
   fmt::memory_buffer xml;
   auto out = std::back_inserter(xml);

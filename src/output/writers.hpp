@@ -36,7 +36,11 @@ struct GlstatRow {
 class CsvFile {
  public:
   CsvFile() = default;
-  CsvFile(const std::filesystem::path& path, const std::string& header);
+  // continue_at < 0: a new file that starts with `header`. Otherwise the existing file is cut to
+  // continue_at bytes and continued (restart: rows written after the dump are dropped); it must
+  // exist and be at least that long.
+  CsvFile(const std::filesystem::path& path, const std::string& header,
+          std::int64_t continue_at = -1);
   CsvFile(const CsvFile&) = delete;
   CsvFile& operator=(const CsvFile&) = delete;
   CsvFile(CsvFile&& other) noexcept;
@@ -48,6 +52,8 @@ class CsvFile {
   // format a whole output time into one buffer and hand it over in a single call.
   void write_text(std::string_view text);
   void flush();
+  // Flushes and returns the file's size: the cut point a restart dump records.
+  std::int64_t flushed_size();
   bool is_open() const { return file_ != nullptr; }
   const std::filesystem::path& path() const { return path_; }
 
@@ -55,6 +61,13 @@ class CsvFile {
   void close() noexcept;
   std::FILE* file_ = nullptr;
   std::filesystem::path path_;
+};
+
+// Where a restart continues each CSV file: its size at the dump, or -1 to start it anew.
+struct CsvContinuation {
+  std::int64_t glstat = -1;
+  std::int64_t nodout = -1;
+  std::int64_t rbdout = -1;
 };
 
 // Column headers, exactly as written (docs/output.md).
@@ -80,9 +93,10 @@ struct RbdoutRow {
 // rbdout.csv: one row per rigid body at each output time.
 class RbdoutWriter {
  public:
-  explicit RbdoutWriter(const std::filesystem::path& path);
+  explicit RbdoutWriter(const std::filesystem::path& path, std::int64_t continue_at = -1);
   void write(const std::vector<RbdoutRow>& rows);
   void flush() { csv_.flush(); }
+  std::int64_t flushed_size() { return csv_.flushed_size(); }
 
  private:
   CsvFile csv_;
@@ -115,9 +129,10 @@ class SwitchWriter {
 
 class GlstatWriter {
  public:
-  explicit GlstatWriter(const std::filesystem::path& path);
+  explicit GlstatWriter(const std::filesystem::path& path, std::int64_t continue_at = -1);
   void write(const GlstatRow& row);
   void flush() { csv_.flush(); }
+  std::int64_t flushed_size() { return csv_.flushed_size(); }
 
  private:
   CsvFile csv_;
@@ -126,12 +141,14 @@ class GlstatWriter {
 // nodout.csv: time,node,x,y,z,vx,vy,vz,ax,ay,az for every history node at each output time.
 class NodoutWriter {
  public:
-  NodoutWriter(const std::filesystem::path& path, std::vector<std::int32_t> dense_nodes);
+  NodoutWriter(const std::filesystem::path& path, std::vector<std::int32_t> dense_nodes,
+               std::int64_t continue_at = -1);
   void write(const solver::State& state);
   // Writes the full-step velocity v^n = (v^{n-1/2} + v^{n+1/2}) / 2, the solver's best
   // estimate at the output time, from the previous half-step velocity and state.nodes.v.
   void write(const solver::State& state, const solver::Vec3Array& v_previous);
   void flush() { csv_.flush(); }
+  std::int64_t flushed_size() { return csv_.flushed_size(); }
 
  private:
   void write_rows(const solver::State& state, const solver::Vec3Array* v_previous);
@@ -180,6 +197,10 @@ class FieldWriter {
   // Writes/refreshes the .pvd collection; called after every frame so a crashed run is readable.
   void write_collection() const;
   int frames() const { return static_cast<int>(times_.size()); }
+  // The frames written so far (time and file name); a restart continues from them.
+  const std::vector<double>& frame_times() const { return times_; }
+  const std::vector<std::string>& frame_files() const { return files_; }
+  void resume(std::vector<double> times, std::vector<std::string> files);
 
  private:
   std::filesystem::path directory_;

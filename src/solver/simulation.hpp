@@ -11,6 +11,7 @@
 #include <string>
 
 #include "model/model.hpp"
+#include "model/restart_switch.hpp"
 #include "output/writers.hpp"
 #include "solver/boundary.hpp"
 #include "solver/build_state.hpp"
@@ -22,6 +23,11 @@ namespace rf::sensor {
 struct SensorSystem;
 class SensorCsv;
 }  // namespace rf::sensor
+
+namespace rf::restart {
+class Dumper;
+struct SimulationAccess;
+}  // namespace rf::restart
 
 namespace rf::solver {
 
@@ -55,6 +61,11 @@ struct EnergyAccount {
 struct SimulationOptions {
   std::filesystem::path output_directory;  // empty: no files written
   bool write_fields = true;                // d3plot VTU frames
+  // Restart (restart/restart.hpp): the state is read from a dump afterwards, so the constructor
+  // does not initialise it, and the CSV files are continued from the sizes they had at the dump
+  // (negative: start the file anew).
+  bool from_dump = false;
+  output::CsvContinuation continuation;
 };
 
 class Simulation {
@@ -89,6 +100,12 @@ class Simulation {
   // Sensors, switches and controls as of the last evaluation (DEF2RIG events included).
   const sensor::SensorSystem& sensors() const { return *sensors_; }
 
+  // Restart dumps (restart/dumper.hpp), written by run() between cycles when due.
+  void enable_restart_dumps(std::unique_ptr<restart::Dumper> dumper);
+  const restart::Dumper* restart_dumper() const { return dumper_.get(); }
+  // Part switching requested by a restart deck, applied to the state read from the dump.
+  void apply_restart_switches(const std::vector<model::RestartSwitch>& switches);
+
  private:
   // The phases of a cycle, in order.
   void update_velocities();  // a^n -> v^{n+1/2}, constraints, rigid bodies, energy
@@ -107,6 +124,9 @@ class Simulation {
                     const std::vector<model::PartSwitch>& to_deformable, double dtmax);
   void check_breakdown();
   void write_output_now();
+  bool end_reached() const;
+  // Dumps read and write every member below (restart/simulation_access.hpp).
+  friend struct restart::SimulationAccess;
 
   const model::Model model_;
   SimulationOptions options_;
@@ -161,6 +181,7 @@ class Simulation {
   double switch_dt_cap_ = 0.0;  // DTMAX of the last switch set that fired (0: none)
   std::unique_ptr<sensor::SensorSystem> sensors_;
   std::unique_ptr<sensor::SensorCsv> sensor_csv_;
+  std::unique_ptr<restart::Dumper> dumper_;
 };
 
 }  // namespace rf::solver

@@ -26,13 +26,16 @@ class DeckReader {
   DeckReader(model::Model& model, const ReadOptions& options)
       : parameters_(options.parameter_overrides),
         context_(model, parameters_),
-        dialect_(options.dialect) {
+        dialect_(options.dialect),
+        file_texts_(options.file_texts),
+        record_files_(options.record_files) {
     context_.include = [this](const std::string& filename, const Card& card) {
       include(filename, card);
     };
   }
 
   void read_text(std::string_view text, const std::string& name, const fs::path& base_dir) {
+    if (record_files_) (*record_files_)[name] = std::string(text);
     context_.model.files.push_back(name);
     const int file_index = static_cast<int>(context_.model.files.size()) - 1;
     const int saved_index = context_.current_file_index;
@@ -191,8 +194,17 @@ class DeckReader {
     if (filename.empty()) throw card.error("FILENAME", "the file name is empty");
     fs::path path(filename);
     if (path.is_relative()) path = current_dir_ / path;
+    const std::string* stored_text = nullptr;
     std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) {
+    if (file_texts_) {
+      const auto it = file_texts_->find(path.string());
+      if (it == file_texts_->end()) {
+        throw card.error("FILENAME", fmt::format("included file '{}' is not among the deck files "
+                                                 "the restart dump holds",
+                                                 filename));
+      }
+      stored_text = &it->second;
+    } else if (!fs::is_regular_file(path, ec)) {
       throw card.error("FILENAME", fmt::format("included file '{}' does not exist (looked for "
                                                "'{}')",
                                                filename, path.string()));
@@ -209,11 +221,16 @@ class DeckReader {
       throw card.error("FILENAME",
                        fmt::format("includes are nested more than {} deep", kMaxIncludeDepth));
     }
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw card.error("FILENAME", fmt::format("cannot open '{}'", path.string()));
-    std::ostringstream content;
-    content << in.rdbuf();
-    const std::string text = content.str();
+    std::string text;
+    if (stored_text) {
+      text = *stored_text;
+    } else {
+      std::ifstream in(path, std::ios::binary);
+      if (!in) throw card.error("FILENAME", fmt::format("cannot open '{}'", path.string()));
+      std::ostringstream content;
+      content << in.rdbuf();
+      text = content.str();
+    }
     open_files_.push_back(canon);
     read_text(text, path.string(), path.parent_path());
     open_files_.pop_back();
@@ -225,6 +242,8 @@ class DeckReader {
   CardFormat global_format_ = CardFormat::Standard;
   fs::path current_dir_;
   std::vector<fs::path> open_files_;
+  const std::map<std::string, std::string>* file_texts_ = nullptr;
+  std::map<std::string, std::string>* record_files_ = nullptr;
 };
 
 }  // namespace
@@ -239,6 +258,18 @@ model::Model read_deck_text(std::string_view text, const std::string& name,
 }
 
 model::Model read_deck(const std::filesystem::path& path, const ReadOptions& options) {
+  if (options.file_texts) {
+    const auto it = options.file_texts->find(path.string());
+    if (it == options.file_texts->end()) {
+      throw InputError({path.string(), 0, "", 0, ""}, "the deck is not among the given deck texts");
+    }
+    model::Model model;
+    DeckReader reader(model, options);
+    reader.push_file(path);
+    reader.read_text(it->second, path.string(), path.parent_path());
+    reader.finish();
+    return model;
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError({path.string(), 0, "", 0, ""}, "cannot open the deck file");
   std::ostringstream content;

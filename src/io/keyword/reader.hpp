@@ -17,6 +17,13 @@ struct ReadOptions {
   Dialect dialect = Dialect::Auto;
   // Values that replace *PARAMETER definitions of the same name (CLI --set name=value).
   std::map<std::string, double> parameter_overrides;
+  // When set, deck files are taken from this map instead of the disk, keyed by the name the
+  // reader gives them (the main deck's path as passed, an include's path joined to the
+  // including file's directory): a restart rebuilds the model from the texts in its dump.
+  const std::map<std::string, std::string>* file_texts = nullptr;
+  // When set, every file read (main deck and includes) is stored here under that name, so that
+  // a restart dump can carry the model input.
+  std::map<std::string, std::string>* record_files = nullptr;
 };
 
 // Reads a deck file and everything it includes (paths relative to the including file).

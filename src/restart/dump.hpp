@@ -1,0 +1,82 @@
+// Restart dumps in HDF5: one function pair per subsystem, so that a field added to a subsystem
+// is added to its writer and reader and nowhere else. Layout of a dump (docs/restart.md):
+//
+//   /            attributes format, dump_version, rigidflex_version, time, cycle, threads
+//   /model       the deck texts, dialect and --set overrides (write_model_input)
+//   /nodes       nodal arrays (write_nodes)
+//   /blocks/NNNN per-element state of each HexBlock (write_hex_blocks)
+//   /rigid       the rigid system, wholesale: bodies, body_of_node, motions, loads
+//   /boundary    resolved constraints and loads, wholesale (write_boundary)
+//   /simulation  Simulation's own members (SimulationAccess::write_members)
+//   /output      CSV sizes, VTU frames, output schedules (SimulationAccess::write_output)
+//   /dumps       the dump schedule (write_dump_schedule)
+//
+// Time functions (load curves, *FUNCTION) are stored by ID and found again in the model that
+// the restart rebuilds from the dump's deck text.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "element/hex_block.hpp"
+#include "io/restart/hdf5_file.hpp"
+#include "restart/dumper.hpp"
+#include "restart/model_input.hpp"
+#include "solver/boundary.hpp"
+#include "solver/rigid_bodies.hpp"
+#include "solver/state.hpp"
+
+namespace rf::solver {
+class Simulation;
+}
+
+namespace rf::restart {
+
+// Increment when the layout changes in a way an older reader cannot follow (a renamed or
+// re-typed object, a changed meaning). A dump of another version is refused with a message.
+inline constexpr std::int64_t kDumpVersion = 1;
+inline constexpr const char* kDumpFormat = "RigidFlex restart dump";
+
+void write_model_input(const io::h5::Group& g, const ModelInput& input);
+ModelInput read_model_input(const io::h5::Group& g);
+
+void write_nodes(const io::h5::Group& g, const solver::NodalState& nodes,
+                 const solver::Vec3Array& v_previous);
+void read_nodes(const io::h5::Group& g, solver::NodalState& nodes, solver::Vec3Array& v_previous);
+
+void write_hex_blocks(const io::h5::Group& g, const std::vector<element::HexBlock>& blocks);
+void read_hex_blocks(const io::h5::Group& g, std::vector<element::HexBlock>& blocks);
+
+// `model` resolves time functions to IDs (write) and back (read). Read replaces the whole
+// system (bodies may have been created or removed during the run); node_count checks indices.
+void write_rigid_system(const io::h5::Group& g, const solver::RigidSystem& rigid,
+                        const model::Model& model);
+void read_rigid_system(const io::h5::Group& g, solver::RigidSystem& rigid,
+                       const model::Model& model, std::size_t node_count);
+
+void write_boundary(const io::h5::Group& g, const solver::Boundary& boundary,
+                    const model::Model& model);
+void read_boundary(const io::h5::Group& g, solver::Boundary& boundary, const model::Model& model);
+
+void write_dump_schedule(const io::h5::Group& g, const DumpSchedule& schedule);
+DumpSchedule read_dump_schedule(const io::h5::Group& g);
+
+// The whole dump of `sim` (which must have restart dumps enabled: the model input and schedule
+// come from its Dumper), written to a temporary name and renamed, so a crash while writing
+// never leaves a damaged file under the dump's name. Flushes the CSV files.
+void write_restart_dump(solver::Simulation& sim, const std::filesystem::path& path);
+
+// What a dump says about itself, read without rebuilding the model. Throws rf::InputError for
+// a missing, damaged or foreign file and for a dump of another version.
+struct DumpHeader {
+  std::int64_t version = 0;
+  std::string rigidflex_version;
+  double time = 0.0;
+  std::int64_t cycle = 0;
+  int threads = 0;
+};
+DumpHeader read_dump_header(const io::h5::File& file, const std::filesystem::path& path);
+
+}  // namespace rf::restart

@@ -1,0 +1,190 @@
+#include "restart/restart.hpp"
+
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <fstream>
+#include <system_error>
+
+#include "io/keyword/reader.hpp"
+#include "io/keyword/restart_deck.hpp"
+#include "model/error.hpp"
+#include "model/error_context.hpp"
+#include "restart/simulation_access.hpp"
+
+namespace rf::restart {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+io::Dialect dialect_of(const std::string& name) {
+  if (name == "impetus") return io::Dialect::Impetus;
+  if (name == "lsdyna") return io::Dialect::LsDyna;
+  return io::Dialect::Auto;
+}
+
+bool same_directory(const fs::path& a, const fs::path& b) {
+  std::error_code ec;
+  const bool same = fs::equivalent(a, b, ec);
+  return !ec && same;
+}
+
+void copy_prefix(const fs::path& from, const fs::path& to, std::int64_t bytes) {
+  std::ifstream in(from, std::ios::binary);
+  std::ofstream out(to, std::ios::binary | std::ios::trunc);
+  std::vector<char> buffer(1 << 20);
+  std::int64_t left = bytes;
+  while (left > 0 && in) {
+    const auto chunk = static_cast<std::streamsize>(
+        std::min<std::int64_t>(left, static_cast<std::int64_t>(buffer.size())));
+    in.read(buffer.data(), chunk);
+    out.write(buffer.data(), in.gcount());
+    left -= in.gcount();
+  }
+  if (left != 0 || !out) {
+    throw std::runtime_error(
+        fmt::format("cannot copy '{}' to '{}' for the restart", from.string(), to.string()));
+  }
+}
+
+// Where a CSV file is continued: its size at the dump when the file from the dumped run is there
+// (copied into a new output directory first), else -1 (started anew, with a warning).
+std::int64_t continue_csv(const fs::path& from_dir, const fs::path& to_dir, bool same,
+                          const std::string& name, std::int64_t bytes,
+                          std::vector<model::Warning>& warnings) {
+  if (bytes < 0) return -1;
+  const fs::path source = from_dir / name;
+  std::error_code ec;
+  const auto size = fs::file_size(source, ec);
+  if (ec || size < static_cast<std::uintmax_t>(bytes)) {
+    warnings.push_back({{},
+                        fmt::format("{} of the dumped run is missing or shorter than at the "
+                                    "dump ({} bytes); it is started anew and holds only rows "
+                                    "from the restart on",
+                                    source.string(), bytes)});
+    return -1;
+  }
+  if (!same) copy_prefix(source, to_dir / name, bytes);
+  return bytes;
+}
+
+}  // namespace
+
+Restarted restart_from_dump(const RestartOptions& options) {
+  Restarted result;
+  const io::h5::File file = io::h5::File::open(options.dump);
+  result.header = read_dump_header(file, options.dump);
+  const io::h5::Group root = file.root();
+  if (result.header.rigidflex_version != RIGIDFLEX_VERSION) {
+    result.warnings.push_back(
+        {{},
+         fmt::format("the dump was written by RigidFlex {}, this is {}: the continued run may "
+                     "differ from one made with a single version",
+                     result.header.rigidflex_version, RIGIDFLEX_VERSION)});
+  }
+
+  // The model, from the deck texts in the dump.
+  ModelInput input = read_model_input(root.group("model"));
+  io::ReadOptions read_options;
+  read_options.dialect = dialect_of(input.dialect);
+  read_options.parameter_overrides = input.overrides;
+  read_options.file_texts = &input.files;
+  model::Model model = io::read_deck(input.main_deck, read_options);
+
+  std::optional<io::RestartDeck> deck;
+  if (!options.restart_deck.empty()) deck = io::read_restart_deck(options.restart_deck, model);
+
+  // Thread count: the dumped run's unless asked otherwise (element kernels combine per-thread
+  // partial sums in thread order, so another count changes the last digits of energies).
+  result.threads = options.threads > 0 ? options.threads : std::max(1, result.header.threads);
+  if (options.threads > 0 && options.threads != result.header.threads) {
+    result.warnings.push_back(
+        {{},
+         fmt::format("the dumped run used {} thread(s), this restart uses {}: results can "
+                     "differ from an uninterrupted run in the last digits",
+                     result.header.threads, options.threads)});
+  }
+  omp_set_num_threads(result.threads);
+
+  // Output: the dump's directory unless -o says otherwise; CSV files cut at their dump sizes.
+  fs::path dump_dir = options.dump.parent_path();
+  if (dump_dir.empty()) dump_dir = ".";
+  result.output_directory = options.output_directory.empty() ? dump_dir : options.output_directory;
+  fs::create_directories(result.output_directory);
+  const bool same = same_directory(dump_dir, result.output_directory);
+  const io::h5::Group output = root.group("output");
+  solver::SimulationOptions sim_options;
+  sim_options.output_directory = result.output_directory;
+  sim_options.write_fields = options.write_fields;
+  sim_options.from_dump = true;
+  sim_options.continuation.glstat =
+      continue_csv(dump_dir, result.output_directory, same, "glstat.csv",
+                   output.get_int("glstat_bytes"), result.warnings);
+  sim_options.continuation.nodout =
+      continue_csv(dump_dir, result.output_directory, same, "nodout.csv",
+                   output.get_int("nodout_bytes"), result.warnings);
+  sim_options.continuation.rbdout =
+      continue_csv(dump_dir, result.output_directory, same, "rbdout.csv",
+                   output.get_int("rbdout_bytes"), result.warnings);
+  if (!same && options.write_fields) {
+    // Earlier frames, so that the new directory's d3plot.pvd is complete.
+    for (const std::string& name : SimulationAccess::read_frames(output).files) {
+      std::error_code ec;
+      fs::copy_file(dump_dir / name, result.output_directory / name,
+                    fs::copy_options::overwrite_existing, ec);
+      if (ec) {
+        result.warnings.push_back(
+            {{},
+             fmt::format("frame {} of the dumped run could not be copied ({}); d3plot.pvd "
+                         "lists it all the same",
+                         (dump_dir / name).string(), ec.message())});
+      }
+    }
+  }
+
+  result.simulation = std::make_unique<solver::Simulation>(std::move(model), sim_options);
+  solver::Simulation& sim = *result.simulation;
+  const model::Model& sim_model = SimulationAccess::model(sim);
+  solver::State& state = SimulationAccess::state(sim);
+  read_nodes(root.group("nodes"), state.nodes, SimulationAccess::v_previous(sim));
+  read_hex_blocks(root.group("blocks"), state.hex_blocks);
+  read_rigid_system(root.group("rigid"), SimulationAccess::rigid(sim), sim_model,
+                    state.nodes.size());
+  read_boundary(root.group("boundary"), SimulationAccess::boundary(sim), sim_model);
+  SimulationAccess::read_members(sim, root.group("simulation"));
+  SimulationAccess::read_output(sim, output);
+
+  DumpSchedule schedule = read_dump_schedule(root.group("dumps"));
+  if (options.dump_interval) {
+    schedule.interval = std::max(0.0, *options.dump_interval);
+    schedule.next = state.time + schedule.interval;
+  }
+  sim.enable_restart_dumps(std::make_unique<Dumper>(std::move(input), schedule));
+
+  if (deck) {
+    double end_time = sim.end_time();
+    std::int64_t end_cycle = SimulationAccess::end_cycle(sim);
+    if (deck->end_time) {
+      if (*deck->end_time <= state.time) {
+        throw InputError(
+            model::context_of(deck->termination_where, "ENDTIM"),
+            fmt::format("{} does not lie after the dump's time {}", *deck->end_time, state.time));
+      }
+      end_time = *deck->end_time;
+    }
+    if (deck->end_cycle) {
+      if (*deck->end_cycle <= state.cycle) {
+        throw InputError(model::context_of(deck->termination_where, "ENDCYC"),
+                         fmt::format("{} does not lie after the dump's cycle {}", *deck->end_cycle,
+                                     state.cycle));
+      }
+      end_cycle = *deck->end_cycle;
+    }
+    SimulationAccess::set_end(sim, end_time, end_cycle);
+    sim.apply_restart_switches(deck->switches);
+  }
+  return result;
+}
+
+}  // namespace rf::restart

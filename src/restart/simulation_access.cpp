@@ -1,0 +1,150 @@
+#include "restart/simulation_access.hpp"
+
+#include <fmt/format.h>
+
+namespace rf::restart {
+
+namespace {
+
+using io::h5::Group;
+
+void write_schedule(const Group& g, const std::string& name, double interval, double next,
+                    std::int64_t last_cycle) {
+  g.set(name + "_interval", interval);
+  g.set(name + "_next", next);
+  g.set(name + "_last_cycle", last_cycle);
+}
+
+template <class Schedule>
+void read_schedule(const Group& g, const std::string& name, Schedule& s) {
+  s.interval = g.get_double(name + "_interval");
+  s.next = g.get_double(name + "_next");
+  s.last_cycle = g.get_int(name + "_last_cycle");
+}
+
+}  // namespace
+
+void SimulationAccess::write_members(Simulation& s, const Group& g) {
+  const solver::State& st = s.state_;
+  g.set("time", st.time);
+  g.set("dt", st.dt);
+  g.set("dt_prev", st.dt_prev);
+  g.set("cycle", st.cycle);
+  g.set("generated_node_count", st.generated_node_count);
+  g.set("end_time", s.end_time_);
+  g.set("end_cycle", s.end_cycle_);
+  g.set("element_dt", s.element_dt_);
+  g.set("initial_dt", s.initial_dt_);
+  g.set("dt_average", s.dt_average_);
+  g.set("element_count", s.element_count_);
+  g.set("controlling_element", std::int64_t{s.controlling_element_});
+  g.set("finished", std::int64_t{s.finished_});
+  g.set("breakdown_message", s.breakdown_message_);
+  const solver::EnergyAccount& e = s.energy_;
+  g.set("energy_kinetic", e.kinetic);
+  g.set("energy_internal_work", e.internal_work);
+  g.set("energy_hourglass", e.hourglass);
+  g.set("energy_external_work", e.external_work);
+  g.set("energy_initial_total", e.initial_total);
+  for (int k = 0; k < 3; ++k) {
+    g.set(fmt::format("energy_momentum_{}", k), e.momentum[k]);
+    g.set(fmt::format("energy_angular_momentum_{}", k), e.angular_momentum[k]);
+  }
+}
+
+void SimulationAccess::read_members(Simulation& s, const Group& g) {
+  solver::State& st = s.state_;
+  if (g.get_int("generated_node_count") != st.generated_node_count ||
+      g.get_int("element_count") != s.element_count_) {
+    g.fail("element_count",
+           fmt::format("the dump has {} elements and {} generated nodes, the model rebuilt from "
+                       "its deck {} and {}",
+                       g.get_int("element_count"), g.get_int("generated_node_count"),
+                       s.element_count_, st.generated_node_count));
+  }
+  st.time = g.get_double("time");
+  st.dt = g.get_double("dt");
+  st.dt_prev = g.get_double("dt_prev");
+  st.cycle = g.get_int("cycle");
+  s.end_time_ = g.get_double("end_time");
+  s.end_cycle_ = g.get_int("end_cycle");
+  s.element_dt_ = g.get_double("element_dt");
+  s.initial_dt_ = g.get_double("initial_dt");
+  s.dt_average_ = g.get_double("dt_average");
+  s.controlling_element_ = g.get_int("controlling_element");
+  s.finished_ = g.get_int("finished") != 0;
+  s.breakdown_message_ = g.get_string("breakdown_message");
+  solver::EnergyAccount& e = s.energy_;
+  e.kinetic = g.get_double("energy_kinetic");
+  e.internal_work = g.get_double("energy_internal_work");
+  e.hourglass = g.get_double("energy_hourglass");
+  e.external_work = g.get_double("energy_external_work");
+  e.initial_total = g.get_double("energy_initial_total");
+  for (int k = 0; k < 3; ++k) {
+    e.momentum[k] = g.get_double(fmt::format("energy_momentum_{}", k));
+    e.angular_momentum[k] = g.get_double(fmt::format("energy_angular_momentum_{}", k));
+  }
+}
+
+void SimulationAccess::write_output(Simulation& s, const Group& g) {
+  g.set("glstat_bytes", s.glstat_ ? s.glstat_->flushed_size() : std::int64_t{-1});
+  g.set("nodout_bytes", s.nodout_ ? s.nodout_->flushed_size() : std::int64_t{-1});
+  g.set("rbdout_bytes", s.rbdout_ ? s.rbdout_->flushed_size() : std::int64_t{-1});
+  write_schedule(g, "glstat", s.glstat_schedule_.interval, s.glstat_schedule_.next,
+                 s.glstat_schedule_.last_cycle);
+  write_schedule(g, "nodout", s.nodout_schedule_.interval, s.nodout_schedule_.next,
+                 s.nodout_schedule_.last_cycle);
+  write_schedule(g, "rbdout", s.rbdout_schedule_.interval, s.rbdout_schedule_.next,
+                 s.rbdout_schedule_.last_cycle);
+  write_schedule(g, "d3plot", s.d3plot_schedule_.interval, s.d3plot_schedule_.next,
+                 s.d3plot_schedule_.last_cycle);
+  const std::vector<double> no_times;
+  const std::vector<std::string> no_files;
+  const auto& times = s.fields_ ? s.fields_->frame_times() : no_times;
+  const auto& files = s.fields_ ? s.fields_->frame_files() : no_files;
+  g.set("frame_count", static_cast<std::int64_t>(times.size()));
+  g.write("frame_times", std::span<const double>(times.data(), times.size()));
+  std::string joined;
+  for (const auto& f : files) {
+    joined += f;
+    joined.push_back('\0');
+  }
+  g.write_text("frame_files", joined);
+}
+
+void SimulationAccess::read_output(Simulation& s, const Group& g) {
+  read_schedule(g, "glstat", s.glstat_schedule_);
+  read_schedule(g, "nodout", s.nodout_schedule_);
+  read_schedule(g, "rbdout", s.rbdout_schedule_);
+  read_schedule(g, "d3plot", s.d3plot_schedule_);
+  if (s.fields_) {
+    const auto frames = read_frames(g);
+    s.fields_->resume(frames.times, frames.files);
+  }
+}
+
+SimulationAccess::Frames SimulationAccess::read_frames(const Group& g) {
+  Frames frames;
+  const std::int64_t n = g.get_int("frame_count");
+  frames.times = g.read_doubles("frame_times");
+  const std::string joined = g.read_text("frame_files");
+  std::size_t start = 0;
+  while (start < joined.size()) {
+    const std::size_t end = joined.find('\0', start);
+    if (end == std::string::npos) break;
+    frames.files.push_back(joined.substr(start, end - start));
+    start = end + 1;
+  }
+  if (static_cast<std::int64_t>(frames.times.size()) != n ||
+      static_cast<std::int64_t>(frames.files.size()) != n) {
+    g.fail("frame_files", "does not match frame_times (the dump is damaged)");
+  }
+  for (const auto& f : frames.files) {
+    if (f.empty() || f.find('/') != std::string::npos || f.find("..") != std::string::npos) {
+      g.fail("frame_files", fmt::format("holds '{}', which is not a frame file name", f));
+    }
+  }
+  return frames;
+}
+
+}  // namespace rf::restart

@@ -1,0 +1,144 @@
+// Decks for the restart tests: small models that exercise every kind of state a dump must carry
+// (stresses at 1 and 8 points, stiffness hourglass forces, Lagrange hexahedra, rigid bodies with
+// both node updates, nodal rigid bodies, prescribed motion with accumulated travel, loads from
+// curves). Free (comma) format LS-DYNA.
+#pragma once
+
+#include <fmt/format.h>
+
+#include <string>
+
+#include "deck_builder.hpp"
+
+namespace rf::test::restart_decks {
+
+// Output at fixed intervals, so that an extended run writes rows at the same times as a longer
+// uninterrupted one (default intervals scale with ENDTIM).
+inline std::string output_cards(double glstat_dt, double d3plot_dt) {
+  return fmt::format(
+      "*DATABASE_GLSTAT\n{0},0\n*DATABASE_NODOUT\n{0},0\n*DATABASE_RBDOUT\n{0},0\n"
+      "*DATABASE_BINARY_D3PLOT\n{1},0\n",
+      glstat_dt, d3plot_dt);
+}
+
+// A 4 x 2 x 2 steel block (mm, t, s): part 1 (x < 2) ELFORM 1 with Belytschko-Bindeman
+// stiffness hourglass control (IHQ 6, accumulated hourglass forces), part 2 ELFORM 2
+// (8 stress points). Spinning and translating, a corner load and a body load from curves, a
+// node with prescribed displacement.
+inline std::string deformable(double end_time) {
+  BoxMesh mesh;
+  mesh.nx = 4;
+  mesh.ny = 2;
+  mesh.nz = 2;
+  mesh.lx = 4.0;
+  mesh.ly = 2.0;
+  mesh.lz = 2.0;
+  std::string s = "*KEYWORD\n*TITLE\nrestart: deformable\n";
+  s += fmt::format("*CONTROL_TERMINATION\n{},0\n*CONTROL_TIMESTEP\n0,0.5\n", end_time);
+  s += output_cards(2e-7, 2e-6);
+  s += "*NODE\n";
+  for (int k = 0; k <= mesh.nz; ++k)
+    for (int j = 0; j <= mesh.ny; ++j)
+      for (int i = 0; i <= mesh.nx; ++i) {
+        double x, y, z;
+        mesh.coordinates(i, j, k, x, y, z);
+        s += fmt::format("{},{},{},{}\n", mesh.node_id(i, j, k), x, y, z);
+      }
+  s += "*ELEMENT_SOLID\n";
+  int eid = 0;
+  for (int k = 0; k < mesh.nz; ++k)
+    for (int j = 0; j < mesh.ny; ++j)
+      for (int i = 0; i < mesh.nx; ++i) {
+        s += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", ++eid, i < 2 ? 1 : 2,
+                         mesh.node_id(i, j, k), mesh.node_id(i + 1, j, k),
+                         mesh.node_id(i + 1, j + 1, k), mesh.node_id(i, j + 1, k),
+                         mesh.node_id(i, j, k + 1), mesh.node_id(i + 1, j, k + 1),
+                         mesh.node_id(i + 1, j + 1, k + 1), mesh.node_id(i, j + 1, k + 1));
+      }
+  s += "*PART\nstiffness hourglass\n1,1,1,0,1\n*PART\nselective reduced\n2,2,1,0,2\n";
+  s += "*SECTION_SOLID\n1,1\n*SECTION_SOLID\n2,2\n";
+  s += "*MAT_ELASTIC\n1,7.85e-9,210000.0,0.3\n";
+  s += "*HOURGLASS\n1,6,0.1\n2,1,0.1\n";
+  s += "*INITIAL_VELOCITY_GENERATION\n0,2,2.0e5,1000.0,-500.0,0.0\n1.0,1.0,1.0,0.0,0.0,1.0\n";
+  s += fmt::format("*LOAD_NODE_POINT\n{},3,1,50.0\n{},2,1,-30.0\n", mesh.node_id(4, 2, 2),
+                   mesh.node_id(4, 0, 2));
+  s += "*LOAD_BODY_Y\n2,1.0e6\n";
+  s += fmt::format("*BOUNDARY_PRESCRIBED_MOTION_NODE\n{},1,2,3,0.01\n", mesh.node_id(0, 0, 0));
+  s += "*DEFINE_CURVE\n1\n0.0,0.0\n1.0e-5,1.0\n1.0,1.0\n";
+  s += "*DEFINE_CURVE\n2\n0.0,1.0\n1.0e-5,0.0\n1.0,-1.0\n";
+  s += "*DEFINE_CURVE\n3\n0.0,0.0\n1.0e-5,1.0\n1.0,1.0\n";
+  s += fmt::format("*DATABASE_HISTORY_NODE\n{},{},{}\n", mesh.node_id(4, 2, 2),
+                   mesh.node_id(2, 1, 1), mesh.node_id(0, 0, 0));
+  s += "*END\n";
+  return s;
+}
+
+// A spinning 3 x 2 x 2 block: x < 1 is a rigid part, the rest is deformable (ELFORM 1, viscous
+// hourglass) and shares the interface nodes with it; the far face is a nodal rigid body. The
+// rigid part gets a moment from a curve; *RIGID_BODY_UPDATE selects the node update (&type).
+inline std::string spinning_rigid(double end_time, int update_type) {
+  BoxMesh mesh;
+  mesh.nx = 3;
+  mesh.ny = 2;
+  mesh.nz = 2;
+  mesh.lx = 3.0;
+  mesh.ly = 2.0;
+  mesh.lz = 2.0;
+  std::string s = "*KEYWORD\n*TITLE\nrestart: spinning rigid and deformable\n";
+  s += fmt::format("*PARAMETER\nI type,{}\n*RIGID_BODY_UPDATE\n&type\n", update_type);
+  s += fmt::format("*CONTROL_TERMINATION\n{},0\n*CONTROL_TIMESTEP\n0,0.5\n", end_time);
+  s += output_cards(2e-7, 2e-6);
+  s += "*NODE\n";
+  for (int k = 0; k <= mesh.nz; ++k)
+    for (int j = 0; j <= mesh.ny; ++j)
+      for (int i = 0; i <= mesh.nx; ++i) {
+        double x, y, z;
+        mesh.coordinates(i, j, k, x, y, z);
+        s += fmt::format("{},{},{},{}\n", mesh.node_id(i, j, k), x, y, z);
+      }
+  s += "*ELEMENT_SOLID\n";
+  int eid = 0;
+  for (int k = 0; k < mesh.nz; ++k)
+    for (int j = 0; j < mesh.ny; ++j)
+      for (int i = 0; i < mesh.nx; ++i) {
+        s += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", ++eid, i < 1 ? 1 : 2,
+                         mesh.node_id(i, j, k), mesh.node_id(i + 1, j, k),
+                         mesh.node_id(i + 1, j + 1, k), mesh.node_id(i, j + 1, k),
+                         mesh.node_id(i, j, k + 1), mesh.node_id(i + 1, j, k + 1),
+                         mesh.node_id(i + 1, j + 1, k + 1), mesh.node_id(i, j + 1, k + 1));
+      }
+  s += "*PART\nrigid hub\n1,1,1\n*PART\nelastic shaft\n2,1,2,0,1\n";
+  s += "*SECTION_SOLID\n1,1\n";
+  s += "*MAT_RIGID\n1,7.85e-9,210000.0,0.3\n*MAT_ELASTIC\n2,7.85e-9,210000.0,0.3\n";
+  s += "*HOURGLASS\n1,1,0.1\n";
+  s += node_set(5, mesh.face_x(3));
+  s += "*CONSTRAINED_NODAL_RIGID_BODY\n7,0,5\n";
+  // Spin about the block's long axis plus a sideways drift.
+  s += "*INITIAL_VELOCITY_GENERATION\n0,2,3.0e5,0.0,200.0,0.0\n0.0,1.0,1.0,1.0,0.0,0.0\n";
+  s += "*LOAD_RIGID_BODY\n1,6,1,2.0e4\n1,5,1,-1.0e4\n";
+  s += "*DEFINE_CURVE\n1\n0.0,0.0\n1.0e-5,1.0\n1.0,1.0\n";
+  s += fmt::format("*DATABASE_HISTORY_NODE\n{},{}\n", mesh.node_id(3, 2, 2), mesh.node_id(1, 1, 1));
+  s += "*END\n";
+  return s;
+}
+
+// A 2 x 1 x 1 block of 27-node Lagrange hexahedra (*CHANGE_P-ORDER 2), spinning and loaded.
+inline std::string quadratic(double end_time) {
+  BoxMesh mesh;
+  mesh.nx = 2;
+  mesh.lx = 2.0;
+  std::string s = "*KEYWORD\n*TITLE\nrestart: p = 2\n";
+  s += fmt::format("*CONTROL_TERMINATION\n{},0\n*CONTROL_TIMESTEP\n0,0.5\n", end_time);
+  s += output_cards(2e-7, 2e-6);
+  s += mesh.keyword_text(1);
+  s += elastic_part(7.85e-9, 210000.0, 0.3, 1, 1);
+  s += "*CHANGE_P-ORDER\nPART,1,2\n";
+  s += "*INITIAL_VELOCITY_GENERATION\n0,2,1.0e5,500.0,0.0,0.0\n1.0,0.5,0.5,0.0,1.0,0.0\n";
+  s += fmt::format("*LOAD_NODE_POINT\n{},3,1,20.0\n", mesh.node_id(2, 1, 1));
+  s += "*DEFINE_CURVE\n1\n0.0,0.0\n1.0e-5,1.0\n1.0,1.0\n";
+  s += fmt::format("*DATABASE_HISTORY_NODE\n{},{}\n", mesh.node_id(2, 1, 1), mesh.node_id(0, 0, 0));
+  s += "*END\n";
+  return s;
+}
+
+}  // namespace rf::test::restart_decks

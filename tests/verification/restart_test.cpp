@@ -1,0 +1,414 @@
+// Restart: a run stopped after a dump and continued with `restart` must write the same files,
+// byte for byte, as the same run left alone (same thread count). The reference is the
+// uninterrupted run, which depends on none of the restart code: a state member the dump forgot,
+// a value rounded on its way through the file, a CSV row written twice or missed, a frame
+// renumbered, all show up as a differing byte. The later dumps are compared too, so the restored
+// state is checked as a whole, not only through the output.
+#include <gtest/gtest.h>
+#include <hdf5.h>
+#include <omp.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
+
+#include "io/keyword/reader.hpp"
+#include "model/error.hpp"
+#include "restart/dumper.hpp"
+#include "restart/restart.hpp"
+#include "restart_decks.hpp"
+
+namespace rf::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+// ctest runs every test in its own process, side by side: directories carry the process ID.
+fs::path scratch(const std::string& name) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("rigidflex_restart_" + std::to_string(::getpid()) + "_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+void write_file(const fs::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+struct Interrupted {};
+
+// What `rigidflex run DECK -o dir --dump-every interval` does. With `stop_after` the run is
+// abandoned at the first cycle past that time, as if killed: the files keep the rows, frames and
+// dumps written until then.
+void run_with_dumps(const fs::path& deck, const fs::path& dir, double interval,
+                    std::optional<double> stop_after = std::nullopt,
+                    const std::map<std::string, double>& overrides = {}) {
+  restart::ModelInput input;
+  io::ReadOptions read_options;
+  read_options.parameter_overrides = overrides;
+  read_options.record_files = &input.files;
+  model::Model model = io::read_deck(deck, read_options);
+  input.main_deck = deck.string();
+  input.overrides = overrides;
+  solver::Simulation sim(std::move(model), {dir, true});
+  sim.enable_restart_dumps(
+      std::make_unique<restart::Dumper>(std::move(input), restart::Dumper::every(interval)));
+  try {
+    sim.run([&](const solver::Simulation& s) {
+      if (stop_after && s.state().time > *stop_after) throw Interrupted{};
+    });
+  } catch (const Interrupted&) {
+  }
+}
+
+restart::Restarted restart_and_run(const fs::path& dump, const fs::path& restart_deck = {},
+                                   const fs::path& output = {}) {
+  restart::RestartOptions options;
+  options.dump = dump;
+  options.restart_deck = restart_deck;
+  options.output_directory = output;
+  restart::Restarted r = restart::restart_from_dump(options);
+  r.simulation->run();
+  return r;
+}
+
+// The files of `reference` that `keep` accepts must exist in `other` with the same bytes.
+template <class Keep>
+int expect_same_files(const fs::path& reference, const fs::path& other, Keep keep) {
+  int compared = 0;
+  for (const auto& entry : fs::directory_iterator(reference)) {
+    const std::string name = entry.path().filename().string();
+    if (!keep(name)) continue;
+    ++compared;
+    const std::string a = read_file(entry.path());
+    const std::string b = read_file(other / name);
+    if (a == b) continue;
+    std::size_t first = 0;
+    while (first < std::min(a.size(), b.size()) && a[first] == b[first]) ++first;
+    ADD_FAILURE() << name << " differs from the uninterrupted run's at byte " << first << " ("
+                  << a.size() << " vs " << b.size() << " bytes)";
+  }
+  return compared;
+}
+
+int expect_same_files(const fs::path& reference, const fs::path& other) {
+  return expect_same_files(reference, other, [](const std::string&) { return true; });
+}
+
+bool is_result(const std::string& name) {
+  return name.ends_with(".csv") || name.ends_with(".vtu") || name.ends_with(".pvd");
+}
+
+struct Case {
+  std::string name;
+  std::string deck;  // deck text, or empty to use `file`
+  std::string file;
+  std::map<std::string, double> overrides;
+  double dump_interval = 0.0;
+  int threads = 1;
+};
+
+void PrintTo(const Case& c, std::ostream* os) {
+  *os << c.name << ", " << c.threads << " thread(s)";
+}
+
+std::string case_name(const testing::TestParamInfo<Case>& info) {
+  return info.param.name + "_" + std::to_string(info.param.threads) + "_threads";
+}
+
+class RestartBitwise : public testing::TestWithParam<Case> {};
+
+TEST_P(RestartBitwise, StoppedAfterADumpAndRestartedEqualsUninterrupted) {
+  const Case& c = GetParam();
+  const int saved_threads = omp_get_max_threads();
+  omp_set_num_threads(c.threads);
+  const std::string tag = c.name + "_" + std::to_string(c.threads);
+  const fs::path base = scratch(tag);
+  fs::path deck = c.file;
+  if (!c.deck.empty()) {
+    deck = base / "deck.k";
+    write_file(deck, c.deck);
+  }
+  const fs::path reference = base / "reference";
+  const fs::path interrupted = base / "interrupted";
+  run_with_dumps(deck, reference, c.dump_interval, std::nullopt, c.overrides);
+  ASSERT_TRUE(fs::exists(reference / "d3dump_0004.h5")) << "the case must dump at least 4 times";
+
+  // Stopped a while after the third dump; restarted from the second, so the restart has rows,
+  // frames and a dump of the interrupted run to replace.
+  run_with_dumps(deck, interrupted, c.dump_interval, 3.5 * c.dump_interval, c.overrides);
+  ASSERT_TRUE(fs::exists(interrupted / "d3dump_0003.h5"));
+  ASSERT_FALSE(fs::exists(interrupted / "d3dump_0004.h5"));
+  omp_set_num_threads(1);  // the restart must take the thread count from the dump
+  const restart::Restarted r = restart_and_run(interrupted / "d3dump_0002.h5");
+  omp_set_num_threads(saved_threads);
+  EXPECT_EQ(r.threads, c.threads);
+  EXPECT_GT(r.header.cycle, 0);
+  EXPECT_TRUE(r.warnings.empty());
+
+  const int compared = expect_same_files(reference, interrupted);
+  EXPECT_GE(compared, 10);  // CSV files, frames, collection and dumps
+  for (const char* name : {"glstat.csv", "d3plot.pvd"}) EXPECT_TRUE(fs::exists(interrupted / name));
+  if (!HasFailure()) fs::remove_all(base);  // kept for inspection otherwise
+}
+
+const Case kCases[] = {
+    {"deformable", restart_decks::deformable(4e-5), "", {}, 6e-6, 1},
+    {"deformable", restart_decks::deformable(4e-5), "", {}, 6e-6, 2},
+    {"rigid_linear", restart_decks::spinning_rigid(4e-5, 0), "", {}, 6e-6, 1},
+    {"rigid_linear", restart_decks::spinning_rigid(4e-5, 0), "", {}, 6e-6, 2},
+    {"rigid_curvilinear", restart_decks::spinning_rigid(4e-5, 2), "", {}, 6e-6, 1},
+    {"rigid_curvilinear", restart_decks::spinning_rigid(4e-5, 2), "", {}, 6e-6, 2},
+    {"quadratic", restart_decks::quadratic(4e-5), "", {}, 6e-6, 1},
+    {"quadratic", restart_decks::quadratic(4e-5), "", {}, 6e-6, 2},
+    // The *RIGID_BODY_UPDATE example: prescribed rotation (accumulated travel), both updates.
+    {"torsion_update0", "", RIGIDFLEX_EXAMPLES "/torsion_rigid_update.k", {{"type", 0}}, 1.5e-3, 2},
+    {"torsion_update2", "", RIGIDFLEX_EXAMPLES "/torsion_rigid_update.k", {{"type", 2}}, 1.5e-3, 1},
+};
+
+INSTANTIATE_TEST_SUITE_P(Restart, RestartBitwise, testing::ValuesIn(kCases), case_name);
+
+// Restarting into another directory (-o): the new directory receives the earlier rows and
+// frames and ends up with the same results as the uninterrupted run.
+TEST(Restart, IntoAnotherDirectoryGivesTheSameResults) {
+  omp_set_num_threads(1);
+  const fs::path base = scratch("other_directory");
+  const fs::path deck = base / "deck.k";
+  write_file(deck, restart_decks::deformable(4e-5));
+  run_with_dumps(deck, base / "reference", 6e-6);
+  run_with_dumps(deck, base / "interrupted", 6e-6, 3.5 * 6e-6);
+  restart_and_run(base / "interrupted" / "d3dump_0002.h5", {}, base / "continued");
+  EXPECT_GE(expect_same_files(base / "reference", base / "continued", is_result), 5);
+  if (!HasFailure()) fs::remove_all(base);
+}
+
+// A restart deck with a later *CONTROL_TERMINATION extends the run: from a dump taken before
+// the original end, the extended run equals a run made to the later time from the start.
+TEST(Restart, LaterTerminationEqualsARunToTheLaterTime) {
+  omp_set_num_threads(1);
+  const fs::path base = scratch("extend");
+  const fs::path short_deck = base / "short.k";
+  const fs::path long_deck = base / "long.k";
+  write_file(short_deck, restart_decks::spinning_rigid(3e-5, 2));
+  write_file(long_deck, restart_decks::spinning_rigid(5e-5, 2));
+  const fs::path restart_deck = base / "extend.k";
+  write_file(restart_deck, "*KEYWORD\n*CONTROL_TERMINATION\n5.0e-5\n*END\n");
+  run_with_dumps(long_deck, base / "long", 6e-6);
+  run_with_dumps(short_deck, base / "short", 6e-6);
+  const restart::Restarted r = restart_and_run(base / "short" / "d3dump_0003.h5", restart_deck);
+  EXPECT_DOUBLE_EQ(r.simulation->end_time(), 5e-5);
+  EXPECT_DOUBLE_EQ(r.simulation->state().time, 5e-5);
+  // The dumps differ in the deck text they carry; every result file must be equal.
+  EXPECT_GE(expect_same_files(base / "long", base / "short", is_result), 10);
+  if (!HasFailure()) fs::remove_all(base);
+}
+
+// From the dump written at termination, a later *CONTROL_TERMINATION continues the run to the
+// new end. The original run shortened its last step to land on the old end, so the extension
+// is not bit-identical to a longer run, but must agree to the accuracy of the time integration.
+TEST(Restart, FromTheFinalDumpTheRunContinues) {
+  omp_set_num_threads(1);
+  const fs::path base = scratch("final_dump");
+  write_file(base / "short.k", restart_decks::deformable(2.1e-5));
+  write_file(base / "long.k", restart_decks::deformable(4e-5));
+  write_file(base / "extend.k", "*KEYWORD\n*CONTROL_TERMINATION\n4.0e-5\n*END\n");
+  run_with_dumps(base / "short.k", base / "short", 1e-5);
+  run_with_dumps(base / "long.k", base / "long", 1e-5);
+  // Dumps at 1e-5, 2e-5 and the end (2.1e-5).
+  ASSERT_TRUE(fs::exists(base / "short" / "d3dump_0003.h5"));
+  ASSERT_FALSE(fs::exists(base / "short" / "d3dump_0004.h5"));
+  const restart::Restarted r =
+      restart_and_run(base / "short" / "d3dump_0003.h5", base / "extend.k");
+  EXPECT_NEAR(r.header.time, 2.1e-5, 1e-15);
+  EXPECT_DOUBLE_EQ(r.simulation->state().time, 4e-5);
+  // Last glstat rows: same time, kinetic energy within 0.1 % (the runs differ by one shortened
+  // step out of ~200).
+  auto last_row = [](const fs::path& file) {
+    std::istringstream in(read_file(file));
+    std::string line, last;
+    while (std::getline(in, line)) last = line;
+    std::vector<double> values;
+    std::istringstream fields(last);
+    for (std::string f; std::getline(fields, f, ',');) values.push_back(std::stod(f));
+    return values;
+  };
+  const auto extended = last_row(base / "short" / "glstat.csv");
+  const auto reference = last_row(base / "long" / "glstat.csv");
+  ASSERT_EQ(extended.size(), reference.size());
+  EXPECT_DOUBLE_EQ(extended[0], reference[0]);
+  EXPECT_NEAR(extended[3], reference[3], 1e-3 * reference[3]);
+  // The restarted part of the run continued the dump numbering.
+  EXPECT_TRUE(fs::exists(base / "short" / "d3dump_0005.h5"));
+  if (!HasFailure()) fs::remove_all(base);
+}
+
+// ---- Bad input: clear errors, no crash -------------------------------------------------------
+
+class RestartInput : public testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    omp_set_num_threads(1);
+    base_ = scratch("bad_input");
+    write_file(base_ / "deck.k", restart_decks::deformable(2e-5));
+    run_with_dumps(base_ / "deck.k", base_ / "run", 1e-5);
+  }
+  static void TearDownTestSuite() { fs::remove_all(base_); }
+  static fs::path dump() { return base_ / "run" / "d3dump_0001.h5"; }
+  static fs::path copy_of_dump(const std::string& name) {
+    const fs::path path = base_ / name;
+    fs::copy_file(dump(), path, fs::copy_options::overwrite_existing);
+    return path;
+  }
+  // The message of the InputError that restarting `dump` throws ("" if none).
+  static std::string restart_error(const fs::path& dump, const fs::path& deck = {}) {
+    restart::RestartOptions options;
+    options.dump = dump;
+    options.restart_deck = deck;
+    options.output_directory = base_ / "out";
+    try {
+      restart::restart_from_dump(options);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  }
+  static fs::path base_;
+};
+fs::path RestartInput::base_;
+
+TEST_F(RestartInput, MissingDump) {
+  const std::string message = restart_error(base_ / "no_such_dump.h5");
+  EXPECT_NE(message.find("no_such_dump.h5"), std::string::npos) << message;
+  EXPECT_NE(message.find("does not exist"), std::string::npos) << message;
+}
+
+TEST_F(RestartInput, FileThatIsNotHdf5) {
+  write_file(base_ / "text.h5", "*KEYWORD\nthis is a deck, not a dump\n");
+  const std::string message = restart_error(base_ / "text.h5");
+  EXPECT_NE(message.find("not a restart dump"), std::string::npos) << message;
+}
+
+TEST_F(RestartInput, TruncatedDump) {
+  const fs::path path = copy_of_dump("truncated.h5");
+  fs::resize_file(path, fs::file_size(path) / 2);
+  const std::string message = restart_error(path);
+  EXPECT_NE(message.find("truncated.h5"), std::string::npos) << message;
+  EXPECT_NE(message.find("damaged"), std::string::npos) << message;
+}
+
+TEST_F(RestartInput, FlippedByteInTheDataIsCaughtByTheChecksum) {
+  const fs::path path = copy_of_dump("flipped.h5");
+  // Where the first chunk of the nodal x coordinates lies in the file.
+  haddr_t address = 0;
+  hsize_t size = 0;
+  {
+    const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    const hid_t set = H5Dopen2(file, "/nodes/x_x", H5P_DEFAULT);
+    const hid_t space = H5Dget_space(set);
+    hsize_t offset[1] = {0};
+    unsigned mask = 0;
+    const herr_t found = H5Dget_chunk_info(set, space, 0, offset, &mask, &address, &size);
+    H5Sclose(space);
+    H5Dclose(set);
+    H5Fclose(file);
+    ASSERT_GE(found, 0);
+  }
+  ASSERT_GT(size, 16u);
+  {
+    std::fstream f(path, std::ios::binary | std::ios::in | std::ios::out);
+    f.seekg(static_cast<std::streamoff>(address + size / 2));
+    char byte = 0;
+    f.read(&byte, 1);
+    byte = static_cast<char>(byte ^ 0x10);
+    f.seekp(static_cast<std::streamoff>(address + size / 2));
+    f.write(&byte, 1);
+  }
+  const std::string message = restart_error(path);
+  EXPECT_NE(message.find("/nodes/x_x"), std::string::npos) << message;
+  EXPECT_NE(message.find("checksum"), std::string::npos) << message;
+}
+
+TEST_F(RestartInput, DumpOfAnotherVersion) {
+  const fs::path path = copy_of_dump("version.h5");
+  {
+    const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    const hid_t root = H5Gopen2(file, "/", H5P_DEFAULT);
+    const hid_t attribute = H5Aopen(root, "dump_version", H5P_DEFAULT);
+    const std::int64_t version = 999;
+    H5Awrite(attribute, H5T_NATIVE_INT64, &version);
+    H5Aclose(attribute);
+    H5Gclose(root);
+    H5Fclose(file);
+  }
+  const std::string message = restart_error(path);
+  EXPECT_NE(message.find("restart dump version 999"), std::string::npos) << message;
+  EXPECT_NE(message.find("reads dump version 1 only"), std::string::npos) << message;
+}
+
+TEST_F(RestartInput, HdfFileWithoutTheDumpMarker) {
+  const fs::path path = base_ / "foreign.h5";
+  const hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  H5Fclose(file);
+  const std::string message = restart_error(path);
+  EXPECT_NE(message.find("not a RigidFlex restart dump"), std::string::npos) << message;
+}
+
+TEST_F(RestartInput, UnknownKeywordInTheRestartDeck) {
+  write_file(base_ / "bad.k",
+             "*KEYWORD\n*CONTROL_TERMINATION\n3.0e-5\n*BOUNDARY_SPC_NODE\n1,0,1\n*END\n");
+  const std::string message = restart_error(dump(), base_ / "bad.k");
+  EXPECT_NE(message.find("bad.k:4"), std::string::npos) << message;
+  EXPECT_NE(message.find("*BOUNDARY_SPC_NODE cannot be used in a restart deck"), std::string::npos)
+      << message;
+  EXPECT_NE(message.find("*CONTROL_TERMINATION, *DEFORMABLE_TO_RIGID, *RIGID_TO_DEFORMABLE"),
+            std::string::npos)
+      << message;
+}
+
+TEST_F(RestartInput, TerminationBeforeTheDump) {
+  write_file(base_ / "early.k", "*KEYWORD\n*CONTROL_TERMINATION\n1.0e-6\n*END\n");
+  const std::string message = restart_error(dump(), base_ / "early.k");
+  EXPECT_NE(message.find("field ENDTIM"), std::string::npos) << message;
+  EXPECT_NE(message.find("does not lie after the dump's time"), std::string::npos) << message;
+}
+
+TEST_F(RestartInput, SwitchingIsRefusedUntilItIsAvailable) {
+  write_file(base_ / "switch.k", "*KEYWORD\n*DEFORMABLE_TO_RIGID\n1\n*END\n");
+  const std::string message = restart_error(dump(), base_ / "switch.k");
+  EXPECT_NE(message.find("switch.k:3"), std::string::npos) << message;
+  EXPECT_NE(message.find("not available yet"), std::string::npos) << message;
+}
+
+// A small restart that switches part 2 (ELFORM 2) of the deformable block to rigid half way and
+// runs on: the part must then move rigidly (no further strain) while part 1 keeps deforming.
+TEST(Restart, DeformableToRigidOnRestart) {
+  GTEST_SKIP() << "enable when switching lands";
+  omp_set_num_threads(1);
+  const fs::path base = scratch("switch");
+  write_file(base / "deck.k", restart_decks::deformable(4e-5));
+  write_file(base / "switch.k",
+             "*KEYWORD\n*CONTROL_TERMINATION\n4.0e-5\n*DEFORMABLE_TO_RIGID\n2,0,PART\n*END\n");
+  run_with_dumps(base / "deck.k", base / "run", 1e-5, 1.5e-5);
+  const restart::Restarted r = restart_and_run(base / "run" / "d3dump_0001.h5", base / "switch.k");
+  const solver::State& state = r.simulation->state();
+  EXPECT_DOUBLE_EQ(state.time, 4e-5);
+  ASSERT_EQ(state.hex_blocks.size(), 2u);
+  EXPECT_TRUE(state.hex_blocks[1].rigid);
+  EXPECT_FALSE(state.hex_blocks[0].rigid);
+  EXPECT_EQ(r.simulation->rigid_bodies().bodies.size(), 1u);
+  EXPECT_EQ(r.simulation->rigid_bodies().bodies[0].parts, std::vector<model::Id>{2});
+}
+
+}  // namespace
+}  // namespace rf::test
