@@ -87,7 +87,8 @@ void GlstatWriter::write(const GlstatRow& row) {
   const double rest[] = {row.kinetic_energy,      row.internal_energy,     row.hourglass_energy,
                          row.external_work,       row.total_energy,        row.energy_ratio,
                          row.momentum[0],         row.momentum[1],         row.momentum[2],
-                         row.angular_momentum[0], row.angular_momentum[1], row.angular_momentum[2]};
+                         row.angular_momentum[0], row.angular_momentum[1], row.angular_momentum[2],
+                         row.rigidwall_work};
   bool first = true;
   for (double value : rest) {
     if (!first) line.push_back(',');

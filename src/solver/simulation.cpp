@@ -82,6 +82,7 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
   boundary_.constrained_nodes.erase(
       std::unique(boundary_.constrained_nodes.begin(), boundary_.constrained_nodes.end()),
       boundary_.constrained_nodes.end());
+  walls_ = contact::build_rigid_walls(model_, node_index_, state_, boundary_, warnings_);
 
   if (!options_.output_directory.empty()) {
     std::filesystem::create_directories(options_.output_directory);
@@ -101,6 +102,11 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
       // *DATABASE_RBDOUT interval, else about 1000 rows per body and run.
       rbdout_schedule_.interval = default_interval(model.output.rbdout_dt, span, 1000.0);
       rbdout_ = std::make_unique<output::RbdoutWriter>(options_.output_directory / "rbdout.csv");
+    }
+    if (!walls_.empty()) {
+      // *DATABASE_RWFORC interval, else about 1000 rows per wall and run.
+      rwforc_schedule_.interval = default_interval(model.output.rwforc_dt, span, 1000.0);
+      rwforc_ = std::make_unique<output::RwforcWriter>(options_.output_directory / "rwforc.csv");
     }
     if (options_.write_fields) {
       d3plot_schedule_.interval = default_interval(model.output.d3plot_dt, span, 20.0);
@@ -189,11 +195,13 @@ void Simulation::run(const std::function<void(const Simulation&)>& on_progress) 
     if (glstat_) glstat_->flush();
     if (nodout_) nodout_->flush();
     if (rbdout_) rbdout_->flush();
+    if (rwforc_) rwforc_->flush();
     throw;
   }
   if (glstat_) glstat_->flush();
   if (nodout_) nodout_->flush();
   if (rbdout_) rbdout_->flush();
+  if (rwforc_) rwforc_->flush();
 }
 
 void Simulation::update_velocities() {
@@ -220,6 +228,7 @@ void Simulation::update_velocities() {
     nodes.v.z[i] += dt_avg * nodes.a.z[i];
   }
   constrain_velocities(boundary_, state_.time, state_.dt, state_);
+  apply_rigid_walls();
   // Rigid bodies take the nodal forces on their nodes and set those nodes' velocities.
   const RigidStepSums rigid_sums =
       advance_rigid_bodies(rigid_, boundary_, state_.time, dt_avg, state_.dt, state_);
@@ -298,6 +307,9 @@ void Simulation::update_velocities() {
   energy_.kinetic = sums[0];
   energy_.internal_work += sums[1];
   energy_.external_work += sums[2] + reaction_work + rigid_sums.external_work;
+  if (!walls_.empty()) {  // already in sums[2] (the wall forces are in f_ext): its share
+    energy_.rigidwall_work += contact::rigid_wall_work(walls_, rigid_, vp, state_, dt_avg);
+  }
   for (int k = 0; k < 3; ++k) {
     energy_.momentum[k] = sums[3 + k];
     energy_.angular_momentum[k] = sums[6 + k];
@@ -334,6 +346,13 @@ void Simulation::update_velocities() {
   }
 }
 
+// Rigid walls act on v^{n+1/2} of deformable nodes and on the forces that drive the rigid
+// bodies, so they come after the nodal constraints and before the bodies advance.
+void Simulation::apply_rigid_walls() {
+  contact::apply_rigid_walls(walls_, rigid_, boundary_, state_.time, dt_average_, state_.dt,
+                             state_.dt_prev, state_);
+}
+
 // `force` writes every file that has not yet written this cycle (termination, breakdown).
 void Simulation::write_output_if_due(bool force) {
   const double t = state_.time;
@@ -356,6 +375,7 @@ void Simulation::write_output_if_due(bool force) {
       row.momentum[k] = energy_.momentum[k];
       row.angular_momentum[k] = energy_.angular_momentum[k];
     }
+    row.rigidwall_work = energy_.rigidwall_work;
     glstat_->write(row);
     glstat_schedule_.mark_written(t, cycle);
   }
@@ -384,6 +404,23 @@ void Simulation::write_output_if_due(bool force) {
     }
     rbdout_->write(rbdout_rows_);
     rbdout_schedule_.mark_written(t, cycle);
+  }
+  if (rwforc_ && wanted(rwforc_schedule_)) {
+    rwforc_rows_.clear();
+    for (const auto& wall : walls_.walls) {
+      output::RwforcRow row;
+      row.time = t;
+      row.wall = wall.id;
+      row.normal_force = wall.normal_force;
+      for (int k = 0; k < 3; ++k) row.force[k] = wall.force[k];
+      row.displacement = wall.displacement;
+      row.velocity = 0.5 * (wall.velocity_before + wall.velocity);
+      row.normal_impulse = wall.normal_impulse;
+      row.work = wall.work;
+      rwforc_rows_.push_back(row);
+    }
+    rwforc_->write(rwforc_rows_);
+    rwforc_schedule_.mark_written(t, cycle);
   }
   if (fields_ && wanted(d3plot_schedule_)) {
     fields_->write_frame(state_);

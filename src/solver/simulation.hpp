@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include "contact/rigid_wall.hpp"
 #include "model/model.hpp"
 #include "output/writers.hpp"
 #include "solver/boundary.hpp"
@@ -28,7 +29,8 @@ struct EnergyAccount {
   double kinetic = 0.0;
   double internal_work = 0.0;  // work of internal forces, hourglass included
   double hourglass = 0.0;      // hourglass part of internal_work
-  double external_work = 0.0;  // loads, body forces and reactions
+  double external_work = 0.0;  // loads, body forces and reactions (rigid walls included)
+  double rigidwall_work = 0.0;  // the part of external_work done by rigid walls
   double initial_total = 0.0;
   double momentum[3] = {0, 0, 0};
   double angular_momentum[3] = {0, 0, 0};
@@ -68,6 +70,8 @@ class Simulation {
   double end_time() const { return end_time_; }
   std::int64_t element_count() const { return element_count_; }
   const RigidSystem& rigid_bodies() const { return rigid_; }
+  const contact::RigidWallSystem& rigid_walls() const { return walls_; }
+  contact::RigidWallSystem& mutable_rigid_walls() { return walls_; }
   // Notices found while turning the model into a state (ignored constraints, regularised
   // inertia); the reader's warnings are in the model.
   const std::vector<model::Warning>& warnings() const { return warnings_; }
@@ -77,6 +81,7 @@ class Simulation {
  private:
   // The phases of a cycle, in order.
   void update_velocities();  // a^n -> v^{n+1/2}, constraints, rigid bodies, energy
+  void apply_rigid_walls();  // (inside update_velocities) walls stop nodes and bodies
   void write_output_if_due(bool force);
   void update_positions();         // x^{n+1} = x^n + dt v^{n+1/2}
   void compute_internal_forces();  // element kernels at n+1, assembly, element time step
@@ -94,6 +99,7 @@ class Simulation {
   RigidSystem rigid_;
   std::vector<model::Warning> warnings_;
   Boundary boundary_;
+  contact::RigidWallSystem walls_;
   EnergyAccount energy_;
   Vec3Array v_previous_;  // v^{n-1/2}, kept for the energy balance and full-step velocities
 
@@ -127,6 +133,9 @@ class Simulation {
   std::unique_ptr<output::RbdoutWriter> rbdout_;
   OutputSchedule rbdout_schedule_;
   std::vector<output::RbdoutRow> rbdout_rows_;
+  std::unique_ptr<output::RwforcWriter> rwforc_;
+  OutputSchedule rwforc_schedule_;
+  std::vector<output::RwforcRow> rwforc_rows_;
   std::unique_ptr<output::FieldWriter> fields_;
   std::vector<double> reduction_scratch_;
 };

@@ -65,6 +65,7 @@ TEST(OutputCsv, GlstatHeaderAndBitExactValues) {
   row.angular_momentum[0] = -1e-17;
   row.angular_momentum[1] = 123456789.123456789;
   row.angular_momentum[2] = std::numeric_limits<double>::max();
+  row.rigidwall_work = -1.0 / 7.0;
   GlstatRow second = row;
   second.time = 2.0 / 3.0;
   second.cycle = 7;
@@ -78,19 +79,20 @@ TEST(OutputCsv, GlstatHeaderAndBitExactValues) {
   EXPECT_EQ(lines[0],
             "time,dt,cycle,kinetic_energy,internal_energy,hourglass_energy,external_work,"
             "total_energy,energy_ratio,momentum_x,momentum_y,momentum_z,angular_momentum_x,"
-            "angular_momentum_y,angular_momentum_z");
+            "angular_momentum_y,angular_momentum_z,rigidwall_work");
   const auto f = split_csv(lines[1]);
-  ASSERT_EQ(f.size(), 15u);
+  ASSERT_EQ(f.size(), 16u);
   expect_bits(f[0], row.time);
   expect_bits(f[1], row.dt);
   EXPECT_EQ(f[2], "123456789012");
   const double rest[] = {row.kinetic_energy,      row.internal_energy,     row.hourglass_energy,
                          row.external_work,       row.total_energy,        row.energy_ratio,
                          row.momentum[0],         row.momentum[1],         row.momentum[2],
-                         row.angular_momentum[0], row.angular_momentum[1], row.angular_momentum[2]};
-  for (int i = 0; i < 12; ++i) expect_bits(f[3 + i], rest[i]);
+                         row.angular_momentum[0], row.angular_momentum[1], row.angular_momentum[2],
+                         row.rigidwall_work};
+  for (int i = 0; i < 13; ++i) expect_bits(f[3 + i], rest[i]);
   const auto g = split_csv(lines[2]);
-  ASSERT_EQ(g.size(), 15u);
+  ASSERT_EQ(g.size(), 16u);
   expect_bits(g[0], second.time);
   EXPECT_EQ(g[2], "7");
 }

@@ -8,6 +8,7 @@
 
 #include "io/keyword/context.hpp"
 #include "io/keyword/geometry.hpp"
+#include "io/keyword/handlers.hpp"
 
 namespace rf::io {
 
@@ -397,6 +398,7 @@ void finish_model(ReaderContext& context) {
     }
   }
   finish_rigid(m, nodes);
+  handlers::check_rigid_walls(m);
 }
 
 }  // namespace rf::io

@@ -54,6 +54,12 @@ void load_rigid_body(const Block&, ReaderContext&);
 void rigid_body_update(const Block&, ReaderContext&);
 void control_rigid(const Block&, ReaderContext&);
 
+// handlers_walls.cpp
+void rigidwall_planar(const Block&, ReaderContext&);
+void define_box(const Block&, ReaderContext&);
+// After reading: the node sets and boxes the rigid walls name must exist.
+void check_rigid_walls(const model::Model& model);
+
 // Cards shared by *MAT_RIGID, *PART_INERTIA and *CONSTRAINED_NODAL_RIGID_BODY.
 struct RigidConstraints {
   double cmo = 0.0;
