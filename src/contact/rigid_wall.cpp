@@ -6,6 +6,9 @@
 #include <cmath>
 #include <limits>
 
+#include "model/error.hpp"
+#include "model/error_context.hpp"
+
 namespace rf::contact {
 
 namespace {
@@ -208,18 +211,35 @@ RigidWallSystem build_rigid_walls(const model::Model& model, const solver::NodeI
     wall.mass = in.mass;
     wall.velocity = wall.velocity_before = in.moving ? in.v0 : 0.0;
 
+    // The reader checks these references; models built in code get the same message.
+    auto node_set = [&](model::Id sid, const char* field) -> const model::NodeSet& {
+      const auto it = model.node_sets.find(sid);
+      if (it == model.node_sets.end()) {
+        throw InputError(model::context_of(in.where, field),
+                         fmt::format("node set {} is not defined", sid));
+      }
+      return it->second;
+    };
     std::vector<char> take(n, in.nsid == 0 ? 1 : 0);
     if (in.nsid != 0) {
-      for (const model::Id id : model.node_sets.at(in.nsid).nodes) {
+      for (const model::Id id : node_set(in.nsid, "NSID").nodes) {
         take[node_index.at(id, in.where, "NSID")] = 1;
       }
     }
     if (in.nsidex != 0) {
-      for (const model::Id id : model.node_sets.at(in.nsidex).nodes) {
+      for (const model::Id id : node_set(in.nsidex, "NSIDEX").nodes) {
         take[node_index.at(id, in.where, "NSIDEX")] = 0;
       }
     }
-    const model::Box* box = in.boxid != 0 ? &model.boxes.at(in.boxid) : nullptr;
+    const model::Box* box = nullptr;
+    if (in.boxid != 0) {
+      const auto it = model.boxes.find(in.boxid);
+      if (it == model.boxes.end()) {
+        throw InputError(model::context_of(in.where, "BOXID"),
+                         fmt::format("box {} is not defined (*DEFINE_BOX)", in.boxid));
+      }
+      box = &it->second;
+    }
     std::int64_t behind = 0;
     for (std::size_t i = 0; i < n; ++i) {
       if (!take[i]) continue;

@@ -480,22 +480,24 @@ TEST(RigidWall, TiltedRigidBlockLandsOnItsEdgeWithoutPassingThrough) {
   const auto& body = sim.rigid_bodies().bodies.at(0);
   const auto& wall = sim.rigid_walls().walls.at(0);
   const double mass = body.state.mass;
-  double lowest = 0.0, max_error = 0.0;
+  double lowest = 0.0, max_error = 0.0, max_spin = 0.0;
   const Vector3d p0 = mass * body.state.velocity;
   while (!sim.finished()) {
     sim.cycle();
     lowest = std::min(lowest, lowest_distance(sim.state(), Vector3d::Zero(), Vector3d::UnitZ()));
+    max_spin = std::max(max_spin, body.state.angular_velocity.norm());
     const double t = half_step_time(sim);
     const Vector3d dp = mass * body.state.velocity - p0;
     max_error = std::max(max_error, std::abs(dp.z() - (wall.normal_impulse - mass * g * t)));
   }
   std::printf(
       "tilted rigid drop: lowest node %.3g m, momentum vs impulse error %.3g of M v0, final "
-      "v (%.3g, %.3g), |w| %.3g, resting force %.6f M g\n",
+      "v (%.3g, %.3g), |w| %.3g (max %.3g), resting force %.6f M g\n",
       lowest, max_error / (mass * v0), body.state.velocity.x(), body.state.velocity.z(),
-      body.state.angular_velocity.norm(), wall.normal_force / (mass * g));
+      body.state.angular_velocity.norm(), max_spin, wall.normal_force / (mass * g));
   EXPECT_GE(lowest, -1e-6);  // the body's rotation over a step is predicted to O(dt)
   EXPECT_LT(max_error, 1e-10 * mass * v0);
+  EXPECT_GT(max_spin, 1.0);                                 // the edge impact did set it turning
   EXPECT_LT(std::abs(body.state.velocity.z()), 1e-3 * v0);  // came to rest on its face
   EXPECT_NEAR(wall.normal_force, mass * g, 1e-3 * mass * g);
 }
@@ -532,6 +534,116 @@ TEST(RigidWall, RigidBlockSlidesWithCoulombDeceleration) {
   EXPECT_NEAR(travelled, expected, 1e-3 * expected);
   EXPECT_NEAR(body.state.velocity.x(), 0.0, 1e-9);
   EXPECT_GE(lowest, -1e-9);
+}
+
+// A rigid block (mass m, v0) lands flat on a free moving wall (mass M, at rest). The
+// constraint makes the normal impact perfectly plastic: afterwards both move with the common
+// velocity m v0 / (m + M) (1D inelastic collision), and wall + block momentum is conserved.
+TEST(RigidWall, RigidBlockOnFreeMovingWallTakesCommonVelocity) {
+  constexpr double rho = 1000.0, v0 = 2.0, dt = 1e-4, wall_mass = 3.0;
+  Block block;
+  block.lx = block.ly = block.lz = 0.1;
+  block.shift = Vector3d(0, 0, 0.01);
+  std::string deck = "*KEYWORD\n" + block.text() + rigid(1, rho) +
+                     velocity(1, Vector3d(0, 0, -v0)) +
+                     fmt::format("*RIGIDWALL_PLANAR_MOVING\n0\n0,0,0,0,0,1\n{},0\n", wall_mass) +
+                     termination(0.05, 0.9, dt);
+  solver::Simulation sim(read(deck), {});
+  const auto& body = sim.rigid_bodies().bodies.at(0);
+  const auto& wall = sim.rigid_walls().walls.at(0);
+  const double m = body.state.mass;
+  double max_momentum_error = 0.0, lowest = 0.0;
+  while (!sim.finished()) {
+    sim.cycle();
+    max_momentum_error = std::max(max_momentum_error, std::abs(m * body.state.velocity.z() +
+                                                               wall_mass * wall.velocity + m * v0));
+    const double plane =
+        wall.displacement + (sim.finished() ? 0.0 : sim.state().dt_prev * wall.velocity);
+    lowest =
+        std::min(lowest, lowest_distance(sim.state(), Vector3d(0, 0, plane), Vector3d::UnitZ()));
+  }
+  const double common = -m * v0 / (m + wall_mass);
+  std::printf(
+      "rigid on moving wall: block %.12f, wall %.12f, analytic %.12f, momentum error %.3g, "
+      "lowest %.3g\n",
+      body.state.velocity.z(), wall.velocity, common, max_momentum_error / (m * v0), lowest);
+  EXPECT_NEAR(body.state.velocity.z(), common, 1e-9 * v0);
+  EXPECT_NEAR(wall.velocity, common, 1e-9 * v0);
+  EXPECT_LT(max_momentum_error, 1e-12 * m * v0);
+  EXPECT_GE(lowest, -1e-12);
+}
+
+// ---------------------------------------------------------------------------------------
+// Which nodes a wall tracks: NSID minus NSIDEX, inside BOXID and within OFFSET of the wall at
+// t = 0 (tests/decks/rigidwall_block.k: wall 1 keeps nodes 1, 2, 3 of the block's bottom face).
+
+TEST(RigidWall, TrackedNodesFollowSetsBoxAndOffset) {
+  solver::Simulation sim(
+      io::read_deck(std::filesystem::path(RIGIDFLEX_TEST_DECKS) / "rigidwall_block.k"), {});
+  const auto& walls = sim.rigid_walls().walls;
+  ASSERT_EQ(walls.size(), 3u);
+  std::vector<model::Id> tracked;
+  for (const auto i : walls[0].nodes) tracked.push_back(sim.state().nodes.id[i]);
+  EXPECT_EQ(tracked, (std::vector<model::Id>{1, 2, 3}));
+  EXPECT_EQ(walls[1].nodes.size(), 16u);  // NSID 0: all nodes
+  // Wall 3 (normal +x at x = 5) has every node behind it: tracked, but left alone.
+  EXPECT_EQ(walls[2].nodes.size(), 16u);
+  for (const auto front : walls[2].in_front) EXPECT_EQ(front, 0);
+  bool warned = false;
+  for (const auto& w : sim.warnings()) {
+    warned |=
+        w.message.find("16 of its 16 tracked nodes start behind the wall") != std::string::npos;
+  }
+  EXPECT_TRUE(warned);
+  // The finite ceiling (wall 2, normal -z at z = 3.01, x in [0, 2], y in [-3, 0] since
+  // m = n x l = -z x x = -y) covers only the edge y = 0 of the rigid block's top face.
+  EXPECT_TRUE(walls[1].edge_m.isApprox(Vector3d(0, -1, 0)));
+}
+
+// BIRTH and DEATH bound the wall's life. A block that passed the plane before the wall was born
+// is behind it and is left alone (no push back through the wall); a block resting on a wall
+// falls once the wall dies.
+TEST(RigidWall, BirthAndDeathBoundTheWallsLife) {
+  constexpr double rho = 1000.0, e = 1e7, v0 = 1.0, g = 9.81;
+  Block early;  // passes z = 0 completely by t = 0.11, the wall is born at 0.2
+  early.lx = early.ly = early.lz = 0.1;
+  early.shift = Vector3d(0, 0, 0.01);
+  Block resting = early;  // lands on the second wall, which dies at 0.2
+  resting.shift = Vector3d(1, 0, 0.01);
+  resting.first_node = 9;
+  resting.first_element = 2;
+  resting.pid = 2;
+  std::string deck = "*KEYWORD\n" + early.text() + resting.text() + elastic(1, rho, e, 0.3) +
+                     elastic(2, rho, e, 0.3) + velocity(1, Vector3d(0, 0, -v0)) +
+                     velocity(2, Vector3d(0, 0, -v0)) + gravity(g) +
+                     node_set(1, {1, 2, 3, 4, 5, 6, 7, 8}) +
+                     node_set(2, {9, 10, 11, 12, 13, 14, 15, 16}) +
+                     "*RIGIDWALL_PLANAR\n1,0,0,0,0.2\n-1,-1,0,-1,-1,1\n"
+                     "*RIGIDWALL_PLANAR\n2,0,0,0,0,0.2\n0,0,0,0,0,1\n" +
+                     termination(0.35, 0.5);
+  solver::Simulation sim(read(deck), {});
+  const auto& walls = sim.rigid_walls().walls;
+  const auto& z = sim.state().nodes.x.z;
+  double early_force = 0.0, resting_low_before_death = 0.0;
+  while (!sim.finished()) {
+    sim.cycle();
+    early_force = std::max(early_force, std::abs(walls[0].normal_force));
+    if (sim.state().time < 0.2) {
+      for (int k = 8; k < 16; ++k)
+        resting_low_before_death = std::min(resting_low_before_death, z[k]);
+    }
+  }
+  double early_low = 1e9, resting_low = 1e9;
+  for (int k = 0; k < 8; ++k) early_low = std::min(early_low, z[k]);
+  for (int k = 8; k < 16; ++k) resting_low = std::min(resting_low, z[k]);
+  std::printf(
+      "birth/death: early block lowest z %.4f, max force of the late wall %.3g; resting "
+      "block lowest before death %.3g, at the end %.4f\n",
+      early_low, early_force, resting_low_before_death, resting_low);
+  EXPECT_EQ(early_force, 0.0);
+  EXPECT_LT(early_low, -0.3);  // kept falling through the plane
+  EXPECT_GE(resting_low_before_death, -1e-12);
+  EXPECT_LT(resting_low, -0.05);  // fell after the wall died (g t^2 / 2 = 0.111 in 0.15 s)
 }
 
 // ---------------------------------------------------------------------------------------
