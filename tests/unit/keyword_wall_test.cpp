@@ -71,6 +71,16 @@ TEST(KeywordWall, PenaltyScaleIsIgnoredWithAWarning) {
   EXPECT_EQ(m.warnings[0].where.line, 2);
 }
 
+TEST(KeywordWall, OtherBoxKeywordsAreSkippedWithAWarning) {
+  const rf::model::Model m = rf::io::read_deck_text(
+      "*DEFINE_BOX_ADAPTIVE\n1,0,1,0,1,0,1,3\n*DEFINE_BOX_TITLE\nkept\n2,0,1,0,1,0,1\n", "w.k");
+  EXPECT_EQ(m.boxes.count(1), 0u);
+  EXPECT_EQ(m.boxes.count(2), 1u);
+  ASSERT_EQ(m.warnings.size(), 1u);
+  EXPECT_NE(m.warnings[0].message.find("*DEFINE_BOX_ADAPTIVE is not supported"), std::string::npos);
+  EXPECT_EQ(m.unknown_keywords.count("*DEFINE_BOX_ADAPTIVE"), 1u);
+}
+
 struct ErrorCase {
   std::string name;
   std::string text;

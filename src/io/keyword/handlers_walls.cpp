@@ -147,6 +147,15 @@ void rigidwall_planar(const Block& block, ReaderContext& context) {
 }
 
 void define_box(const Block& block, ReaderContext& context) {
+  for (const auto& option : block.options) {
+    if (option == "TITLE") continue;
+    ++context.model.unknown_keywords[block.keyword];
+    context.warn(block.location(),
+                 fmt::format("keyword {} is not supported (only *DEFINE_BOX and "
+                             "*DEFINE_BOX_TITLE are); its {} data line(s) were skipped",
+                             block.keyword, block.lines.size()));
+    return;
+  }
   CardCursor cursor(block, context.parameters);
   int n = 1;
   if (block.has_option("TITLE")) cursor.next_text(n++, "title");

@@ -42,7 +42,11 @@ const std::vector<KeywordEntry>& table() {
       {"*RIGID_BODY_UPDATE", rigid_body_update, {}},
       {"*CONTROL_RIGID", control_rigid, {}},
       {"*RIGIDWALL_PLANAR", rigidwall_planar, {"ID", "FINITE", "MOVING"}},
-      {"*DEFINE_BOX", define_box, {"TITLE"}},
+      // The other *DEFINE_BOX_... keywords (adaptivity, SPH, drawbeads, local boxes) are
+      // separate keywords in LS-DYNA: skipped with a warning like unknown keywords.
+      {"*DEFINE_BOX",
+       define_box,
+       {"TITLE", "LOCAL", "ADAPTIVE", "COARSEN", "DRAWBEAD", "NODES", "SPH", "SALE"}},
       {"*INITIAL_VELOCITY", initial_velocity, {}},
       {"*INITIAL_VELOCITY_NODE", initial_velocity_node, {}},
       {"*INITIAL_VELOCITY_GENERATION", initial_velocity_generation, {}},
