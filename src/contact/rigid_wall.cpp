@@ -491,6 +491,22 @@ double wall_normal_force(const RigidWallSystem& system, int number) {
   return std::abs(system.walls[number - 1].normal_force);
 }
 
+bool wall_within_offset(const RigidWallSystem& system, int number, double offset,
+                        const std::vector<model::Id>& parts, const solver::State& state) {
+  if (number < 1 || number > static_cast<int>(system.walls.size())) return false;
+  const RigidWall& wall = system.walls[number - 1];
+  const Vector3d plane = wall.origin + wall.displacement * wall.normal;
+  for (const auto& block : state.hex_blocks) {
+    if (std::find(parts.begin(), parts.end(), block.part_id) == parts.end()) continue;
+    for (const std::int32_t i : block.conn) {
+      const Vector3d relative = node_position(state.nodes, i) - plane;
+      const double d = relative.dot(wall.normal);
+      if (d >= -system.tolerance && d <= offset && within_extent(wall, relative)) return true;
+    }
+  }
+  return false;
+}
+
 void set_wall_active(RigidWallSystem& system, int number, bool active) {
   if (number < 1 || number > static_cast<int>(system.walls.size())) return;
   system.walls[number - 1].active = active;

@@ -143,6 +143,11 @@ double rigid_wall_work(RigidWallSystem& system, const solver::RigidSystem& rigid
 // |normal force| of the wall with deck ordinal `number` (1-based) in the last cycle; -1 if
 // there is no such wall.
 double wall_normal_force(const RigidWallSystem& system, int number);
+// OFFSET of part switching (CODE 3): whether a node of one of the parts `parts` lies in front
+// of wall `number` (1-based) within the normal distance `offset` (and over its rectangle if
+// finite), at the current positions. False if there is no such wall.
+bool wall_within_offset(const RigidWallSystem& system, int number, double offset,
+                        const std::vector<model::Id>& parts, const solver::State& state);
 // RWF flag of part switching: activate or deactivate a wall (a deactivated wall pushes no
 // node; a moving one keeps coasting). A number that names no wall is ignored.
 void set_wall_active(RigidWallSystem& system, int number, bool active);

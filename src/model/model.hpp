@@ -358,18 +358,18 @@ struct RigidWall {
   int number = 0;  // 1-based position among the deck's rigid walls (reading order)
   Id id = 0;       // _ID card; 0 when the deck gives none
   std::string title;
-  Id nsid = 0;    // tracked nodes; 0: all nodes
-  Id nsidex = 0;  // nodes exempted from tracking
-  Id boxid = 0;   // only nodes initially inside this *DEFINE_BOX
+  Id nsid = 0;          // tracked nodes; 0: all nodes
+  Id nsidex = 0;        // nodes exempted from tracking
+  Id boxid = 0;         // only nodes initially inside this *DEFINE_BOX
   double offset = 0.0;  // > 0: only nodes initially within this normal distance of the wall
   double birth = 0.0;
   double death = 1e20;
-  double rwksf = 1.0;               // penalty stiffness scale (no effect on a constraint wall)
-  std::array<double, 3> tail{};     // XT YT ZT: a point of the wall
-  std::array<double, 3> head{};     // XH YH ZH: tail + normal points to the tracked side
-  double fric = 0.0;                // 0 frictionless, (0,1) Coulomb coefficient, 1 stick
-  double wvel = 0.0;                // welding velocity (welding is not supported: must be 0)
-  bool finite = false;              // _FINITE
+  double rwksf = 1.0;                 // penalty stiffness scale (no effect on a constraint wall)
+  std::array<double, 3> tail{};       // XT YT ZT: a point of the wall
+  std::array<double, 3> head{};       // XH YH ZH: tail + normal points to the tracked side
+  double fric = 0.0;                  // 0 frictionless, (0,1) Coulomb coefficient, 1 stick
+  double wvel = 0.0;                  // welding velocity (welding is not supported: must be 0)
+  bool finite = false;                // _FINITE
   std::array<double, 3> edge_head{};  // XHEV YHEV ZHEV: tail -> edge_head is the l edge
   double lenl = 0.0;                  // 0: infinite along l
   double lenm = 0.0;                  // 0: infinite along m = n x l
@@ -450,8 +450,9 @@ struct Model {
   std::vector<RigidPrescribedMotion> rigid_prescribed_motions;
   std::vector<RigidLoad> rigid_loads;
   int rigid_body_update = 0;  // *RIGID_BODY_UPDATE type (0, 1, 2)
-  std::map<Id, Box> boxes;                 // *DEFINE_BOX
-  std::vector<RigidWall> rigid_walls;      // in deck order: rigid_walls[k].number == k + 1
+
+  std::map<Id, Box> boxes;             // *DEFINE_BOX
+  std::vector<RigidWall> rigid_walls;  // in deck order: rigid_walls[k].number == k + 1
 
   Termination termination;
   TimestepControl timestep;

@@ -27,7 +27,8 @@ struct GlstatRow {
   double energy_ratio = 1.0;   // total / (initial total + external work)
   double momentum[3] = {0, 0, 0};
   double angular_momentum[3] = {0, 0, 0};  // about the global origin
-  double rigidwall_work = 0.0;  // the part of external_work done by rigid walls
+  // The part of external_work done by rigid walls.
+  double rigidwall_work = 0.0;
 };
 
 // Plain CSV file with a fixed header; rows are flushed at close. Numbers use %.9g or

@@ -29,8 +29,9 @@ struct EnergyAccount {
   double kinetic = 0.0;
   double internal_work = 0.0;  // work of internal forces, hourglass included
   double hourglass = 0.0;      // hourglass part of internal_work
-  double external_work = 0.0;  // loads, body forces and reactions (rigid walls included)
-  double rigidwall_work = 0.0;  // the part of external_work done by rigid walls
+  double external_work = 0.0;  // loads, body forces and reactions
+  // The part of external_work done by rigid walls (their forces are in f_ext).
+  double rigidwall_work = 0.0;
   double initial_total = 0.0;
   double momentum[3] = {0, 0, 0};
   double angular_momentum[3] = {0, 0, 0};

@@ -684,6 +684,12 @@ TEST(RigidWall, SwitchingInterfaceReadsForceAndDeactivatesWalls) {
   EXPECT_NEAR(momentum(sim.state()).z(), -0.1 * mass + walls.walls[0].normal_impulse - mass * g * t,
               1e-9 * mass);
   EXPECT_GT(lowest_distance(sim.state(), Vector3d::Zero(), Vector3d::UnitZ()), -1e-12);
+  // The resting block (part 1) is on wall 1, 5 below wall 2; nothing is part 2.
+  EXPECT_TRUE(contact::wall_within_offset(walls, 1, 1e-6, {1}, sim.state()));
+  EXPECT_FALSE(contact::wall_within_offset(walls, 2, 4.9, {1}, sim.state()));
+  EXPECT_TRUE(contact::wall_within_offset(walls, 2, 5.1, {1}, sim.state()));
+  EXPECT_FALSE(contact::wall_within_offset(walls, 1, 1.0, {2}, sim.state()));
+  EXPECT_FALSE(contact::wall_within_offset(walls, 3, 1.0, {1}, sim.state()));
   contact::set_wall_active(sim.mutable_rigid_walls(), 1, false);
   contact::set_wall_active(sim.mutable_rigid_walls(), 9, false);  // no such wall: ignored
   while (!sim.finished()) sim.cycle();
