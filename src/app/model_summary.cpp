@@ -134,6 +134,24 @@ void print_model_summary(const model::Model& model, std::FILE* out) {
                    ? fmt::format(", birth {:g}, death {:g}", wall.birth, wall.death)
                    : "");
   }
+  if (model.switching.flagged) {
+    const auto& sw = model.switching;
+    fmt::print(out,
+               "part switching: {} switched at the start, {} automatic set(s), {} inertia "
+               "card(s)\n",
+               sw.at_start.size(), sw.automatic.size(), sw.inertia.size());
+    for (const auto& set : sw.automatic) {
+      fmt::print(out,
+                 "  set {}: CODE {}, TIME1 {:g}, TIME2 {:g}, TIME3 {:g}{}, {} to rigid, {} to "
+                 "deformable{}\n",
+                 set.swset, set.code, set.time1, set.time2, set.time3,
+                 set.paired != 0 ? fmt::format(", paired with {} ({})", set.relsw,
+                                               set.paired > 0 ? "first" : "second")
+                                 : "",
+                 set.to_rigid.size(), set.to_deformable.size(),
+                 set.dtmax > 0.0 ? fmt::format(", DTMAX {:g}", set.dtmax) : "");
+    }
+  }
   fmt::print(out, "node sets: {}, part sets: {}, segment sets: {}\n", model.node_sets.size(),
              model.part_sets.size(), model.segment_sets.size());
   fmt::print(out, "curves: {}\n", model.curves.size());

@@ -379,6 +379,53 @@ struct RigidWall {
   SourceLocation where;
 };
 
+// ---- Deformable <-> rigid part switching (*DEFORMABLE_TO_RIGID*, docs/switching.md) ----
+
+// One part (or part set) named on *DEFORMABLE_TO_RIGID or on a D2R / R2D card of
+// *DEFORMABLE_TO_RIGID_AUTOMATIC (or on a restart deck's *RIGID_TO_DEFORMABLE).
+struct PartSwitch {
+  Id pid = 0;
+  bool part_set = false;  // PTYPE PSET
+  Id lrb = 0;             // lead rigid body (part ID) to merge into; 0: own body (D2R only)
+  SourceLocation where;
+};
+
+// *DEFORMABLE_TO_RIGID_AUTOMATIC: one automatic switch set.
+struct AutomaticSwitchSet {
+  Id swset = 0;
+  int code = 0;         // 0 time, 1/3 rigid wall force zero/nonzero, 2/4 contact, 5 sensor
+  double time1 = 0.0;   // not before
+  double time2 = 1e20;  // not after (0 on the card means 1e20)
+  double time3 = 0.0;   // delay after this switch before any other automatic switch
+  Id entno = 0;         // rigid wall ordinal (CODE 1, 3) or contact ID (CODE 2, 4)
+  Id relsw = 0;         // related (paired) switch set
+  int paired = 0;       // 1 first of a pair, -1 second, 0 not paired
+  int nrbf = 0;         // nodal rigid bodies: 0 no change, 1 delete others, 2 activate
+  int ncsf = 0;         // nodal constraint sets / spot welds: 0, 1 delete, 2 activate
+  int rwf = 0;          // rigid walls: 0, 1 delete, 2 activate
+  double dtmax = 0.0;   // step cap after the switch (0: none)
+  double offset = 0.0;  // CODE 3/4: switch this far before contact
+  std::vector<PartSwitch> to_rigid;       // D2R cards
+  std::vector<PartSwitch> to_deformable;  // R2D cards
+  SourceLocation where;
+};
+
+// *DEFORMABLE_TO_RIGID_INERTIA: the body a part becomes takes these properties.
+struct SwitchInertia {
+  Id pid = 0;
+  std::array<double, 3> xc{};
+  double tm = 0.0;
+  std::array<double, 6> inertia{};  // IXX IXY IXZ IYY IYZ IZZ (global axes, about xc)
+  SourceLocation where;
+};
+
+struct PartSwitching {
+  bool flagged = false;              // any *DEFORMABLE_TO_RIGID* keyword (restart needs it)
+  std::vector<PartSwitch> at_start;  // *DEFORMABLE_TO_RIGID
+  std::vector<AutomaticSwitchSet> automatic;
+  std::map<Id, SwitchInertia> inertia;  // by PID
+};
+
 struct Termination {
   double endtim = 0.0;
   int endcyc = 0;
@@ -415,11 +462,11 @@ struct Warning {
 
 struct Model {
   std::string title;
-  std::string dialect = "lsdyna";  // "lsdyna" or "impetus"
-  std::string dialect_reason;      // why (detected from content, or the command line)
-  std::string unit_system;         // IMPETUS *UNIT_SYSTEM as written (no conversion is done)
+  std::string dialect = "lsdyna";      // "lsdyna" or "impetus"
+  std::string dialect_reason;          // why (detected from content, or the command line)
+  std::string unit_system;             // IMPETUS *UNIT_SYSTEM as written (no conversion is done)
   std::int64_t merged_node_count = 0;  // nodes removed by *MERGE_DUPLICATED_NODES
-  std::vector<std::string> files;  // every file read, main deck first
+  std::vector<std::string> files;      // every file read, main deck first
 
   std::vector<Node> nodes;           // in input order
   std::vector<SolidElement> solids;  // in input order
@@ -450,6 +497,7 @@ struct Model {
   std::vector<RigidPrescribedMotion> rigid_prescribed_motions;
   std::vector<RigidLoad> rigid_loads;
   int rigid_body_update = 0;  // *RIGID_BODY_UPDATE type (0, 1, 2)
+  PartSwitching switching;
 
   std::map<Id, Box> boxes;             // *DEFINE_BOX
   std::vector<RigidWall> rigid_walls;  // in deck order: rigid_walls[k].number == k + 1

@@ -88,6 +88,7 @@ void GlstatWriter::write(const GlstatRow& row) {
                          row.external_work,       row.total_energy,        row.energy_ratio,
                          row.momentum[0],         row.momentum[1],         row.momentum[2],
                          row.angular_momentum[0], row.angular_momentum[1], row.angular_momentum[2],
+                         row.switch_energy,       row.frozen_energy,
                          row.rigidwall_work};
   bool first = true;
   for (double value : rest) {
@@ -135,6 +136,26 @@ void NodoutWriter::write_rows(const solver::State& state, const solver::Vec3Arra
     rows.push_back('\n');
   }
   csv_.write_text(std::string_view(rows.data(), rows.size()));
+}
+
+SwitchWriter::SwitchWriter(const std::filesystem::path& path)
+    : csv_(path, std::string(kSwitchHeader)) {}
+
+void SwitchWriter::write(const SwitchRow& row) {
+  fmt::memory_buffer line;
+  append_number(line, row.time);
+  fmt::format_to(std::back_inserter(line), ",{},{},", row.swset,
+                 row.to_rigid ? "to_rigid" : "to_deformable");
+  for (std::size_t k = 0; k < row.parts.size(); ++k) {
+    fmt::format_to(std::back_inserter(line), "{}{}", k ? " " : "", row.parts[k]);
+  }
+  for (const double value : {row.kinetic_energy_before, row.kinetic_energy_after, row.momentum[0],
+                             row.momentum[1], row.momentum[2]}) {
+    line.push_back(',');
+    append_number(line, value);
+  }
+  line.push_back('\n');
+  csv_.write_text(std::string_view(line.data(), line.size()));
 }
 
 RbdoutWriter::RbdoutWriter(const std::filesystem::path& path)

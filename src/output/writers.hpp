@@ -27,6 +27,8 @@ struct GlstatRow {
   double energy_ratio = 1.0;   // total / (initial total + external work)
   double momentum[3] = {0, 0, 0};
   double angular_momentum[3] = {0, 0, 0};  // about the global origin
+  double switch_energy = 0.0;              // kinetic energy removed by deformable-to-rigid switches
+  double frozen_energy = 0.0;              // strain energy held by parts rigid by switching
   // The part of external_work done by rigid walls.
   double rigidwall_work = 0.0;
 };
@@ -61,7 +63,7 @@ class CsvFile {
 inline constexpr std::string_view kGlstatHeader =
     "time,dt,cycle,kinetic_energy,internal_energy,hourglass_energy,external_work,total_energy,"
     "energy_ratio,momentum_x,momentum_y,momentum_z,angular_momentum_x,angular_momentum_y,"
-    "angular_momentum_z,rigidwall_work";
+    "angular_momentum_z,switch_energy,frozen_energy,rigidwall_work";
 inline constexpr std::string_view kNodoutHeader = "time,node,x,y,z,vx,vy,vz,ax,ay,az";
 inline constexpr std::string_view kRbdoutHeader =
     "time,body,mass,x,y,z,vx,vy,vz,ax,ay,az,wx,wy,wz,r11,r12,r13,r21,r22,r23,r31,r32,r33";
@@ -112,6 +114,31 @@ class RwforcWriter {
  public:
   explicit RwforcWriter(const std::filesystem::path& path);
   void write(const std::vector<RwforcRow>& rows);
+  void flush() { csv_.flush(); }
+
+ private:
+  CsvFile csv_;
+};
+
+inline constexpr std::string_view kSwitchHeader =
+    "time,swset,direction,parts,kinetic_energy_before,kinetic_energy_after,momentum_x,"
+    "momentum_y,momentum_z";
+
+// One row of switch.csv: a part switch event. `parts` are written space-separated.
+struct SwitchRow {
+  double time = 0.0;
+  std::int64_t swset = 0;
+  bool to_rigid = true;
+  std::vector<std::int64_t> parts;
+  double kinetic_energy_before = 0.0, kinetic_energy_after = 0.0;
+  std::array<double, 3> momentum{};
+};
+
+// switch.csv: one row per switch event, written when it happens.
+class SwitchWriter {
+ public:
+  explicit SwitchWriter(const std::filesystem::path& path);
+  void write(const SwitchRow& row);
   void flush() { csv_.flush(); }
 
  private:

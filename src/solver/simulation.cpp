@@ -83,6 +83,14 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
       std::unique(boundary_.constrained_nodes.begin(), boundary_.constrained_nodes.end()),
       boundary_.constrained_nodes.end());
   walls_ = contact::build_rigid_walls(model_, node_index_, state_, boundary_, warnings_);
+  // CODE 1/3 of automatic switching ask the walls (ENTNO is the wall's deck number).
+  switch_queries_.wall_force = [this](model::Id number) {
+    return contact::wall_normal_force(walls_, static_cast<int>(number));
+  };
+  switch_queries_.wall_within_offset = [this](model::Id number, double offset,
+                                              const std::vector<model::Id>& parts) {
+    return contact::wall_within_offset(walls_, static_cast<int>(number), offset, parts, state_);
+  };
 
   if (!options_.output_directory.empty()) {
     std::filesystem::create_directories(options_.output_directory);
@@ -98,7 +106,11 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
       nodout_ = std::make_unique<output::NodoutWriter>(options_.output_directory / "nodout.csv",
                                                        std::move(dense));
     }
-    if (!rigid_.empty()) {
+    if (model.switching.flagged) {
+      switch_csv_ =
+          std::make_unique<output::SwitchWriter>(options_.output_directory / "switch.csv");
+    }
+    if (!rigid_.empty() || model.switching.flagged) {
       // *DATABASE_RBDOUT interval, else about 1000 rows per body and run.
       rbdout_schedule_.interval = default_interval(model.output.rbdout_dt, span, 1000.0);
       rbdout_ = std::make_unique<output::RbdoutWriter>(options_.output_directory / "rbdout.csv");
@@ -112,6 +124,12 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
       d3plot_schedule_.interval = default_interval(model.output.d3plot_dt, span, 20.0);
       fields_ = std::make_unique<output::FieldWriter>(options_.output_directory);
     }
+  }
+  if (model.switching.flagged) {
+    switcher_ = std::make_unique<switching::PartSwitcher>(model_, state_);
+    automatic_switching_ =
+        std::make_unique<switching::AutomaticSwitching>(model_.switching.automatic);
+    switch_due_.reserve(model_.switching.automatic.size());
   }
   initialize();
 }
@@ -158,6 +176,9 @@ void Simulation::initialize() {
     energy_.angular_momentum[k] = sums[4 + k];
   }
   state_.dt_prev = 0.0;
+  if (switcher_ && !model_.switching.at_start.empty()) {
+    apply_switch(0, model_.switching.at_start, {}, 0.0);
+  }
   select_time_step();
   initial_dt_ = state_.dt;
   dt_average_ = 0.5 * state_.dt;  // first half step: v^{1/2} = v^0 + dt/2 a^0
@@ -165,6 +186,7 @@ void Simulation::initialize() {
 
 // One explicit cycle, from t^n (forces known) to t^{n+1} (forces known).
 void Simulation::cycle() {
+  switch_parts_if_due();
   update_velocities();
   write_output_if_due(false);
   const bool end_reached = (end_time_ > 0.0 && state_.time >= end_time_ * (1.0 - 1e-12)) ||
@@ -196,12 +218,116 @@ void Simulation::run(const std::function<void(const Simulation&)>& on_progress) 
     if (nodout_) nodout_->flush();
     if (rbdout_) rbdout_->flush();
     if (rwforc_) rwforc_->flush();
+    if (switch_csv_) switch_csv_->flush();
     throw;
   }
   if (glstat_) glstat_->flush();
   if (nodout_) nodout_->flush();
   if (rbdout_) rbdout_->flush();
   if (rwforc_) rwforc_->flush();
+  if (switch_csv_) switch_csv_->flush();
+}
+
+void Simulation::switch_parts_if_due() {
+  if (!automatic_switching_ || automatic_switching_->empty()) return;
+  automatic_switching_->due(state_.time, switch_queries_, switch_due_);
+  const auto& due = switch_due_;
+  for (const int k : due) {
+    const auto& set = model_.switching.automatic[k];
+    apply_switch(set.swset, set.to_rigid, set.to_deformable, set.dtmax);
+    // NRBF: the nodal rigid bodies besides those merged by the switch (remark 4: all of them).
+    double activation = 0.0;
+    if (set.nrbf == 1)
+      activation = switcher_->delete_nodal_rigid_bodies(state_.time, state_, rigid_);
+    if (set.nrbf == 2) {
+      activation = switcher_->activate_nodal_rigid_bodies(state_.time, state_, rigid_);
+    }
+    energy_.switch_energy -= activation;
+    energy_.kinetic += activation;
+    automatic_switching_->fired(k, state_.time);
+  }
+  if (!due.empty()) {
+    for (auto& notice : switcher_->notices) warnings_.push_back({{}, std::move(notice)});
+    switcher_->notices.clear();
+  }
+}
+
+// Between cycles: nodes and bodies at x^n, v^{n-1/2}, forces at t^n. The switch conserves the
+// momenta of what it touches; forces are repaired so that the next velocity update sees the
+// new rigid bodies (no internal forces from frozen elements) and the new deformable elements
+// (their restored stresses at x^n), and the step is cut if a released part needs a smaller one.
+void Simulation::apply_switch(model::Id swset, const std::vector<model::PartSwitch>& to_rigid,
+                              const std::vector<model::PartSwitch>& to_deformable, double dtmax) {
+  std::vector<switching::SwitchEvent> events;
+  if (!to_rigid.empty()) {
+    events.push_back(switcher_->to_rigid(to_rigid, state_.time, state_, rigid_));
+  }
+  std::vector<bool> was_rigid;
+  for (const auto& block : state_.hex_blocks) was_rigid.push_back(block.rigid);
+  // Constraints on nodes that now move with a body do not act (docs/switching.md): say so.
+  if (!to_rigid.empty() && !events.empty()) {
+    std::int64_t held = 0;
+    for (std::size_t i = 0; i < state_.nodes.size(); ++i) {
+      if (rigid_.is_rigid(static_cast<std::int32_t>(i)) && boundary_.fixed[i] != 0) ++held;
+    }
+    if (held > 0) {
+      warnings_.push_back({{},
+                           fmt::format("t = {:.6g}: {} nodes with SPCs move with rigid "
+                                       "bodies after switch set {}; the SPCs do not act "
+                                       "on them while they are rigid",
+                                       state_.time, held, swset)});
+    }
+  }
+  if (!to_deformable.empty()) {
+    events.push_back(switcher_->to_deformable(to_deformable, state_.time, state_, rigid_));
+  }
+  // Internal forces of the elements that became deformable, at x^n with their restored
+  // stresses (dt = 0: no increment), and the step they allow.
+  const element::NodalView view = view_of(state_.nodes);
+  double released_dt = std::numeric_limits<double>::infinity();
+  for (std::size_t b = 0; b < state_.hex_blocks.size(); ++b) {
+    auto& block = state_.hex_blocks[b];
+    if (!was_rigid[b] || block.rigid) continue;
+    const element::KernelResult r = element::compute_block_forces(block, view, 0.0);
+    released_dt = std::min(released_dt, r.min_dt);
+  }
+  assemble_internal_forces(state_);
+  // Element step without the frozen elements (and with the released ones).
+  element_dt_ = std::numeric_limits<double>::infinity();
+  for (const auto& block : state_.hex_blocks) {
+    if (block.rigid) continue;
+    const element::KernelResult r = element::block_critical_timestep(block, view);
+    element_dt_ = std::min(element_dt_, r.min_dt);
+  }
+  if (dtmax > 0.0 || swset != 0) switch_dt_cap_ = dtmax;
+  const double tssfac = model_.timestep.tssfac > 0.0 ? model_.timestep.tssfac : 0.9;
+  double cap = tssfac * released_dt;
+  if (switch_dt_cap_ > 0.0) cap = std::min(cap, switch_dt_cap_);
+  if (state_.dt > 0.0 && state_.dt > cap) {
+    state_.dt = cap;
+    dt_average_ = 0.5 * (state_.dt_prev + state_.dt);
+  }
+  for (auto& event : events) {
+    if (event.parts.empty()) continue;
+    event.swset = swset;
+    energy_.switch_energy += event.kinetic_energy_before - event.kinetic_energy_after;
+    energy_.kinetic -= event.kinetic_energy_before - event.kinetic_energy_after;
+    if (switch_csv_) {
+      output::SwitchRow row;
+      row.time = event.time;
+      row.swset = swset;
+      row.to_rigid = event.to_rigid;
+      row.parts.assign(event.parts.begin(), event.parts.end());
+      row.kinetic_energy_before = event.kinetic_energy_before;
+      row.kinetic_energy_after = event.kinetic_energy_after;
+      for (int k = 0; k < 3; ++k) row.momentum[k] = event.momentum[k];
+      switch_csv_->write(row);
+    }
+    switch_events_.push_back(std::move(event));
+  }
+  energy_.frozen_energy = switcher_->frozen_energy();
+  for (auto& notice : switcher_->notices) warnings_.push_back({{}, std::move(notice)});
+  switcher_->notices.clear();
 }
 
 void Simulation::update_velocities() {
@@ -287,6 +413,8 @@ void Simulation::update_velocities() {
   double reaction_work = 0.0;
   if (dt_avg > 0.0) {
     for (const auto i : boundary_.constrained_nodes) {
+      // A node of a part switched rigid moves with its body; its SPC does not act meanwhile.
+      if (body_of && body_of[i] >= 0) continue;
       const double m = nodes.mass[i];
       const double dvx = nodes.v.x[i] - vp.x[i];
       const double dvy = nodes.v.y[i] - vp.y[i];
@@ -376,6 +504,8 @@ void Simulation::write_output_if_due(bool force) {
       row.angular_momentum[k] = energy_.angular_momentum[k];
     }
     row.rigidwall_work = energy_.rigidwall_work;
+    row.switch_energy = energy_.switch_energy;
+    row.frozen_energy = energy_.frozen_energy;
     glstat_->write(row);
     glstat_schedule_.mark_written(t, cycle);
   }
@@ -491,6 +621,7 @@ void Simulation::select_time_step() {
     dt = std::min(dt, model::evaluate(it->second, state_.time));
   }
   if (control.dt_max > 0.0) dt = std::min(dt, control.dt_max);
+  if (switch_dt_cap_ > 0.0) dt = std::min(dt, switch_dt_cap_);  // DTMAX of the last switch
   const bool no_element_step = !std::isfinite(element_dt_);
   if (control.dtinit > 0.0 && (state_.cycle == 0 || no_element_step)) {
     // Without deformable elements DTINIT is the step throughout (capped by LCTM above).
@@ -500,7 +631,8 @@ void Simulation::select_time_step() {
     throw InputError(
         {.file = {}, .line = 0, .keyword = "*CONTROL_TIMESTEP", .card = 1, .field = "DTINIT"},
         "the model has no deformable elements, so nothing limits the time step: "
-        "give DTINIT (or LCTM) on *CONTROL_TIMESTEP");
+        "give DTINIT (or LCTM) on *CONTROL_TIMESTEP, or DTMAX on the "
+        "*DEFORMABLE_TO_RIGID_AUTOMATIC set that made every part rigid");
   }
   if (!std::isfinite(dt) || dt <= 0.0) {
     throw SolverError(fmt::format("no valid time step at time {:.6g}: element {} gives {:.6g}",

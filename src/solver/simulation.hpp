@@ -17,6 +17,7 @@
 #include "solver/build_state.hpp"
 #include "solver/rigid_bodies.hpp"
 #include "solver/state.hpp"
+#include "switching/part_switching.hpp"
 
 namespace rf::solver {
 
@@ -32,12 +33,17 @@ struct EnergyAccount {
   double external_work = 0.0;  // loads, body forces and reactions
   // The part of external_work done by rigid walls (their forces are in f_ext).
   double rigidwall_work = 0.0;
+  // Kinetic energy of non-rigid motion removed by deformable-to-rigid switches (cumulative).
+  double switch_energy = 0.0;
+  // Strain energy held by elements frozen in parts that are rigid by switching (part of
+  // internal_work; reported, not added again).
+  double frozen_energy = 0.0;
   double initial_total = 0.0;
   double momentum[3] = {0, 0, 0};
   double angular_momentum[3] = {0, 0, 0};
 
   double internal() const { return internal_work - hourglass; }
-  double total() const { return kinetic + internal_work; }
+  double total() const { return kinetic + internal_work + switch_energy; }
   double ratio() const {
     const double reference = initial_total + external_work;
     return reference != 0.0 ? total() / reference : 1.0;
@@ -76,6 +82,8 @@ class Simulation {
   // Notices found while turning the model into a state (ignored constraints, regularised
   // inertia); the reader's warnings are in the model.
   const std::vector<model::Warning>& warnings() const { return warnings_; }
+  // Every part switch so far (switch.csv rows).
+  const std::vector<switching::SwitchEvent>& switch_events() const { return switch_events_; }
   // User ID and part of the element that controls the step (for messages and progress).
   model::Id controlling_element() const { return controlling_element_; }
 
@@ -89,7 +97,12 @@ class Simulation {
   void compute_external_forces();  // loads at t^{n+1}
   void select_time_step();         // dt^{n+3/2}
 
+  void switch_parts_if_due();  // *DEFORMABLE_TO_RIGID_AUTOMATIC, between cycles
+
   void initialize();
+  // Applies one switch (both directions of a set) and repairs forces and the step.
+  void apply_switch(model::Id swset, const std::vector<model::PartSwitch>& to_rigid,
+                    const std::vector<model::PartSwitch>& to_deformable, double dtmax);
   void check_breakdown();
   void write_output_now();
 
@@ -139,6 +152,15 @@ class Simulation {
   std::vector<output::RwforcRow> rwforc_rows_;
   std::unique_ptr<output::FieldWriter> fields_;
   std::vector<double> reduction_scratch_;
+
+  // Part switching (empty unless the deck has *DEFORMABLE_TO_RIGID*).
+  std::unique_ptr<switching::PartSwitcher> switcher_;
+  std::unique_ptr<switching::AutomaticSwitching> automatic_switching_;
+  std::vector<switching::SwitchEvent> switch_events_;
+  switching::SwitchQueries switch_queries_;  // wall and sensor conditions (set once)
+  std::vector<int> switch_due_;              // scratch: sets due this cycle
+  std::unique_ptr<output::SwitchWriter> switch_csv_;
+  double switch_dt_cap_ = 0.0;  // DTMAX of the last switch set that fired (0: none)
 };
 
 }  // namespace rf::solver

@@ -698,5 +698,38 @@ TEST(RigidWall, SwitchingInterfaceReadsForceAndDeactivatesWalls) {
   EXPECT_LT(lowest_distance(sim.state(), Vector3d::Zero(), Vector3d::UnitZ()), -0.04);
 }
 
+// CODE 3 of *DEFORMABLE_TO_RIGID_AUTOMATIC: an elastic block becomes rigid in the cycle after
+// the wall (ENTNO 1) first pushes it, then rests on the wall as a body.
+TEST(RigidWall, WallForceSwitchesFallingBlockToRigid) {
+  constexpr double rho = 1000.0, e = 1e7, v0 = 1.0;
+  Block block;
+  block.nx = block.ny = block.nz = 2;
+  block.lx = block.ly = block.lz = 0.1;
+  block.shift = Vector3d(0, 0, 0.01);
+  const std::string deck = "*KEYWORD\n" + block.text() + elastic(1, rho, e, 0.3) +
+                           velocity(1, Vector3d(0, 0, -v0)) + gravity(9.81) +
+                           "*RIGIDWALL_PLANAR\n0\n0,0,0,0,0,1\n"
+                           "*DEFORMABLE_TO_RIGID_AUTOMATIC\n1,3,0,0,0,1\n0,0,0,1e-4,1,0\n1\n" +
+                           termination(0.1, 0.5);
+  solver::Simulation sim(read(deck), {});
+  double first_push = -1.0, lowest = 0.0;
+  while (!sim.finished()) {
+    sim.cycle();
+    if (first_push < 0.0 && sim.rigid_walls().walls[0].normal_force > 0.0) {
+      first_push = sim.state().time;
+    }
+    lowest = std::min(lowest, lowest_distance(sim.state(), Vector3d::Zero(), Vector3d::UnitZ()));
+  }
+  std::printf("switch by wall force: first push at %.6g, switch at %.6g, lowest %.3g\n", first_push,
+              sim.switch_events().empty() ? -1.0 : sim.switch_events()[0].time, lowest);
+  ASSERT_EQ(sim.switch_events().size(), 1u);
+  EXPECT_TRUE(sim.switch_events()[0].to_rigid);
+  EXPECT_GE(sim.switch_events()[0].time, first_push);
+  EXPECT_LT(sim.switch_events()[0].time, first_push + 0.01);
+  ASSERT_EQ(sim.rigid_bodies().bodies.size(), 1u);
+  EXPECT_NEAR(sim.rigid_bodies().bodies[0].state.velocity.z(), 0.0, 1e-9);  // resting
+  EXPECT_GE(lowest, -1e-12);
+}
+
 }  // namespace
 }  // namespace rf::test

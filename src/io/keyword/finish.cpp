@@ -2,6 +2,8 @@
 // reference points at something defined. Errors name the referring definition.
 #include <fmt/format.h>
 
+#include <set>
+
 #include <algorithm>
 #include <unordered_map>
 #include <unordered_set>
@@ -279,6 +281,130 @@ void finish_rigid(model::Model& m, const std::unordered_set<Id>& nodes) {
 
 }  // namespace
 
+// Parts named by switching cards exist; what they name can switch that way (the manual:
+// *MAT_RIGID parts are permanently rigid); pairs point at each other.
+void finish_switching(const model::Model& m) {
+  const auto& sw = m.switching;
+  std::set<Id> switched_rigid;  // parts some D2R card names (LRB targets may be among them)
+  auto parts_of = [&](const model::PartSwitch& s) {
+    std::vector<Id> parts;
+    if (s.part_set) {
+      const auto it = m.part_sets.find(s.pid);
+      if (it == m.part_sets.end()) {
+        throw located_error(s.where, "PID",
+                            fmt::format("part set {} (PTYPE PSET) is not defined", s.pid));
+      }
+      parts = it->second.parts;
+    } else {
+      parts.push_back(s.pid);
+    }
+    for (const Id p : parts) {
+      if (!m.parts.count(p)) {
+        throw located_error(s.where, "PID", fmt::format("part {} is not defined", p));
+      }
+    }
+    return parts;
+  };
+  auto is_mat_rigid = [&](Id pid) {
+    const auto& part = m.parts.at(pid);
+    const auto mat = m.materials.find(part.mid);
+    return mat != m.materials.end() && mat->second.kind == model::MaterialKind::Rigid;
+  };
+  auto check_to_rigid = [&](const model::PartSwitch& s) {
+    for (const Id p : parts_of(s)) {
+      // With LRB the part may already be rigid (the manual: it is then only merged).
+      if (s.lrb == 0 && is_mat_rigid(p)) {
+        throw located_error(s.where, "PID",
+                            fmt::format("part {} is *MAT_RIGID, rigid already; give LRB to "
+                                        "merge it into another rigid body",
+                                        p));
+      }
+      switched_rigid.insert(p);
+    }
+  };
+  for (const auto& s : sw.at_start) check_to_rigid(s);
+  for (const auto& set : sw.automatic) {
+    for (const auto& s : set.to_rigid) check_to_rigid(s);
+    for (const auto& s : set.to_deformable) {
+      for (const Id p : parts_of(s)) {
+        if (is_mat_rigid(p)) {
+          throw located_error(s.where, "PID",
+                              fmt::format("part {} is *MAT_RIGID: parts defined rigid in the "
+                                          "input are permanently rigid and cannot become "
+                                          "deformable",
+                                          p));
+        }
+      }
+    }
+  }
+  auto check_lead = [&](const model::PartSwitch& s) {
+    if (s.lrb == 0) return;
+    if (!m.parts.count(s.lrb)) {
+      throw located_error(s.where, "LRB", fmt::format("part {} is not defined", s.lrb));
+    }
+    if (!is_mat_rigid(s.lrb) && !switched_rigid.count(s.lrb)) {
+      throw located_error(s.where, "LRB",
+                          fmt::format("part {} is neither *MAT_RIGID nor switched to rigid by "
+                                      "any card, so it cannot lead a rigid body",
+                                      s.lrb));
+    }
+  };
+  for (const auto& s : sw.at_start) check_lead(s);
+  for (const auto& set : sw.automatic) {
+    for (const auto& s : set.to_rigid) check_lead(s);
+    if (set.paired == 0) continue;
+    const model::AutomaticSwitchSet* related = nullptr;
+    for (const auto& other : sw.automatic) {
+      if (other.swset == set.relsw) related = &other;
+    }
+    if (!related) {
+      throw located_error(set.where, "RELSW",
+                          fmt::format("related switch set {} is not defined", set.relsw));
+    }
+    if (related->relsw != set.swset || related->paired != -set.paired) {
+      throw located_error(set.where, "RELSW",
+                          fmt::format("switch set {} (PAIRED {}) names {} as related, but set "
+                                      "{} has RELSW {} and PAIRED {}: a pair names each other, "
+                                      "one with PAIRED 1 and one with -1",
+                                      set.swset, set.paired, set.relsw, related->swset,
+                                      related->relsw, related->paired));
+    }
+    if ((set.code == 1 || set.code == 3) != (related->code == 1 || related->code == 3) ||
+        (set.code == 0) != (related->code == 0) || (set.code == 5) != (related->code == 5)) {
+      throw located_error(set.where, "CODE",
+                          fmt::format("paired sets {} and {} have CODE {} and {}: a pair uses "
+                                      "consistent codes (1 with 3, 2 with 4, 0 with 0, 5 "
+                                      "with 5)",
+                                      set.swset, related->swset, set.code, related->code));
+    }
+  }
+  for (const auto& [pid, in] : sw.inertia) {
+    if (!m.parts.count(pid)) {
+      throw located_error(in.where, "PID", fmt::format("part {} is not defined", pid));
+    }
+    if (is_mat_rigid(pid)) {
+      throw located_error(in.where, "PID",
+                          fmt::format("part {} is *MAT_RIGID; give its inertia with "
+                                      "*PART_INERTIA instead",
+                                      pid));
+    }
+  }
+  for (const auto& set : sw.automatic) {
+    if ((set.code == 1 || set.code == 3) && set.entno > static_cast<Id>(m.rigid_walls.size())) {
+      throw located_error(set.where, "ENTNO",
+                          fmt::format("CODE {} tests rigid wall {}, and this deck defines {} "
+                                      "*RIGIDWALL_PLANAR (numbered 1, 2, ... in deck order)",
+                                      set.code, set.entno, m.rigid_walls.size()));
+    }
+    if (set.code == 5) {
+      throw located_error(set.where, "CODE",
+                          fmt::format("CODE 5: switch set {} is controlled by *SENSOR_CONTROL "
+                                      "TYPE = DEF2RIG, TYPEID = {}, and this deck defines none",
+                                      set.swset, set.swset));
+    }
+  }
+}
+
 void finish_model(ReaderContext& context) {
   model::Model& m = context.model;
   std::unordered_set<Id> nodes;
@@ -399,6 +525,7 @@ void finish_model(ReaderContext& context) {
   }
   finish_rigid(m, nodes);
   handlers::check_rigid_walls(m);
+  finish_switching(m);
 }
 
 }  // namespace rf::io

@@ -52,6 +52,9 @@ void constrained_nodal_rigid_body(const Block&, ReaderContext&);
 void boundary_prescribed_motion_rigid(const Block&, ReaderContext&);
 void load_rigid_body(const Block&, ReaderContext&);
 void rigid_body_update(const Block&, ReaderContext&);
+void deformable_to_rigid(const Block&, ReaderContext&);
+void deformable_to_rigid_automatic(const Block&, ReaderContext&);
+void deformable_to_rigid_inertia(const Block&, ReaderContext&);
 void control_rigid(const Block&, ReaderContext&);
 
 // handlers_walls.cpp

@@ -1,0 +1,626 @@
+#include "switching/part_switching.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <set>
+
+#include "model/error.hpp"
+
+namespace rf::switching {
+
+namespace {
+
+using model::Id;
+using solver::RigidBody;
+using solver::RigidSystem;
+using solver::State;
+
+Eigen::Vector3d node_position(const State& s, std::int32_t i) {
+  return {s.nodes.x.x[i], s.nodes.x.y[i], s.nodes.x.z[i]};
+}
+Eigen::Vector3d node_velocity(const State& s, std::int32_t i) {
+  return {s.nodes.v.x[i], s.nodes.v.y[i], s.nodes.v.z[i]};
+}
+
+// Linear momentum, angular momentum about the origin and kinetic energy of a collection of
+// free nodes and bodies, at the levels x^n, v^{n-1/2} (bodies: x_c^n, v_c^{n-1/2}, L^{n-1/2}).
+struct Momenta {
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  Eigen::Vector3d h = Eigen::Vector3d::Zero();
+  double kinetic = 0.0;
+  void add_node(const State& s, std::int32_t i) {
+    const double m = s.nodes.mass[i];
+    const Eigen::Vector3d v = node_velocity(s, i);
+    p += m * v;
+    h += node_position(s, i).cross(m * v);
+    kinetic += 0.5 * m * v.squaredNorm();
+  }
+  void add_body(const rigid::RigidBodyState& b) {
+    const Eigen::Vector3d pb = b.mass * b.velocity;
+    p += pb;
+    h += b.centre.cross(pb) + b.angular_momentum;
+    kinetic += rigid::kinetic_energy(b);
+  }
+};
+
+// Parallel-axis sum of mass properties (each about its own centre).
+rigid::MassProperties combine(const std::vector<rigid::MassProperties>& parts) {
+  rigid::MassProperties sum;
+  for (const auto& p : parts) sum.mass += p.mass;
+  if (!(sum.mass > 0.0)) return sum;
+  for (const auto& p : parts) sum.centre += p.mass * p.centre;
+  sum.centre /= sum.mass;
+  for (const auto& p : parts) {
+    const Eigen::Vector3d d = p.centre - sum.centre;
+    sum.inertia +=
+        p.inertia + p.mass * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
+  }
+  return sum;
+}
+
+rigid::MassProperties body_properties(const rigid::RigidBodyState& b) {
+  return {b.mass, b.centre, rigid::global_inertia(b)};
+}
+
+rigid::MassProperties card_properties(const model::SwitchInertia& in) {
+  rigid::MassProperties p;
+  p.mass = in.tm;
+  p.centre = {in.xc[0], in.xc[1], in.xc[2]};
+  const auto& c = in.inertia;
+  p.inertia << c[0], c[1], c[2], c[1], c[3], c[4], c[2], c[4], c[5];
+  return p;
+}
+
+// Complementary strain energy of a block's frozen stresses, sum over stress points of
+// V_q [(1 + nu) s:s - nu (tr s)^2] / (2 E) (linear isotropic elasticity).
+double strain_energy(const element::HexBlock& block) {
+  const double young = block.material.young, nu = block.material.poisson;
+  if (!(young > 0.0)) return 0.0;
+  const int points = block.points_per_element();
+  double sum = 0.0;
+  for (std::size_t e = 0; e < block.size(); ++e) {
+    for (int q = 0; q < points; ++q) {
+      const double* s = &block.stress[(e * points + q) * 6];
+      const double trace = s[0] + s[1] + s[2];
+      const double ss =
+          s[0] * s[0] + s[1] * s[1] + s[2] * s[2] + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
+      double weight = block.volume[e] / points;
+      if (block.order > 1) weight = block.reference_weight[e * points + q];
+      sum += weight * ((1.0 + nu) * ss - nu * trace * trace) / (2.0 * young);
+    }
+  }
+  return sum;
+}
+
+// Rotates a block's stresses (s -> Q s Q^T) and stored hourglass forces (each mode's 3-vector
+// -> Q q): objective, so a body turned while rigid carries no spurious stress.
+void rotate_block_state(element::HexBlock& block, const Eigen::Matrix3d& q) {
+  const std::size_t points = block.stress.size() / 6;
+  for (std::size_t k = 0; k < points; ++k) {
+    double* s = &block.stress[k * 6];
+    Eigen::Matrix3d m;
+    m << s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2];
+    const Eigen::Matrix3d r = q * m * q.transpose();
+    s[0] = r(0, 0);
+    s[1] = r(1, 1);
+    s[2] = r(2, 2);
+    s[3] = r(0, 1);
+    s[4] = r(1, 2);
+    s[5] = r(2, 0);
+  }
+  // hourglass_state, IHQ 4/5: 4 modes x (x, y, z) per element in global axes. IHQ 6 keeps
+  // them in the element's corotational frame, which turned with the body already.
+  if (block.hourglass.ihq != 4 && block.hourglass.ihq != 5) return;
+  for (std::size_t k = 0; k + 2 < block.hourglass_state.size(); k += 3) {
+    const Eigen::Vector3d h(block.hourglass_state[k], block.hourglass_state[k + 1],
+                            block.hourglass_state[k + 2]);
+    const Eigen::Vector3d r = q * h;
+    block.hourglass_state[k] = r.x();
+    block.hourglass_state[k + 1] = r.y();
+    block.hourglass_state[k + 2] = r.z();
+  }
+}
+
+// Removes the bodies whose index is in `gone` and renumbers every reference to bodies.
+void remove_bodies(RigidSystem& rigid, const std::set<int>& gone,
+                   const std::map<int, int>& moved_to) {
+  if (gone.empty()) return;
+  std::vector<int> new_index(rigid.bodies.size(), -1);
+  int next = 0;
+  for (std::size_t b = 0; b < rigid.bodies.size(); ++b) {
+    if (!gone.count(static_cast<int>(b))) new_index[b] = next++;
+  }
+  auto remap = [&](int b) {
+    if (const auto it = moved_to.find(b); it != moved_to.end()) b = it->second;
+    return new_index[b];
+  };
+  for (auto& owner : rigid.body_of_node) {
+    if (owner >= 0) owner = remap(owner);
+  }
+  for (auto& m : rigid.motions) m.body = remap(m.body);
+  for (auto& l : rigid.loads) l.body = remap(l.body);
+  std::stable_sort(rigid.motions.begin(), rigid.motions.end(),
+                   [](const auto& a, const auto& b) { return a.body < b.body; });
+  std::vector<RigidBody> kept;
+  kept.reserve(next);
+  for (std::size_t b = 0; b < rigid.bodies.size(); ++b) {
+    if (new_index[b] >= 0) kept.push_back(std::move(rigid.bodies[b]));
+  }
+  rigid.bodies = std::move(kept);
+}
+
+std::vector<std::uint8_t> deformable_nodes(const State& state) {
+  std::vector<std::uint8_t> flag(state.nodes.size(), 0);
+  for (const auto& block : state.hex_blocks) {
+    if (block.rigid) continue;
+    for (const std::int32_t i : block.conn) flag[i] = 1;
+  }
+  return flag;
+}
+
+// Gives a body new mass properties and the velocity that carries momenta `m` exactly; the
+// physical rotation R R0^T stays continuous; nodes get the rigid velocity field.
+void define_body(RigidBody& body, const rigid::MassProperties& props, const Momenta& m,
+                 const Eigen::Matrix3d& physical_rotation, int update_type, State& state) {
+  rigid::RigidBodyState fresh = rigid::make_rigid_body(props);
+  fresh.constraints = body.state.constraints;
+  const Eigen::Vector3d v = m.p / props.mass;
+  const Eigen::Vector3d w = props.inertia.ldlt().solve(m.h - props.centre.cross(m.p));
+  rigid::set_velocity(fresh, v, w);
+  fresh.previous_centre = fresh.centre;
+  fresh.previous_rotation = fresh.rotation;
+  body.state = fresh;
+  // Phi = R R0^T must equal physical_rotation: R0 = Phi^T R.
+  body.initial_rotation = physical_rotation.transpose() * fresh.rotation;
+  body.velocity_before = v;
+  body.angular_velocity_before = w;
+  body.mid_velocity = v;
+  body.mid_angular_velocity = w;
+  std::sort(body.nodes.begin(), body.nodes.end());
+  body.nodes.erase(std::unique(body.nodes.begin(), body.nodes.end()), body.nodes.end());
+  auto& nodes = state.nodes;
+  body.body_coordinates = rigid::body_coordinates(body.state, body.nodes, nodes.x.x.data(),
+                                                  nodes.x.y.data(), nodes.x.z.data());
+  const auto deformable = deformable_nodes(state);
+  body.shares_nodes = false;
+  for (const auto i : body.nodes) {
+    if (deformable[i]) body.shares_nodes = true;
+  }
+  body.update = (update_type != 2 && body.shares_nodes) ? solver::NodeUpdate::kLinear
+                                                        : solver::NodeUpdate::kCurvilinear;
+  rigid::rigid_node_velocities(v, w, body.state.centre, body.nodes, nodes.x.x.data(),
+                               nodes.x.y.data(), nodes.x.z.data(), nodes.v.x.data(),
+                               nodes.v.y.data(), nodes.v.z.data());
+}
+
+}  // namespace
+
+Eigen::Matrix3d body_rotation(const RigidBody& body) {
+  return body.state.rotation * body.initial_rotation.transpose();
+}
+
+PartSwitcher::PartSwitcher(const model::Model& model, const State& state) : model_(model) {
+  for (std::size_t b = 0; b < state.hex_blocks.size(); ++b) {
+    block_of_part_[state.hex_blocks[b].part_id] = static_cast<int>(b);
+  }
+}
+
+std::vector<Id> PartSwitcher::expand(const std::vector<model::PartSwitch>& cards) const {
+  std::vector<Id> parts;
+  for (const auto& c : cards) {
+    if (c.part_set) {
+      const auto& set = model_.part_sets.at(c.pid);  // checked by the reader
+      parts.insert(parts.end(), set.parts.begin(), set.parts.end());
+    } else {
+      parts.push_back(c.pid);
+    }
+  }
+  return parts;
+}
+
+double PartSwitcher::frozen_energy() const {
+  double sum = 0.0;
+  for (const auto& [pid, p] : switched_) sum += p.frozen_energy;
+  return sum;
+}
+
+SwitchEvent PartSwitcher::to_rigid(const std::vector<model::PartSwitch>& cards, double time,
+                                   State& state, RigidSystem& rigid) {
+  SwitchEvent event;
+  event.time = time;
+  event.to_rigid = true;
+  if (rigid.body_of_node.empty()) rigid.body_of_node.assign(state.nodes.size(), -1);
+
+  // Groups: one per lead (LRB) and, without a lead, one per part; groups that share nodes
+  // with each other or with existing bodies are united below.
+  struct Group {
+    Id lead_part = 0;  // LRB, 0 if none
+    std::vector<Id> parts;
+  };
+  std::vector<Group> groups;
+  for (const auto& card : cards) {
+    for (const Id pid : expand({card})) {
+      const bool already_rigid = switched_.count(pid) != 0;
+      const auto blk = block_of_part_.find(pid);
+      const bool mat_rigid =
+          blk != block_of_part_.end() && state.hex_blocks[blk->second].rigid && !already_rigid;
+      if ((already_rigid || mat_rigid) && card.lrb == 0) {
+        notices.push_back(
+            fmt::format("t = {:.6g}: part {} is rigid already; nothing to switch", time, pid));
+        continue;
+      }
+      if (blk == block_of_part_.end()) {
+        notices.push_back(
+            fmt::format("t = {:.6g}: part {} has no elements; nothing to switch", time, pid));
+        continue;
+      }
+      auto it = std::find_if(groups.begin(), groups.end(), [&](const Group& g) {
+        return card.lrb != 0 && g.lead_part == card.lrb;
+      });
+      if (it == groups.end()) {
+        groups.push_back({card.lrb, {}});
+        it = groups.end() - 1;
+      }
+      it->parts.push_back(pid);
+      event.parts.push_back(pid);
+    }
+  }
+  if (groups.empty()) return event;
+
+  // Body index of a part (-1 if none): bodies list their parts.
+  auto body_of_part = [&](Id pid) {
+    for (std::size_t b = 0; b < rigid.bodies.size(); ++b) {
+      const auto& parts = rigid.bodies[b].parts;
+      if (std::find(parts.begin(), parts.end(), pid) != parts.end()) return static_cast<int>(b);
+    }
+    return -1;
+  };
+
+  Momenta total;  // everything this switch touches
+  std::set<int> removed;
+  std::map<int, int> moved_to;
+  for (auto& group : groups) {
+    // Nodes of the group's parts, and the bodies they touch (merged into the result).
+    std::vector<std::int32_t> nodes;
+    for (const Id pid : group.parts) {
+      const auto& block = state.hex_blocks[block_of_part_.at(pid)];
+      nodes.insert(nodes.end(), block.conn.begin(), block.conn.end());
+    }
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    std::set<int> bodies;
+    int lead_body = -1;
+    if (group.lead_part != 0) {
+      lead_body = body_of_part(group.lead_part);
+      if (lead_body < 0) {
+        throw SolverError(
+            fmt::format("at time {:.6g}: part {} is to be merged into the rigid "
+                        "body of part {} (LRB), which is not rigid now",
+                        time, group.parts.front(), group.lead_part));
+      }
+      bodies.insert(lead_body);
+    }
+    for (const Id pid : group.parts) {  // parts already in a body (merged by LRB)
+      const int b = body_of_part(pid);
+      if (b >= 0) bodies.insert(b);
+    }
+    for (const auto i : nodes) {
+      if (rigid.body_of_node[i] >= 0) bodies.insert(rigid.body_of_node[i]);
+    }
+    for (const int b : removed) bodies.erase(b);
+
+    Momenta m;
+    std::vector<rigid::MassProperties> props;
+    std::vector<std::int32_t> lumped;
+    std::vector<std::int32_t> all_nodes;
+    for (const auto i : nodes) {
+      if (rigid.body_of_node[i] >= 0) continue;  // counted with its body
+      m.add_node(state, i);
+      lumped.push_back(i);
+    }
+    // The body that stays (the lead's, else the lowest-index one touched, else a new one).
+    int keep = lead_body;
+    if (keep < 0 && !bodies.empty()) keep = *bodies.begin();
+    const bool lead_card = keep >= 0 && rigid.bodies[keep].inertia_from_card;
+    Eigen::Matrix3d physical = Eigen::Matrix3d::Identity();
+    if (keep >= 0) physical = body_rotation(rigid.bodies[keep]);
+    for (const int b : bodies) {
+      const RigidBody& body = rigid.bodies[b];
+      m.add_body(body.state);
+      if (!lead_card || b == keep) props.push_back(body_properties(body.state));
+      all_nodes.insert(all_nodes.end(), body.nodes.begin(), body.nodes.end());
+    }
+    // *DEFORMABLE_TO_RIGID_INERTIA replaces the lumped masses of its part's nodes.
+    std::set<std::int32_t> card_nodes;
+    for (const Id pid : group.parts) {
+      const auto card = model_.switching.inertia.find(pid);
+      if (card == model_.switching.inertia.end()) continue;
+      if (!lead_card) props.push_back(card_properties(card->second));
+      const auto& block = state.hex_blocks[block_of_part_.at(pid)];
+      card_nodes.insert(block.conn.begin(), block.conn.end());
+    }
+    std::erase_if(lumped, [&](std::int32_t i) { return card_nodes.count(i) != 0; });
+    if (!lead_card && !lumped.empty()) {
+      props.push_back(rigid::mass_properties(lumped, state.nodes.mass.data(),
+                                             state.nodes.x.x.data(), state.nodes.x.y.data(),
+                                             state.nodes.x.z.data()));
+    }
+    const rigid::MassProperties combined = combine(props);
+    if (!(combined.mass > 0.0)) {
+      throw SolverError(fmt::format("at time {:.6g}: part {} has no mass to make a rigid body of",
+                                    time, group.parts.front()));
+    }
+
+    RigidBody* body = nullptr;
+    if (keep < 0) {
+      rigid.bodies.emplace_back();
+      keep = static_cast<int>(rigid.bodies.size()) - 1;
+      body = &rigid.bodies.back();
+      body->id = *std::min_element(group.parts.begin(), group.parts.end());
+    } else {
+      body = &rigid.bodies[keep];
+    }
+    for (const int b : bodies) {
+      if (b == keep) continue;
+      RigidBody& other = rigid.bodies[b];
+      body->parts.insert(body->parts.end(), other.parts.begin(), other.parts.end());
+      if (body->state.constraints.empty()) body->state.constraints = other.state.constraints;
+      // Parts switched earlier into `other` keep their rotation reference.
+      for (auto& [pid, sp] : switched_) {
+        if (sp.body_id == other.id) {
+          sp.rotation_offset = physical.transpose() * body_rotation(other) * sp.rotation_offset;
+          sp.body_id = body->id;
+        }
+      }
+      removed.insert(b);
+      moved_to[b] = keep;
+    }
+    for (const Id pid : group.parts) {
+      if (std::find(body->parts.begin(), body->parts.end(), pid) == body->parts.end()) {
+        body->parts.push_back(pid);
+      }
+    }
+    body->inertia_from_card = lead_card || !card_nodes.empty();
+    all_nodes.insert(all_nodes.end(), nodes.begin(), nodes.end());
+    body->nodes = all_nodes;
+    for (const auto i : all_nodes) rigid.body_of_node[i] = keep;
+
+    // Freeze the elements: no kernel, no force, stresses kept. Q = Phi Phi_switch^T later.
+    for (const Id pid : group.parts) {
+      auto& block = state.hex_blocks[block_of_part_.at(pid)];
+      if (!switched_.count(pid) && !block.rigid) {
+        switched_[pid] = {body->id, physical.transpose(), strain_energy(block)};
+        block.rigid = true;
+        std::fill(block.force.begin(), block.force.end(), 0.0);
+      }
+    }
+    define_body(*body, combined, m, physical, model_.rigid_body_update, state);
+    total.p += m.p;
+    total.h += m.h;
+    total.kinetic += m.kinetic;
+  }
+  remove_bodies(rigid, removed, moved_to);
+  // Bodies touched: every body now containing a switched part.
+  double after = 0.0;
+  std::set<const RigidBody*> counted;
+  for (const Id pid : event.parts) {
+    for (const auto& body : rigid.bodies) {
+      if (std::find(body.parts.begin(), body.parts.end(), pid) != body.parts.end() &&
+          counted.insert(&body).second) {
+        after += rigid::kinetic_energy(body.state);
+      }
+    }
+  }
+  event.kinetic_energy_before = total.kinetic;
+  event.kinetic_energy_after = after;
+  event.momentum = total.p;
+  event.angular_momentum = total.h;
+  return event;
+}
+
+SwitchEvent PartSwitcher::to_deformable(const std::vector<model::PartSwitch>& cards, double time,
+                                        State& state, RigidSystem& rigid) {
+  SwitchEvent event;
+  event.time = time;
+  event.to_rigid = false;
+  std::set<int> emptied;
+  Momenta before, after_nodes;
+  double after_bodies = 0.0;
+  std::set<int> touched;
+  for (const Id pid : expand(cards)) {
+    const auto sp = switched_.find(pid);
+    if (sp == switched_.end()) {
+      notices.push_back(fmt::format(
+          "t = {:.6g}: part {} is not rigid by switching; nothing to switch", time, pid));
+      continue;
+    }
+    int b = -1;
+    for (std::size_t k = 0; k < rigid.bodies.size(); ++k) {
+      if (rigid.bodies[k].id == sp->second.body_id) b = static_cast<int>(k);
+    }
+    if (b < 0) throw SolverError(fmt::format("part {}: its rigid body is missing", pid));
+    touched.insert(b);
+    event.parts.push_back(pid);
+    RigidBody& body = rigid.bodies[b];
+    auto& block = state.hex_blocks[block_of_part_.at(pid)];
+    const Eigen::Matrix3d q = body_rotation(body) * sp->second.rotation_offset;
+    rotate_block_state(block, q);
+    block.rigid = false;
+    std::erase(body.parts, pid);
+    switched_.erase(sp);
+  }
+  if (event.parts.empty()) return event;
+
+  for (const int b : touched) {
+    RigidBody& body = rigid.bodies[b];
+    before.add_body(body.state);
+    // Nodes still held by a part of the body stay; the rest are released with the body's
+    // velocity field (v_c + w x r at x^n, the field the nodes already carry).
+    std::set<std::int32_t> keep;
+    for (const Id pid : body.parts) {
+      const auto blk = block_of_part_.find(pid);
+      if (blk != block_of_part_.end()) {
+        const auto& conn = state.hex_blocks[blk->second].conn;
+        keep.insert(conn.begin(), conn.end());
+      }
+    }
+    const rigid::RigidBodyState s = body.state;
+    std::vector<std::int32_t> released, kept;
+    for (const auto i : body.nodes) (keep.count(i) ? kept : released).push_back(i);
+    auto& nodes = state.nodes;
+    rigid::rigid_node_velocities(s.velocity, s.angular_velocity, s.centre, released,
+                                 nodes.x.x.data(), nodes.x.y.data(), nodes.x.z.data(),
+                                 nodes.v.x.data(), nodes.v.y.data(), nodes.v.z.data());
+    for (const auto i : released) {
+      rigid.body_of_node[i] = -1;
+      after_nodes.add_node(state, i);
+    }
+    if (kept.empty()) {
+      emptied.insert(b);
+      continue;
+    }
+    // The rest of the body keeps its velocity field (and its physical rotation).
+    const Eigen::Matrix3d physical = body_rotation(body);
+    body.nodes = kept;
+    rigid::MassProperties props;
+    if (body.inertia_from_card) {
+      props = body_properties(s);  // the card's properties stay with the lead
+    } else {
+      props = rigid::mass_properties(kept, nodes.mass.data(), nodes.x.x.data(), nodes.x.y.data(),
+                                     nodes.x.z.data());
+    }
+    Momenta field;  // the velocity field carried by the remaining mass
+    field.p = props.mass * (s.velocity + s.angular_velocity.cross(props.centre - s.centre));
+    field.h = props.centre.cross(field.p) + props.inertia * s.angular_velocity;
+    define_body(body, props, field, physical, model_.rigid_body_update, state);
+    after_bodies += rigid::kinetic_energy(body.state);
+  }
+  remove_bodies(rigid, emptied, {});
+  event.kinetic_energy_before = before.kinetic;
+  event.kinetic_energy_after = after_nodes.kinetic + after_bodies;
+  event.momentum = before.p;
+  event.angular_momentum = before.h;
+  return event;
+}
+
+double PartSwitcher::delete_nodal_rigid_bodies(double time, State& state, RigidSystem& rigid) {
+  std::set<int> gone;
+  for (std::size_t b = 0; b < rigid.bodies.size(); ++b) {
+    RigidBody& body = rigid.bodies[b];
+    // Nodal bodies that shared nodes with a switched part were merged into its body already
+    // (the manual: "for all values of NRBF"); a nodal body holding switched parts stays.
+    if (!body.nodal || !body.parts.empty()) continue;
+    auto& nodes = state.nodes;
+    rigid::rigid_node_velocities(body.state.velocity, body.state.angular_velocity,
+                                 body.state.centre, body.nodes, nodes.x.x.data(), nodes.x.y.data(),
+                                 nodes.x.z.data(), nodes.v.x.data(), nodes.v.y.data(),
+                                 nodes.v.z.data());
+    for (const auto i : body.nodes) rigid.body_of_node[i] = -1;
+    notices.push_back(
+        fmt::format("t = {:.6g}: nodal rigid body {} deleted (NRBF = 1)", time, body.id));
+    deleted_nodal_.push_back(body);
+    gone.insert(static_cast<int>(b));
+  }
+  remove_bodies(rigid, gone, {});
+  return 0.0;  // the nodes keep the field: no kinetic energy changes
+}
+
+double PartSwitcher::activate_nodal_rigid_bodies(double time, State& state, RigidSystem& rigid) {
+  double change = 0.0;
+  for (RigidBody& body : deleted_nodal_) {
+    Momenta m;
+    bool free = true;
+    for (const auto i : body.nodes) free = free && rigid.body_of_node[i] < 0;
+    if (!free) {
+      notices.push_back(
+          fmt::format("t = {:.6g}: nodal rigid body {} not activated (NRBF = 2): "
+                      "a node of it belongs to another rigid body now",
+                      time, body.id));
+      continue;
+    }
+    for (const auto i : body.nodes) m.add_node(state, i);
+    rigid::MassProperties props;
+    if (body.inertia_from_card) {
+      // The card's mass and tensor travel with the nodes' centroid (turned as the body was).
+      props = body_properties(body.state);
+      Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+      for (const auto i : body.nodes) centroid += node_position(state, i);
+      props.centre = centroid / static_cast<double>(body.nodes.size());
+    } else {
+      props = rigid::mass_properties(body.nodes, state.nodes.mass.data(), state.nodes.x.x.data(),
+                                     state.nodes.x.y.data(), state.nodes.x.z.data());
+    }
+    const int index = static_cast<int>(rigid.bodies.size());
+    rigid.bodies.push_back(body);
+    RigidBody& fresh = rigid.bodies.back();
+    define_body(fresh, props, m, body_rotation(body), model_.rigid_body_update, state);
+    for (const auto i : fresh.nodes) rigid.body_of_node[i] = index;
+    change += rigid::kinetic_energy(fresh.state) - m.kinetic;
+    notices.push_back(
+        fmt::format("t = {:.6g}: nodal rigid body {} activated (NRBF = 2)", time, body.id));
+  }
+  std::erase_if(deleted_nodal_, [&](const RigidBody& b) {
+    return std::any_of(rigid.bodies.begin(), rigid.bodies.end(),
+                       [&](const RigidBody& r) { return r.nodal && r.id == b.id; });
+  });
+  return change;
+}
+
+AutomaticSwitching::AutomaticSwitching(const std::vector<model::AutomaticSwitchSet>& sets)
+    : sets_(sets), state_(sets.size()), released_parts_(sets.size()) {
+  for (std::size_t k = 0; k < sets.size(); ++k) {
+    state_[k].armed = sets[k].paired != -1;
+    for (const auto& c : sets[k].to_deformable) released_parts_[k].push_back(c.pid);
+  }
+}
+
+void AutomaticSwitching::due(double t, const SwitchQueries& queries, std::vector<int>& out) const {
+  out.clear();
+  if (t < blocked_until_) return;
+  for (std::size_t k = 0; k < sets_.size(); ++k) {
+    const auto& set = sets_[k];
+    const auto& st = state_[k];
+    if (!st.armed) continue;
+    bool fire = false;
+    if (set.code == 5) {
+      fire = queries.sensor_triggered && queries.sensor_triggered(set.swset);
+    } else if (t >= set.time1 && t <= set.time2) {
+      if (set.code == 0) {
+        fire = !st.time_used;
+      } else if (set.code == 1 || set.code == 3) {
+        const double force = queries.wall_force ? queries.wall_force(set.entno) : -1.0;
+        if (force < 0.0) {
+          throw SolverError(
+              fmt::format("switch set {}: rigid wall {} does not exist", set.swset, set.entno));
+        }
+        if (set.code == 1) {
+          fire = force == 0.0;
+        } else {
+          fire = force > 0.0 ||
+                 (set.offset > 0.0 && queries.wall_within_offset &&
+                  queries.wall_within_offset(set.entno, set.offset, released_parts_[k]));
+        }
+      }
+    }
+    if (fire) out.push_back(static_cast<int>(k));
+  }
+}
+
+void AutomaticSwitching::fired(int k, double t) {
+  const auto& set = sets_[k];
+  auto& st = state_[k];
+  ++st.fired;
+  st.time_used = true;
+  st.armed = false;  // unpaired sets switch once
+  if (set.paired != 0) {
+    for (std::size_t j = 0; j < sets_.size(); ++j) {
+      if (sets_[j].swset == set.relsw) state_[j].armed = true;
+    }
+  }
+  blocked_until_ = std::max(blocked_until_, t + set.time3);
+}
+
+}  // namespace rf::switching
