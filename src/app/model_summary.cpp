@@ -109,6 +109,31 @@ void print_model_summary(const model::Model& model, std::FILE* out) {
                    : fmt::format(", {} translation and {} rotation constraint(s)",
                                  s.constraints.translation_count, s.constraints.rotation_count));
   }
+  const auto& walls = sim.rigid_walls().walls;
+  auto extent = [](double length) {
+    return length > 0.0 ? fmt::format("{:g}", length) : std::string("unbounded");
+  };
+  fmt::print(out, "rigid walls: {}\n", walls.size());
+  for (const auto& wall : walls) {
+    const auto& n = wall.normal;
+    const auto& p = wall.origin;
+    fmt::print(out,
+               "  rigid wall {}{}: planar, {}, {}, point ({:.6g}, {:.6g}, {:.6g}), normal ({:.6g}, "
+               "{:.6g}, {:.6g}), {} tracked nodes, {}{}\n",
+               wall.number, wall.id != wall.number ? fmt::format(" (ID {})", wall.id) : "",
+               wall.finite
+                   ? fmt::format("finite {} x {}", extent(wall.length_l), extent(wall.length_m))
+                   : "infinite",
+               wall.moving ? fmt::format("moving (mass {:g}, V0 {:g})", wall.mass, wall.velocity)
+                           : "fixed",
+               p.x(), p.y(), p.z(), n.x(), n.y(), n.z(), wall.nodes.size(),
+               wall.no_sliding       ? "no sliding"
+               : wall.friction > 0.0 ? fmt::format("Coulomb friction {:g}", wall.friction)
+                                     : "frictionless",
+               wall.birth > 0.0 || wall.death < 1e20
+                   ? fmt::format(", birth {:g}, death {:g}", wall.birth, wall.death)
+                   : "");
+  }
   if (model.switching.flagged) {
     const auto& sw = model.switching;
     fmt::print(out,

@@ -343,6 +343,42 @@ struct RigidLoad {
   SourceLocation where;
 };
 
+// *DEFINE_BOX: an axis-aligned box in global coordinates (selects nodes by their initial
+// position).
+struct Box {
+  Id id = 0;
+  std::array<double, 3> min{};  // XMN YMN ZMN
+  std::array<double, 3> max{};  // XMX YMX ZMX
+  SourceLocation where;
+};
+
+// *RIGIDWALL_PLANAR (_ID, _FINITE, _MOVING): a planar constraint wall, as written. The solver's
+// form is contact::RigidWall (src/contact/rigid_wall.hpp); docs/keywords.md gives the rules.
+struct RigidWall {
+  int number = 0;  // 1-based position among the deck's rigid walls (reading order)
+  Id id = 0;       // _ID card; 0 when the deck gives none
+  std::string title;
+  Id nsid = 0;          // tracked nodes; 0: all nodes
+  Id nsidex = 0;        // nodes exempted from tracking
+  Id boxid = 0;         // only nodes initially inside this *DEFINE_BOX
+  double offset = 0.0;  // > 0: only nodes initially within this normal distance of the wall
+  double birth = 0.0;
+  double death = 1e20;
+  double rwksf = 1.0;                 // penalty stiffness scale (no effect on a constraint wall)
+  std::array<double, 3> tail{};       // XT YT ZT: a point of the wall
+  std::array<double, 3> head{};       // XH YH ZH: tail + normal points to the tracked side
+  double fric = 0.0;                  // 0 frictionless, (0,1) Coulomb coefficient, 1 stick
+  double wvel = 0.0;                  // welding velocity (welding is not supported: must be 0)
+  bool finite = false;                // _FINITE
+  std::array<double, 3> edge_head{};  // XHEV YHEV ZHEV: tail -> edge_head is the l edge
+  double lenl = 0.0;                  // 0: infinite along l
+  double lenm = 0.0;                  // 0: infinite along m = n x l
+  bool moving = false;                // _MOVING
+  double mass = 0.0;                  // MASS of the moving wall
+  double v0 = 0.0;                    // V0 along the normal
+  SourceLocation where;
+};
+
 // ---- Deformable <-> rigid part switching (*DEFORMABLE_TO_RIGID*, docs/switching.md) ----
 
 // One part (or part set) named on *DEFORMABLE_TO_RIGID or on a D2R / R2D card of
@@ -487,6 +523,7 @@ struct OutputControl {
   std::vector<Id> history_nodes;
   double rbdout_dt = 0.0;  // *DATABASE_RBDOUT DT; 0: no rigid body output requested
   bool rbdout = false;     // true when *DATABASE_RBDOUT is present
+  double rwforc_dt = 0.0;  // *DATABASE_RWFORC DT; 0: about 1000 rows per run
 };
 
 struct Warning {
@@ -537,6 +574,8 @@ struct Model {
   std::map<Id, Sensor> sensors;
   std::map<Id, SensorSwitch> sensor_switches;
   std::map<Id, SensorControl> sensor_controls;
+  std::map<Id, Box> boxes;             // *DEFINE_BOX
+  std::vector<RigidWall> rigid_walls;  // in deck order: rigid_walls[k].number == k + 1
 
   Termination termination;
   TimestepControl timestep;

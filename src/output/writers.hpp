@@ -29,6 +29,8 @@ struct GlstatRow {
   double angular_momentum[3] = {0, 0, 0};  // about the global origin
   double switch_energy = 0.0;              // kinetic energy removed by deformable-to-rigid switches
   double frozen_energy = 0.0;              // strain energy held by parts rigid by switching
+  // The part of external_work done by rigid walls.
+  double rigidwall_work = 0.0;
 };
 
 // Plain CSV file with a fixed header; rows are flushed at close. Numbers use %.9g or
@@ -74,7 +76,7 @@ struct CsvContinuation {
 inline constexpr std::string_view kGlstatHeader =
     "time,dt,cycle,kinetic_energy,internal_energy,hourglass_energy,external_work,total_energy,"
     "energy_ratio,momentum_x,momentum_y,momentum_z,angular_momentum_x,angular_momentum_y,"
-    "angular_momentum_z,switch_energy,frozen_energy";
+    "angular_momentum_z,switch_energy,frozen_energy,rigidwall_work";
 inline constexpr std::string_view kNodoutHeader = "time,node,x,y,z,vx,vy,vz,ax,ay,az";
 inline constexpr std::string_view kRbdoutHeader =
     "time,body,mass,x,y,z,vx,vy,vz,ax,ay,az,wx,wy,wz,r11,r12,r13,r21,r22,r23,r31,r32,r33";
@@ -97,6 +99,36 @@ class RbdoutWriter {
   void write(const std::vector<RbdoutRow>& rows);
   void flush() { csv_.flush(); }
   std::int64_t flushed_size() { return csv_.flushed_size(); }
+
+ private:
+  CsvFile csv_;
+};
+
+inline constexpr std::string_view kRwforcHeader =
+    "time,wall,normal_force,force_x,force_y,force_z,wall_displacement,wall_velocity,"
+    "normal_impulse,work";
+
+// One row of rwforc.csv: a rigid wall at an output time t^n. The force is the one the wall
+// applied to the model in the cycle at t^n (global axes); displacement and velocity are the
+// wall's motion along its normal (moving walls; 0 for fixed ones), velocity as the mean of the
+// half steps; impulse and work are totals since t = 0.
+struct RwforcRow {
+  double time = 0.0;
+  std::int64_t wall = 0;
+  double normal_force = 0.0;
+  std::array<double, 3> force{};
+  double displacement = 0.0;
+  double velocity = 0.0;
+  double normal_impulse = 0.0;
+  double work = 0.0;
+};
+
+// rwforc.csv: one row per rigid wall at each output time (src/output/rwforc_writer.cpp).
+class RwforcWriter {
+ public:
+  explicit RwforcWriter(const std::filesystem::path& path);
+  void write(const std::vector<RwforcRow>& rows);
+  void flush() { csv_.flush(); }
 
  private:
   CsvFile csv_;

@@ -86,6 +86,15 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
   boundary_.constrained_nodes.erase(
       std::unique(boundary_.constrained_nodes.begin(), boundary_.constrained_nodes.end()),
       boundary_.constrained_nodes.end());
+  walls_ = contact::build_rigid_walls(model_, node_index_, state_, boundary_, warnings_);
+  // CODE 1/3 of automatic switching ask the walls (ENTNO is the wall's deck number).
+  switch_queries_.wall_force = [this](model::Id number) {
+    return contact::wall_normal_force(walls_, static_cast<int>(number));
+  };
+  switch_queries_.wall_within_offset = [this](model::Id number, double offset,
+                                              const std::vector<model::Id>& parts) {
+    return contact::wall_within_offset(walls_, static_cast<int>(number), offset, parts, state_);
+  };
 
   sensors_ = std::make_unique<sensor::SensorSystem>(
       sensor::build_sensor_system(model_, node_index_, state_));
@@ -118,6 +127,11 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
     if (!sensors_->empty()) {
       sensor_csv_ = std::make_unique<sensor::SensorCsv>(options_.output_directory / "sensor.csv",
                                                         glstat_schedule_.interval);
+    }
+    if (!walls_.empty()) {
+      // *DATABASE_RWFORC interval, else about 1000 rows per wall and run.
+      rwforc_schedule_.interval = default_interval(model.output.rwforc_dt, span, 1000.0);
+      rwforc_ = std::make_unique<output::RwforcWriter>(options_.output_directory / "rwforc.csv");
     }
     if (options_.write_fields) {
       d3plot_schedule_.interval = default_interval(model.output.d3plot_dt, span, 20.0);
@@ -236,6 +250,7 @@ void Simulation::run(const std::function<void(const Simulation&)>& on_progress) 
     if (nodout_) nodout_->flush();
     if (rbdout_) rbdout_->flush();
     if (sensor_csv_) sensor_csv_->flush();
+    if (rwforc_) rwforc_->flush();
     if (switch_csv_) switch_csv_->flush();
     throw;
   }
@@ -243,6 +258,7 @@ void Simulation::run(const std::function<void(const Simulation&)>& on_progress) 
   if (nodout_) nodout_->flush();
   if (rbdout_) rbdout_->flush();
   if (sensor_csv_) sensor_csv_->flush();
+  if (rwforc_) rwforc_->flush();
   if (switch_csv_) switch_csv_->flush();
 }
 
@@ -386,6 +402,7 @@ void Simulation::update_velocities() {
     nodes.v.z[i] += dt_avg * nodes.a.z[i];
   }
   constrain_velocities(boundary_, state_.time, state_.dt, state_);
+  apply_rigid_walls();
   // Rigid bodies take the nodal forces on their nodes and set those nodes' velocities.
   const RigidStepSums rigid_sums =
       advance_rigid_bodies(rigid_, boundary_, state_.time, dt_avg, state_.dt, state_);
@@ -466,6 +483,9 @@ void Simulation::update_velocities() {
   energy_.kinetic = sums[0];
   energy_.internal_work += sums[1];
   energy_.external_work += sums[2] + reaction_work + rigid_sums.external_work;
+  if (!walls_.empty()) {  // already in sums[2] (the wall forces are in f_ext): its share
+    energy_.rigidwall_work += contact::rigid_wall_work(walls_, rigid_, vp, state_, dt_avg);
+  }
   for (int k = 0; k < 3; ++k) {
     energy_.momentum[k] = sums[3 + k];
     energy_.angular_momentum[k] = sums[6 + k];
@@ -502,6 +522,13 @@ void Simulation::update_velocities() {
   }
 }
 
+// Rigid walls act on v^{n+1/2} of deformable nodes and on the forces that drive the rigid
+// bodies, so they come after the nodal constraints and before the bodies advance.
+void Simulation::apply_rigid_walls() {
+  contact::apply_rigid_walls(walls_, rigid_, boundary_, state_.time, dt_average_, state_.dt,
+                             state_.dt_prev, state_);
+}
+
 // `force` writes every file that has not yet written this cycle (termination, breakdown).
 void Simulation::write_output_if_due(bool force) {
   const double t = state_.time;
@@ -524,6 +551,7 @@ void Simulation::write_output_if_due(bool force) {
       row.momentum[k] = energy_.momentum[k];
       row.angular_momentum[k] = energy_.angular_momentum[k];
     }
+    row.rigidwall_work = energy_.rigidwall_work;
     row.switch_energy = energy_.switch_energy;
     row.frozen_energy = energy_.frozen_energy;
     glstat_->write(row);
@@ -554,6 +582,23 @@ void Simulation::write_output_if_due(bool force) {
     }
     rbdout_->write(rbdout_rows_);
     rbdout_schedule_.mark_written(t, cycle);
+  }
+  if (rwforc_ && wanted(rwforc_schedule_)) {
+    rwforc_rows_.clear();
+    for (const auto& wall : walls_.walls) {
+      output::RwforcRow row;
+      row.time = t;
+      row.wall = wall.id;
+      row.normal_force = wall.normal_force;
+      for (int k = 0; k < 3; ++k) row.force[k] = wall.force[k];
+      row.displacement = wall.displacement;
+      row.velocity = 0.5 * (wall.velocity_before + wall.velocity);
+      row.normal_impulse = wall.normal_impulse;
+      row.work = wall.work;
+      rwforc_rows_.push_back(row);
+    }
+    rwforc_->write(rwforc_rows_);
+    rwforc_schedule_.mark_written(t, cycle);
   }
   if (fields_ && wanted(d3plot_schedule_)) {
     fields_->write_frame(state_);

@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include "contact/rigid_wall.hpp"
 #include "model/model.hpp"
 #include "model/restart_switch.hpp"
 #include "output/writers.hpp"
@@ -41,6 +42,8 @@ struct EnergyAccount {
   double internal_work = 0.0;  // work of internal forces, hourglass included
   double hourglass = 0.0;      // hourglass part of internal_work
   double external_work = 0.0;  // loads, body forces and reactions
+  // The part of external_work done by rigid walls (their forces are in f_ext).
+  double rigidwall_work = 0.0;
   // Kinetic energy of non-rigid motion removed by deformable-to-rigid switches (cumulative).
   double switch_energy = 0.0;
   // Strain energy held by elements frozen in parts that are rigid by switching (part of
@@ -90,6 +93,8 @@ class Simulation {
   double end_time() const { return end_time_; }
   std::int64_t element_count() const { return element_count_; }
   const RigidSystem& rigid_bodies() const { return rigid_; }
+  const contact::RigidWallSystem& rigid_walls() const { return walls_; }
+  contact::RigidWallSystem& mutable_rigid_walls() { return walls_; }
   // Notices found while turning the model into a state (ignored constraints, regularised
   // inertia); the reader's warnings are in the model.
   const std::vector<model::Warning>& warnings() const { return warnings_; }
@@ -109,6 +114,7 @@ class Simulation {
  private:
   // The phases of a cycle, in order.
   void update_velocities();  // a^n -> v^{n+1/2}, constraints, rigid bodies, energy
+  void apply_rigid_walls();  // (inside update_velocities) walls stop nodes and bodies
   void write_output_if_due(bool force);
   void update_positions();         // x^{n+1} = x^n + dt v^{n+1/2}
   void compute_internal_forces();  // element kernels at n+1, assembly, element time step
@@ -135,6 +141,7 @@ class Simulation {
   RigidSystem rigid_;
   std::vector<model::Warning> warnings_;
   Boundary boundary_;
+  contact::RigidWallSystem walls_;
   EnergyAccount energy_;
   Vec3Array v_previous_;  // v^{n-1/2}, kept for the energy balance and full-step velocities
 
@@ -168,6 +175,9 @@ class Simulation {
   std::unique_ptr<output::RbdoutWriter> rbdout_;
   OutputSchedule rbdout_schedule_;
   std::vector<output::RbdoutRow> rbdout_rows_;
+  std::unique_ptr<output::RwforcWriter> rwforc_;
+  OutputSchedule rwforc_schedule_;
+  std::vector<output::RwforcRow> rwforc_rows_;
   std::unique_ptr<output::FieldWriter> fields_;
   std::vector<double> reduction_scratch_;
 

@@ -49,6 +49,7 @@ TEST(KeywordFuzz, DamagedDecksGiveModelOrInputError) {
       rf::test::read_text_file(rf::test::deck_path("block_fixed.k")),
       rf::test::read_text_file(rf::test::deck_path("block_free.k")),
       rf::test::read_text_file(rf::test::deck_path("rigid_fixed.k")),
+      rf::test::read_text_file(rf::test::deck_path("rigidwall_block.k")),
       "*PARAMETER\nR     len        2.0\n*PARAMETER_EXPRESSION\nR area    len*len+sin(pi)\n"
       "*NODE\n       1            &len           &area             0.0\n"
       "*INCLUDE\nno_such_file.k\n",

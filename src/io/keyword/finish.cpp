@@ -390,11 +390,11 @@ void finish_switching(const model::Model& m) {
     }
   }
   for (const auto& set : sw.automatic) {
-    if (set.code == 1 || set.code == 3) {
-      throw located_error(set.where, "CODE",
-                          fmt::format("CODE {} tests rigid wall {}, and this deck defines no "
-                                      "*RIGIDWALL_PLANAR",
-                                      set.code, set.entno));
+    if ((set.code == 1 || set.code == 3) && set.entno > static_cast<Id>(m.rigid_walls.size())) {
+      throw located_error(set.where, "ENTNO",
+                          fmt::format("CODE {} tests rigid wall {}, and this deck defines {} "
+                                      "*RIGIDWALL_PLANAR (numbered 1, 2, ... in deck order)",
+                                      set.code, set.entno, m.rigid_walls.size()));
     }
     const bool has_control = std::any_of(
         m.sensor_controls.begin(), m.sensor_controls.end(), [&](const auto& entry) {
@@ -528,6 +528,7 @@ void finish_model(ReaderContext& context) {
     }
   }
   finish_rigid(m, nodes);
+  handlers::check_rigid_walls(m);
   finish_switching(m);
   handlers::finish_sensors(context, nodes);
 }

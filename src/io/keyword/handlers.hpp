@@ -70,6 +70,11 @@ void sensor_switch_calc_logic(const Block&, ReaderContext&);
 void sensor_control(const Block&, ReaderContext&);
 // Checks references of sensors, switches, controls and functions (finish_model).
 void finish_sensors(ReaderContext& context, const std::unordered_set<model::Id>& nodes);
+// handlers_walls.cpp
+void rigidwall_planar(const Block&, ReaderContext&);
+void define_box(const Block&, ReaderContext&);
+// After reading: the node sets and boxes the rigid walls name must exist.
+void check_rigid_walls(const model::Model& model);
 
 // Cards shared by *MAT_RIGID, *PART_INERTIA and *CONSTRAINED_NODAL_RIGID_BODY.
 struct RigidConstraints {

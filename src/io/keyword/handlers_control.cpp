@@ -96,6 +96,8 @@ void database_ascii(const Block& block, ReaderContext& context) {
   } else if (block.base == "*DATABASE_RBDOUT") {
     context.model.output.rbdout_dt = dt;
     context.model.output.rbdout = true;
+  } else if (block.base == "*DATABASE_RWFORC") {
+    context.model.output.rwforc_dt = dt;
   } else {
     context.model.output.nodout_dt = dt;
   }

@@ -41,6 +41,12 @@ const std::vector<KeywordEntry>& table() {
       {"*LOAD_RIGID_BODY", load_rigid_body, {}},
       {"*RIGID_BODY_UPDATE", rigid_body_update, {}},
       {"*CONTROL_RIGID", control_rigid, {}},
+      {"*RIGIDWALL_PLANAR", rigidwall_planar, {"ID", "FINITE", "MOVING"}},
+      // The other *DEFINE_BOX_... keywords (adaptivity, SPH, drawbeads, local boxes) are
+      // separate keywords in LS-DYNA: skipped with a warning like unknown keywords.
+      {"*DEFINE_BOX",
+       define_box,
+       {"TITLE", "LOCAL", "ADAPTIVE", "COARSEN", "DRAWBEAD", "NODES", "SPH", "SALE"}},
       {"*DEFORMABLE_TO_RIGID", deformable_to_rigid, {}},
       {"*DEFORMABLE_TO_RIGID_AUTOMATIC", deformable_to_rigid_automatic, {}},
       {"*DEFORMABLE_TO_RIGID_INERTIA", deformable_to_rigid_inertia, {}},
@@ -58,6 +64,7 @@ const std::vector<KeywordEntry>& table() {
       {"*DATABASE_GLSTAT", database_ascii, {}},
       {"*DATABASE_NODOUT", database_ascii, {}},
       {"*DATABASE_RBDOUT", database_ascii, {}},
+      {"*DATABASE_RWFORC", database_ascii, {}},
       {"*DATABASE_BINARY_D3PLOT", database_binary_d3plot, {}},
       {"*DATABASE_HISTORY_NODE", database_history_node, {}},
       {"*DATABASE_HISTORY_NODE_SET", database_history_node, {}},
