@@ -54,6 +54,10 @@ struct HexBlock {
   // Elements of a *MAT_RIGID part: they give mass and appear in the output, but have no kernel
   // and no force slots in the assembly (the body moves their nodes).
   bool rigid = false;
+  // Whether the block has force slots in the assembly (State::incidence, AssemblyPlan): set
+  // when the state is built (not for *MAT_RIGID parts) and kept when part switching makes the
+  // block rigid for a while (its slots then hold zeros).
+  bool has_force_slots = true;
   // Polynomial order of the element's interpolation. 1: the 8-node hexahedron (elform applies);
   // 2 or 3: tensor-product Lagrange hexahedron on Gauss-Lobatto-Legendre points with (p+1)^3
   // nodes and GLL quadrature, total-Lagrangian (element/lagrange_hex.hpp; elform is ignored).

@@ -162,8 +162,8 @@ void NodoutWriter::write_rows(const solver::State& state, const solver::Vec3Arra
   csv_.write_text(std::string_view(rows.data(), rows.size()));
 }
 
-SwitchWriter::SwitchWriter(const std::filesystem::path& path)
-    : csv_(path, std::string(kSwitchHeader)) {}
+SwitchWriter::SwitchWriter(const std::filesystem::path& path, std::int64_t continue_at)
+    : csv_(path, std::string(kSwitchHeader), continue_at) {}
 
 void SwitchWriter::write(const SwitchRow& row) {
   fmt::memory_buffer line;

@@ -5,8 +5,8 @@
 
 namespace rf::output {
 
-RwforcWriter::RwforcWriter(const std::filesystem::path& path)
-    : csv_(path, std::string(kRwforcHeader)) {}
+RwforcWriter::RwforcWriter(const std::filesystem::path& path, std::int64_t continue_at)
+    : csv_(path, std::string(kRwforcHeader), continue_at) {}
 
 void RwforcWriter::write(const std::vector<RwforcRow>& rows) {
   fmt::memory_buffer text;

@@ -70,6 +70,9 @@ struct CsvContinuation {
   std::int64_t glstat = -1;
   std::int64_t nodout = -1;
   std::int64_t rbdout = -1;
+  std::int64_t switches = -1;  // switch.csv
+  std::int64_t sensor = -1;    // sensor.csv
+  std::int64_t rwforc = -1;    // rwforc.csv
 };
 
 // Column headers, exactly as written (docs/output.md).
@@ -126,9 +129,10 @@ struct RwforcRow {
 // rwforc.csv: one row per rigid wall at each output time (src/output/rwforc_writer.cpp).
 class RwforcWriter {
  public:
-  explicit RwforcWriter(const std::filesystem::path& path);
+  explicit RwforcWriter(const std::filesystem::path& path, std::int64_t continue_at = -1);
   void write(const std::vector<RwforcRow>& rows);
   void flush() { csv_.flush(); }
+  std::int64_t flushed_size() { return csv_.flushed_size(); }
 
  private:
   CsvFile csv_;
@@ -151,9 +155,10 @@ struct SwitchRow {
 // switch.csv: one row per switch event, written when it happens.
 class SwitchWriter {
  public:
-  explicit SwitchWriter(const std::filesystem::path& path);
+  explicit SwitchWriter(const std::filesystem::path& path, std::int64_t continue_at = -1);
   void write(const SwitchRow& row);
   void flush() { csv_.flush(); }
+  std::int64_t flushed_size() { return csv_.flushed_size(); }
 
  private:
   CsvFile csv_;

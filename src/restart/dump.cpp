@@ -305,6 +305,8 @@ void visit_body_integers(Visit&& visit) {
       });
 }
 
+}  // namespace
+
 void write_bodies(const Group& g, const std::vector<solver::RigidBody>& bodies) {
   g.set("count", static_cast<std::int64_t>(bodies.size()));
   visit_body_doubles([&](const std::string& name, int width, auto get) {
@@ -347,6 +349,8 @@ void write_bodies(const Group& g, const std::vector<solver::RigidBody>& bodies) 
 }
 
 // Offsets of a list-valued field: count + 1 ascending values from 0 to `total`.
+namespace {
+
 std::vector<std::int64_t> read_offsets(const Group& g, const std::string& name, std::size_t count,
                                        std::size_t total) {
   auto offset = read_exact<std::int64_t>(g, name, count + 1);
@@ -355,6 +359,8 @@ std::vector<std::int64_t> read_offsets(const Group& g, const std::string& name, 
   if (!valid) g.fail(name, "are not valid list offsets (the dump is damaged)");
   return offset;
 }
+
+}  // namespace
 
 std::vector<solver::RigidBody> read_bodies(const Group& g, std::size_t node_count) {
   std::vector<solver::RigidBody> bodies(count_of(g, "count"));
@@ -398,6 +404,8 @@ std::vector<solver::RigidBody> read_bodies(const Group& g, std::size_t node_coun
   }
   return bodies;
 }
+
+namespace {
 
 void check_body_index(const Group& g, const char* name, std::int64_t index, std::size_t bodies) {
   if (index < 0 || static_cast<std::size_t>(index) >= bodies) {
@@ -558,13 +566,15 @@ void read_hex_blocks(const Group& g, std::vector<element::HexBlock>& blocks) {
     if (read_exact<std::int64_t>(bg, "element_id", block.size()) != block.element_id) {
       bg.fail("element_id", "differs from the element IDs of the rebuilt model");
     }
-    if ((bg.get_int("rigid") != 0) != block.rigid) {
-      // A part switched between rigid and deformable during the dumped run: its assembly slots
-      // (State::incidence) must be rebuilt. The switching work adds that; until then refuse.
-      bg.fail("rigid", fmt::format("says part {} was switched to {} during the run; restoring "
-                                   "switched parts is not available yet",
-                                   block.part_id, block.rigid ? "deformable" : "rigid"));
+    const bool dumped_rigid = bg.get_int("rigid") != 0;
+    if (block.rigid && !dumped_rigid) {
+      // *MAT_RIGID blocks have no assembly slots and never become deformable.
+      bg.fail("rigid", fmt::format("says *MAT_RIGID part {} was deformable (the dump is "
+                                   "damaged or from another deck)",
+                                   block.part_id));
     }
+    // A part rigid by switching keeps its (zeroed) assembly slots: only the flag changes.
+    block.rigid = dumped_rigid;
     visit_block_arrays([&](const char* name, auto get) {
       auto& array = get(block);
       array = read_exact<double>(bg, name, array.size());
@@ -840,6 +850,7 @@ void write_restart_dump(solver::Simulation& sim, const std::filesystem::path& pa
       write_boundary(root.create_group("boundary"), SimulationAccess::boundary(sim), model);
       SimulationAccess::write_members(sim, root.create_group("simulation"));
       SimulationAccess::write_output(sim, root.create_group("output"));
+      SimulationAccess::write_features(sim, root.create_group("features"));
       write_dump_schedule(root.create_group("dumps"), dumper->schedule());
     }
     file.close();

@@ -10,6 +10,7 @@
 //   /simulation  Simulation's own members (SimulationAccess::write_members)
 //   /output      CSV sizes, VTU frames, output schedules (SimulationAccess::write_output)
 //   /dumps       the dump schedule (write_dump_schedule)
+//   /features    part switching, rigid walls, sensors (SimulationAccess::write_features)
 //
 // Time functions (load curves, *FUNCTION) are stored by ID and found again in the model that
 // the restart rebuilds from the dump's deck text.
@@ -27,6 +28,12 @@
 #include "solver/boundary.hpp"
 #include "solver/rigid_bodies.hpp"
 #include "solver/state.hpp"
+
+namespace rf::restart {
+// Rigid bodies, wholesale (also the nodal rigid bodies part switching deleted).
+void write_bodies(const io::h5::Group& g, const std::vector<solver::RigidBody>& bodies);
+std::vector<solver::RigidBody> read_bodies(const io::h5::Group& g, std::size_t node_count);
+}  // namespace rf::restart
 
 namespace rf::solver {
 class Simulation;

@@ -127,6 +127,15 @@ Restarted restart_from_dump(const RestartOptions& options) {
   sim_options.continuation.rbdout =
       continue_csv(dump_dir, result.output_directory, same, "rbdout.csv",
                    output.get_int("rbdout_bytes"), result.warnings);
+  sim_options.continuation.switches =
+      continue_csv(dump_dir, result.output_directory, same, "switch.csv",
+                   output.get_int("switch_bytes"), result.warnings);
+  sim_options.continuation.sensor =
+      continue_csv(dump_dir, result.output_directory, same, "sensor.csv",
+                   output.get_int("sensor_bytes"), result.warnings);
+  sim_options.continuation.rwforc =
+      continue_csv(dump_dir, result.output_directory, same, "rwforc.csv",
+                   output.get_int("rwforc_bytes"), result.warnings);
   if (!same && options.write_fields) {
     // Earlier frames, so that the new directory's d3plot.pvd is complete.
     for (const std::string& name : SimulationAccess::read_frames(output).files) {
@@ -154,6 +163,7 @@ Restarted restart_from_dump(const RestartOptions& options) {
   read_boundary(root.group("boundary"), SimulationAccess::boundary(sim), sim_model);
   SimulationAccess::read_members(sim, root.group("simulation"));
   SimulationAccess::read_output(sim, output);
+  SimulationAccess::read_features(sim, root.group("features"));
 
   DumpSchedule schedule = read_dump_schedule(root.group("dumps"));
   if (options.dump_interval) {

@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include "sensor/sensor.hpp"
+#include "sensor/sensor_output.hpp"
+
 namespace rf::restart {
 
 namespace {
@@ -46,6 +49,10 @@ void SimulationAccess::write_members(Simulation& s, const Group& g) {
   g.set("energy_hourglass", e.hourglass);
   g.set("energy_external_work", e.external_work);
   g.set("energy_initial_total", e.initial_total);
+  g.set("energy_switch", e.switch_energy);
+  g.set("energy_frozen", e.frozen_energy);
+  g.set("energy_rigidwall_work", e.rigidwall_work);
+  g.set("switch_dt_cap", s.switch_dt_cap_);
   for (int k = 0; k < 3; ++k) {
     g.set(fmt::format("energy_momentum_{}", k), e.momentum[k]);
     g.set(fmt::format("energy_angular_momentum_{}", k), e.angular_momentum[k]);
@@ -80,6 +87,10 @@ void SimulationAccess::read_members(Simulation& s, const Group& g) {
   e.hourglass = g.get_double("energy_hourglass");
   e.external_work = g.get_double("energy_external_work");
   e.initial_total = g.get_double("energy_initial_total");
+  e.switch_energy = g.get_double("energy_switch");
+  e.frozen_energy = g.get_double("energy_frozen");
+  e.rigidwall_work = g.get_double("energy_rigidwall_work");
+  s.switch_dt_cap_ = g.get_double("switch_dt_cap");
   for (int k = 0; k < 3; ++k) {
     e.momentum[k] = g.get_double(fmt::format("energy_momentum_{}", k));
     e.angular_momentum[k] = g.get_double(fmt::format("energy_angular_momentum_{}", k));
@@ -90,6 +101,11 @@ void SimulationAccess::write_output(Simulation& s, const Group& g) {
   g.set("glstat_bytes", s.glstat_ ? s.glstat_->flushed_size() : std::int64_t{-1});
   g.set("nodout_bytes", s.nodout_ ? s.nodout_->flushed_size() : std::int64_t{-1});
   g.set("rbdout_bytes", s.rbdout_ ? s.rbdout_->flushed_size() : std::int64_t{-1});
+  g.set("switch_bytes", s.switch_csv_ ? s.switch_csv_->flushed_size() : std::int64_t{-1});
+  g.set("sensor_bytes", s.sensor_csv_ ? s.sensor_csv_->flushed_size() : std::int64_t{-1});
+  g.set("rwforc_bytes", s.rwforc_ ? s.rwforc_->flushed_size() : std::int64_t{-1});
+  write_schedule(g, "rwforc", s.rwforc_schedule_.interval, s.rwforc_schedule_.next,
+                 s.rwforc_schedule_.last_cycle);
   write_schedule(g, "glstat", s.glstat_schedule_.interval, s.glstat_schedule_.next,
                  s.glstat_schedule_.last_cycle);
   write_schedule(g, "nodout", s.nodout_schedule_.interval, s.nodout_schedule_.next,
@@ -117,6 +133,7 @@ void SimulationAccess::read_output(Simulation& s, const Group& g) {
   read_schedule(g, "nodout", s.nodout_schedule_);
   read_schedule(g, "rbdout", s.rbdout_schedule_);
   read_schedule(g, "d3plot", s.d3plot_schedule_);
+  read_schedule(g, "rwforc", s.rwforc_schedule_);
   if (s.fields_) {
     const auto frames = read_frames(g);
     s.fields_->resume(frames.times, frames.files);

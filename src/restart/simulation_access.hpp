@@ -36,6 +36,9 @@ struct SimulationAccess {
   // Output files: flushed, their sizes (where a restart cuts them) and the VTU frame list.
   static void write_output(Simulation& s, const io::h5::Group& g);
   static void read_output(Simulation& s, const io::h5::Group& g);
+  // Part switching, rigid walls and sensors: what each carries from cycle to cycle.
+  static void write_features(Simulation& s, const io::h5::Group& g);
+  static void read_features(Simulation& s, const io::h5::Group& g);
   struct Frames {
     std::vector<double> times;
     std::vector<std::string> files;  // file names in the output directory

@@ -5,8 +5,8 @@
 
 namespace rf::sensor {
 
-SensorCsv::SensorCsv(const std::filesystem::path& path, double interval)
-    : csv_(path, std::string(kSensorHeader)), interval_(interval) {}
+SensorCsv::SensorCsv(const std::filesystem::path& path, double interval, std::int64_t continue_at)
+    : csv_(path, std::string(kSensorHeader), continue_at), interval_(interval) {}
 
 void SensorCsv::write(const SensorSystem& system, bool force) {
   const double t = system.time;

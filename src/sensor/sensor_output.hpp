@@ -17,7 +17,9 @@ inline constexpr std::string_view kSensorHeader = "time,kind,id,value";
 class SensorCsv {
  public:
   // `interval`: regular output interval (> 0).
-  SensorCsv(const std::filesystem::path& path, double interval);
+  // `continue_at` >= 0: continue the file from that size (restart, see output::CsvFile).
+  SensorCsv(const std::filesystem::path& path, double interval, std::int64_t continue_at = -1);
+  std::int64_t flushed_size() { return csv_.flushed_size(); }
   // Called after every evaluation. Writes one row per sensor, switch and control when the
   // interval is due, when a switch output or control status changed in this evaluation (so
   // that the cycle of every change is on file), or when `force` is set (end of the run).

@@ -255,6 +255,7 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
     block.part_index = static_cast<int>(state.parts.size());
     block.elform = sec_it->second.elform;
     block.rigid = mat.kind == model::MaterialKind::Rigid;
+    block.has_force_slots = !block.rigid;
     block.order = part_order(model, pid);
     // Rigid parts: the section and hourglass do not matter; E and PR only for contact later.
     if (!block.rigid) block.hourglass = resolve_hourglass(model, part);
@@ -295,7 +296,7 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
   const std::size_t n = n_all;
   inc.offset.assign(n + 1, 0);
   for (const auto& block : state.hex_blocks) {
-    if (block.rigid) continue;
+    if (!block.has_force_slots) continue;
     for (const std::int32_t node : block.conn) ++inc.offset[node + 1];
   }
   for (std::size_t i = 0; i < n; ++i) inc.offset[i + 1] += inc.offset[i];
@@ -303,7 +304,7 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
   inc.block.resize(inc.offset[n]);
   std::vector<std::int64_t> fill(inc.offset.begin(), inc.offset.end() - 1);
   for (std::size_t b = 0; b < state.hex_blocks.size(); ++b) {
-    if (state.hex_blocks[b].rigid) continue;
+    if (!state.hex_blocks[b].has_force_slots) continue;
     const auto& conn = state.hex_blocks[b].conn;
     for (std::size_t k = 0; k < conn.size(); ++k) {
       const std::int64_t pos = fill[conn[k]]++;
@@ -327,7 +328,7 @@ AssemblyPlan make_assembly_plan(const State& state, int threads) {
                             {std::numeric_limits<std::int64_t>::max(), 0});
   std::int64_t visited = 0, total = 0;
   for (std::size_t b = 0; b < blocks; ++b) {
-    if (state.hex_blocks[b].rigid) continue;  // no force slots: ranges stay empty
+    if (!state.hex_blocks[b].has_force_slots) continue;  // ranges stay empty
     const auto& conn = state.hex_blocks[b].conn;
     const int npe = state.hex_blocks[b].nodes_per_element();
     const std::int64_t elements = static_cast<std::int64_t>(conn.size() / npe);

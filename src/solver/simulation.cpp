@@ -11,10 +11,10 @@
 #include "element/kernels.hpp"
 #include "model/curve.hpp"
 #include "model/error.hpp"
-#include "sensor/sensor.hpp"
-#include "sensor/sensor_output.hpp"
 #include "model/error_context.hpp"
 #include "restart/dumper.hpp"
+#include "sensor/sensor.hpp"
+#include "sensor/sensor_output.hpp"
 
 namespace rf::solver {
 
@@ -115,8 +115,8 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
           options_.output_directory / "nodout.csv", std::move(dense), options_.continuation.nodout);
     }
     if (model.switching.flagged) {
-      switch_csv_ =
-          std::make_unique<output::SwitchWriter>(options_.output_directory / "switch.csv");
+      switch_csv_ = std::make_unique<output::SwitchWriter>(options_.output_directory / "switch.csv",
+                                                           options_.continuation.switches);
     }
     if (!rigid_.empty() || model.switching.flagged) {
       // *DATABASE_RBDOUT interval, else about 1000 rows per body and run.
@@ -126,12 +126,14 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
     }
     if (!sensors_->empty()) {
       sensor_csv_ = std::make_unique<sensor::SensorCsv>(options_.output_directory / "sensor.csv",
-                                                        glstat_schedule_.interval);
+                                                        glstat_schedule_.interval,
+                                                        options_.continuation.sensor);
     }
     if (!walls_.empty()) {
       // *DATABASE_RWFORC interval, else about 1000 rows per wall and run.
       rwforc_schedule_.interval = default_interval(model.output.rwforc_dt, span, 1000.0);
-      rwforc_ = std::make_unique<output::RwforcWriter>(options_.output_directory / "rwforc.csv");
+      rwforc_ = std::make_unique<output::RwforcWriter>(options_.output_directory / "rwforc.csv",
+                                                       options_.continuation.rwforc);
     }
     if (options_.write_fields) {
       d3plot_schedule_.interval = default_interval(model.output.d3plot_dt, span, 20.0);
@@ -227,10 +229,48 @@ void Simulation::enable_restart_dumps(std::unique_ptr<restart::Dumper> dumper) {
 }
 
 // Placeholder until deformable<->rigid switching lands; its author replaces this definition.
+// A restart deck's *DEFORMABLE_TO_RIGID / *RIGID_TO_DEFORMABLE, applied in deck order at the
+// restart time exactly as an automatic switch would be (switch.csv rows with SWSET 0). The
+// first run need not have flagged switching: the switcher is made here if it is missing.
 void Simulation::apply_restart_switches(const std::vector<model::RestartSwitch>& switches) {
   if (switches.empty()) return;
-  throw InputError(model::context_of(switches.front().where, "PID"),
-                   "part switching on restart is not available yet");
+  if (!switcher_) switcher_ = std::make_unique<switching::PartSwitcher>(model_, state_);
+  if (!switch_csv_ && !options_.output_directory.empty()) {
+    switch_csv_ = std::make_unique<output::SwitchWriter>(options_.output_directory / "switch.csv",
+                                                         options_.continuation.switches);
+  }
+  for (const auto& request : switches) {
+    for (const model::Id pid : request.parts) {
+      const bool known = std::any_of(state_.hex_blocks.begin(), state_.hex_blocks.end(),
+                                     [&](const auto& b) { return b.part_id == pid; });
+      const bool mat_rigid =
+          std::any_of(state_.hex_blocks.begin(), state_.hex_blocks.end(),
+                      [&](const auto& b) { return b.part_id == pid && !b.has_force_slots; });
+      if (!known) {
+        throw InputError(model::context_of(request.where, "PID"),
+                         fmt::format("part {} has no elements in the restarted model", pid));
+      }
+      if (mat_rigid && request.direction == model::RestartSwitch::Direction::kRigidToDeformable) {
+        throw InputError(model::context_of(request.where, "PID"),
+                         fmt::format("part {} is *MAT_RIGID: parts defined rigid in the input "
+                                     "are permanently rigid",
+                                     pid));
+      }
+    }
+    std::vector<model::PartSwitch> cards;
+    for (const model::Id pid : request.parts) {
+      model::PartSwitch card;
+      card.pid = pid;
+      card.lrb = request.lead_rigid_body;
+      card.where = request.where;
+      cards.push_back(card);
+    }
+    if (request.direction == model::RestartSwitch::Direction::kDeformableToRigid) {
+      apply_switch(0, cards, {}, 0.0);
+    } else {
+      apply_switch(0, {}, cards, 0.0);
+    }
+  }
 }
 
 void Simulation::run(const std::function<void(const Simulation&)>& on_progress) {
@@ -340,7 +380,6 @@ void Simulation::apply_switch(model::Id swset, const std::vector<model::PartSwit
     released_dt = std::min(released_dt, r.min_dt);
   }
   assemble_internal_forces(state_);
-  // Element step without the frozen elements (and with the released ones).
   element_dt_ = std::numeric_limits<double>::infinity();
   for (const auto& block : state_.hex_blocks) {
     if (block.rigid) continue;

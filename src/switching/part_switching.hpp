@@ -63,12 +63,16 @@ class PartSwitcher {
   // not act on rigid nodes); the solver shows them.
   std::vector<std::string> notices;
 
- private:
+  // The state carried between cycles, for restart dumps.
   struct SwitchedPart {
     model::Id body_id = 0;            // the body it belongs to (its first part's ID)
     Eigen::Matrix3d rotation_offset;  // Q = Phi_body * offset: rotation since the switch
     double frozen_energy = 0.0;
   };
+  std::map<model::Id, SwitchedPart>& switched_parts() { return switched_; }
+  std::vector<solver::RigidBody>& deleted_nodal_bodies() { return deleted_nodal_; }
+
+ private:
   std::vector<model::Id> expand(const std::vector<model::PartSwitch>& cards) const;
   const model::Model& model_;
   std::map<model::Id, int> block_of_part_;
@@ -108,6 +112,10 @@ class AutomaticSwitching {
   void fired(int k, double t);
   bool empty() const { return sets_.empty(); }
   const std::vector<AutomaticSwitchState>& states() const { return state_; }
+  // Restart dumps.
+  std::vector<AutomaticSwitchState>& mutable_states() { return state_; }
+  double blocked_until() const { return blocked_until_; }
+  void set_blocked_until(double t) { blocked_until_ = t; }
 
  private:
   const std::vector<model::AutomaticSwitchSet>& sets_;

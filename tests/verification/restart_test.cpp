@@ -175,6 +175,13 @@ const Case kCases[] = {
     // The *RIGID_BODY_UPDATE example: prescribed rotation (accumulated travel), both updates.
     {"torsion_update0", "", RIGIDFLEX_EXAMPLES "/torsion_rigid_update.k", {{"type", 0}}, 1.5e-3, 2},
     {"torsion_update2", "", RIGIDFLEX_EXAMPLES "/torsion_rigid_update.k", {{"type", 2}}, 1.5e-3, 1},
+    // Part switching: dumped while rigid (paired CODE 0 sets), restarted through the release.
+    {"switching", "", RIGIDFLEX_EXAMPLES "/switching_spinning_block.k", {}, 0.04, 1},
+    {"switching", "", RIGIDFLEX_EXAMPLES "/switching_spinning_block.k", {}, 0.04, 2},
+    // Sensors: timers and control statuses carried across the dump; the DEF2RIG switch after it.
+    {"sensor_def2rig", "", RIGIDFLEX_EXAMPLES "/sensor_def2rig.k", {}, 4e-5, 1},
+    // Rigid walls: forces, impulses, work and a moving wall's motion across the dump.
+    {"rigid_walls", "", RIGIDFLEX_TEST_DECKS "/rigidwall_switching_block.k", {}, 0.04, 1},
 };
 
 INSTANTIATE_TEST_SUITE_P(Restart, RestartBitwise, testing::ValuesIn(kCases), case_name);
@@ -383,17 +390,16 @@ TEST_F(RestartInput, TerminationBeforeTheDump) {
   EXPECT_NE(message.find("does not lie after the dump's time"), std::string::npos) << message;
 }
 
-TEST_F(RestartInput, SwitchingIsRefusedUntilItIsAvailable) {
-  write_file(base_ / "switch.k", "*KEYWORD\n*DEFORMABLE_TO_RIGID\n1\n*END\n");
+TEST_F(RestartInput, SwitchingAPartWithoutElementsIsAnError) {
+  write_file(base_ / "switch.k", "*KEYWORD\n*DEFORMABLE_TO_RIGID\n77\n*END\n");
   const std::string message = restart_error(dump(), base_ / "switch.k");
   EXPECT_NE(message.find("switch.k:3"), std::string::npos) << message;
-  EXPECT_NE(message.find("not available yet"), std::string::npos) << message;
+  EXPECT_NE(message.find("77"), std::string::npos) << message;
 }
 
 // A small restart that switches part 2 (ELFORM 2) of the deformable block to rigid half way and
 // runs on: the part must then move rigidly (no further strain) while part 1 keeps deforming.
 TEST(Restart, DeformableToRigidOnRestart) {
-  GTEST_SKIP() << "enable when switching lands";
   omp_set_num_threads(1);
   const fs::path base = scratch("switch");
   write_file(base / "deck.k", restart_decks::deformable(4e-5));

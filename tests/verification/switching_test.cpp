@@ -333,7 +333,6 @@ TEST(PartSwitching, NodalRigidBodiesDeletedAndActivatedByNrbf) {
   EXPECT_NEAR(sim.energy().ratio(), 1.0, 1e-3);
 }
 
-
 // CODE 5: the example's DEF2RIG control turns on when switch 10 has seen the bar's stress
 // above 100 MPa for TIMWIN = 10 us; the block must become rigid at the next cycle start.
 TEST(PartSwitching, SensorControlledSetFiresWhenTheControlTurnsOn) {

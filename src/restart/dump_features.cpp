@@ -1,0 +1,273 @@
+// Restart dumps of the features that carry state between cycles besides the mesh and the rigid
+// system: part switching (which parts are rigid by switching, their rotation references and
+// frozen energy, the automatic sets' arming and delay, deleted nodal rigid bodies), rigid walls
+// (activity, moving wall motion, the last forces that switching tests, accumulated impulse and
+// work, which nodes are in front) and sensors (values, switch timers, control statuses and the
+// DEF2RIG events the next cycle reads). Layout: docs/restart.md.
+#include <fmt/format.h>
+
+#include "restart/dump.hpp"
+#include "restart/simulation_access.hpp"
+#include "sensor/sensor.hpp"
+
+namespace rf::restart {
+
+namespace {
+
+using io::h5::Group;
+
+template <class T>
+std::span<const T> span_of(const std::vector<T>& v) {
+  return {v.data(), v.size()};
+}
+
+void expect_count(const Group& g, const char* name, std::size_t got, std::size_t want) {
+  if (got != want) {
+    g.fail(name, fmt::format("holds {} entries, the rebuilt model needs {} (the dump is damaged "
+                             "or from another deck)",
+                             got, want));
+  }
+}
+
+void write_switching(solver::Simulation& s, const Group& g, switching::PartSwitcher* switcher,
+                     switching::AutomaticSwitching* automatic) {
+  (void)s;
+  g.set("has_switcher", std::int64_t{switcher != nullptr});
+  if (switcher) {
+    std::vector<std::int64_t> pids, bodies;
+    std::vector<double> offsets, frozen;
+    for (const auto& [pid, part] : switcher->switched_parts()) {
+      pids.push_back(pid);
+      bodies.push_back(part.body_id);
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) offsets.push_back(part.rotation_offset(r, c));
+      frozen.push_back(part.frozen_energy);
+    }
+    g.write("switched_parts", span_of(pids));
+    g.write("switched_bodies", span_of(bodies));
+    g.write("switched_rotation_offsets", span_of(offsets));
+    g.write("switched_frozen_energy", span_of(frozen));
+    write_bodies(g.create_group("deleted_nodal_bodies"), switcher->deleted_nodal_bodies());
+  }
+  g.set("has_automatic", std::int64_t{automatic != nullptr});
+  if (automatic) {
+    std::vector<std::uint8_t> armed, time_used;
+    std::vector<std::int64_t> fired;
+    for (const auto& st : automatic->states()) {
+      armed.push_back(st.armed);
+      time_used.push_back(st.time_used);
+      fired.push_back(st.fired);
+    }
+    g.write("armed", span_of(armed));
+    g.write("time_used", span_of(time_used));
+    g.write("fired", span_of(fired));
+    g.set("blocked_until", automatic->blocked_until());
+  }
+}
+
+void read_switching(const Group& g, switching::PartSwitcher* switcher,
+                    switching::AutomaticSwitching* automatic, std::size_t node_count) {
+  if (g.get_int("has_switcher") != 0) {
+    if (!switcher) g.fail("has_switcher", "the rebuilt simulation has no part switching");
+    const auto pids = g.read_int64("switched_parts");
+    const auto bodies = g.read_int64("switched_bodies");
+    const auto offsets = g.read_doubles("switched_rotation_offsets");
+    const auto frozen = g.read_doubles("switched_frozen_energy");
+    expect_count(g, "switched_bodies", bodies.size(), pids.size());
+    expect_count(g, "switched_rotation_offsets", offsets.size(), 9 * pids.size());
+    expect_count(g, "switched_frozen_energy", frozen.size(), pids.size());
+    auto& parts = switcher->switched_parts();
+    parts.clear();
+    for (std::size_t k = 0; k < pids.size(); ++k) {
+      switching::PartSwitcher::SwitchedPart p;
+      p.body_id = bodies[k];
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) p.rotation_offset(r, c) = offsets[9 * k + 3 * r + c];
+      p.frozen_energy = frozen[k];
+      parts[pids[k]] = p;
+    }
+    switcher->deleted_nodal_bodies() = read_bodies(g.group("deleted_nodal_bodies"), node_count);
+  }
+  if (g.get_int("has_automatic") != 0 && automatic) {
+    const auto armed = g.read_bytes("armed");
+    const auto time_used = g.read_bytes("time_used");
+    const auto fired = g.read_int64("fired");
+    auto& states = automatic->mutable_states();
+    expect_count(g, "armed", armed.size(), states.size());
+    expect_count(g, "time_used", time_used.size(), states.size());
+    expect_count(g, "fired", fired.size(), states.size());
+    for (std::size_t k = 0; k < states.size(); ++k) {
+      states[k].armed = armed[k] != 0;
+      states[k].time_used = time_used[k] != 0;
+      states[k].fired = static_cast<int>(fired[k]);
+    }
+    automatic->set_blocked_until(g.get_double("blocked_until"));
+  }
+}
+
+// Per wall: active, displacement, velocity, velocity_before, normal_force, normal_impulse,
+// work, force x y z.
+constexpr int kWallNumbers = 10;
+
+void write_walls(const contact::RigidWallSystem& walls, const Group& g) {
+  std::vector<double> numbers;
+  std::vector<std::uint8_t> in_front;
+  std::vector<std::int64_t> in_front_count;
+  for (const auto& w : walls.walls) {
+    for (const double v :
+         {w.active ? 1.0 : 0.0, w.displacement, w.velocity, w.velocity_before, w.normal_force,
+          w.normal_impulse, w.work, w.force.x(), w.force.y(), w.force.z()}) {
+      numbers.push_back(v);
+    }
+    in_front.insert(in_front.end(), w.in_front.begin(), w.in_front.end());
+    in_front_count.push_back(static_cast<std::int64_t>(w.in_front.size()));
+  }
+  g.set("count", static_cast<std::int64_t>(walls.walls.size()));
+  g.set("cycle_stamp", walls.cycle_stamp);
+  g.write("numbers", span_of(numbers));
+  g.write("in_front", span_of(in_front));
+  g.write("in_front_count", span_of(in_front_count));
+}
+
+void read_walls(contact::RigidWallSystem& walls, const Group& g) {
+  expect_count(g, "count", static_cast<std::size_t>(g.get_int("count")), walls.walls.size());
+  walls.cycle_stamp = g.get_int("cycle_stamp");
+  const auto numbers = g.read_doubles("numbers");
+  const auto in_front = g.read_bytes("in_front");
+  const auto counts = g.read_int64("in_front_count");
+  expect_count(g, "numbers", numbers.size(), kWallNumbers * walls.walls.size());
+  expect_count(g, "in_front_count", counts.size(), walls.walls.size());
+  std::size_t at = 0;
+  for (std::size_t k = 0; k < walls.walls.size(); ++k) {
+    auto& w = walls.walls[k];
+    const double* n = &numbers[kWallNumbers * k];
+    w.active = n[0] != 0.0;
+    w.displacement = n[1];
+    w.velocity = n[2];
+    w.velocity_before = n[3];
+    w.normal_force = n[4];
+    w.normal_impulse = n[5];
+    w.work = n[6];
+    w.force = {n[7], n[8], n[9]};
+    expect_count(g, "in_front_count", static_cast<std::size_t>(counts[k]), w.in_front.size());
+    if (at + w.in_front.size() > in_front.size()) g.fail("in_front", "is too short");
+    std::copy(in_front.begin() + static_cast<long>(at),
+              in_front.begin() + static_cast<long>(at + w.in_front.size()), w.in_front.begin());
+    at += w.in_front.size();
+  }
+}
+
+void write_sensors(const sensor::SensorSystem& s, const Group& g) {
+  g.write("values", span_of(s.values));
+  std::vector<double> velocities;
+  for (const auto& n : s.node_sensors) {
+    velocities.insert(velocities.end(), n.previous_velocity1.begin(), n.previous_velocity1.end());
+    velocities.insert(velocities.end(), n.previous_velocity2.begin(), n.previous_velocity2.end());
+  }
+  g.write("node_previous_velocity", span_of(velocities));
+  std::vector<std::uint8_t> flags;
+  std::vector<double> times;
+  for (const auto& w : s.switches) {
+    for (const bool f : {w.condition, w.windowed, w.pending, w.holding, w.output}) {
+      flags.push_back(f);
+    }
+    times.push_back(w.condition_since);
+    times.push_back(w.due);
+  }
+  g.write("switch_flags", span_of(flags));
+  g.write("switch_times", span_of(times));
+  std::vector<std::uint8_t> control_flags;
+  std::vector<std::int64_t> control_counts;
+  for (const auto& c : s.controls) {
+    control_flags.push_back(c.on);
+    control_flags.push_back(c.finished);
+    control_counts.push_back(c.next);
+    control_counts.push_back(c.passes_done);
+  }
+  g.write("control_flags", span_of(control_flags));
+  g.write("control_counts", span_of(control_counts));
+  std::vector<std::int64_t> event_sets;
+  std::vector<std::uint8_t> event_status;
+  for (const auto& e : s.events) {
+    event_sets.push_back(e.swset);
+    event_status.push_back(e.status_on);
+  }
+  g.write("event_swsets", span_of(event_sets));
+  g.write("event_status", span_of(event_status));
+  g.set("previous_mid_time", s.previous_mid_time);
+  g.set("time", s.time);
+  g.set("evaluated", std::int64_t{s.evaluated});
+  g.set("changed", std::int64_t{s.changed});
+}
+
+void read_sensors(sensor::SensorSystem& s, const Group& g) {
+  const auto values = g.read_doubles("values");
+  expect_count(g, "values", values.size(), s.values.size());
+  s.values = values;
+  const auto velocities = g.read_doubles("node_previous_velocity");
+  expect_count(g, "node_previous_velocity", velocities.size(), 6 * s.node_sensors.size());
+  for (std::size_t k = 0; k < s.node_sensors.size(); ++k) {
+    for (int c = 0; c < 3; ++c) {
+      s.node_sensors[k].previous_velocity1[c] = velocities[6 * k + c];
+      s.node_sensors[k].previous_velocity2[c] = velocities[6 * k + 3 + c];
+    }
+  }
+  const auto flags = g.read_bytes("switch_flags");
+  const auto times = g.read_doubles("switch_times");
+  expect_count(g, "switch_flags", flags.size(), 5 * s.switches.size());
+  expect_count(g, "switch_times", times.size(), 2 * s.switches.size());
+  for (std::size_t k = 0; k < s.switches.size(); ++k) {
+    auto& w = s.switches[k];
+    w.condition = flags[5 * k] != 0;
+    w.windowed = flags[5 * k + 1] != 0;
+    w.pending = flags[5 * k + 2] != 0;
+    w.holding = flags[5 * k + 3] != 0;
+    w.output = flags[5 * k + 4] != 0;
+    w.condition_since = times[2 * k];
+    w.due = times[2 * k + 1];
+  }
+  const auto control_flags = g.read_bytes("control_flags");
+  const auto control_counts = g.read_int64("control_counts");
+  expect_count(g, "control_flags", control_flags.size(), 2 * s.controls.size());
+  expect_count(g, "control_counts", control_counts.size(), 2 * s.controls.size());
+  for (std::size_t k = 0; k < s.controls.size(); ++k) {
+    s.controls[k].on = control_flags[2 * k] != 0;
+    s.controls[k].finished = control_flags[2 * k + 1] != 0;
+    s.controls[k].next = static_cast<int>(control_counts[2 * k]);
+    s.controls[k].passes_done = static_cast<int>(control_counts[2 * k + 1]);
+  }
+  const auto event_sets = g.read_int64("event_swsets");
+  const auto event_status = g.read_bytes("event_status");
+  expect_count(g, "event_status", event_status.size(), event_sets.size());
+  if (event_sets.size() > s.controls.size()) g.fail("event_swsets", "has too many events");
+  s.events.clear();
+  for (std::size_t k = 0; k < event_sets.size(); ++k) {
+    s.events.push_back({event_sets[k], event_status[k] != 0});
+  }
+  s.previous_mid_time = g.get_double("previous_mid_time");
+  s.time = g.get_double("time");
+  s.evaluated = g.get_int("evaluated") != 0;
+  s.changed = g.get_int("changed") != 0;
+}
+
+}  // namespace
+
+void SimulationAccess::write_features(Simulation& s, const Group& g) {
+  write_switching(s, g.create_group("switching"), s.switcher_.get(), s.automatic_switching_.get());
+  write_walls(s.walls_, g.create_group("walls"));
+  if (s.sensors_) write_sensors(*s.sensors_, g.create_group("sensors"));
+}
+
+void SimulationAccess::read_features(Simulation& s, const Group& g) {
+  const Group sw = g.group("switching");
+  if (sw.get_int("has_switcher") != 0 && !s.switcher_) {
+    // The dumped run switched parts on a restart deck without flagging switching.
+    s.switcher_ = std::make_unique<switching::PartSwitcher>(s.model_, s.state_);
+  }
+  read_switching(sw, s.switcher_.get(), s.automatic_switching_.get(), s.state_.nodes.size());
+  if (s.switcher_) s.energy_.frozen_energy = s.switcher_->frozen_energy();
+  read_walls(s.walls_, g.group("walls"));
+  if (s.sensors_ && g.has("sensors")) read_sensors(*s.sensors_, g.group("sensors"));
+}
+
+}  // namespace rf::restart
