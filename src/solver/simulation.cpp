@@ -332,6 +332,13 @@ void Simulation::switch_parts_if_due() {
     }
     energy_.switch_energy -= activation;
     energy_.kinetic += activation;
+    // RWF: remark 4, "all corresponding constraints are deactivated regardless of their
+    // relationship to a switched part": every rigid wall (2 activates them all again).
+    if (set.rwf != 0) {
+      for (const auto& wall : walls_.walls) {
+        contact::set_wall_active(walls_, wall.number, set.rwf == 2);
+      }
+    }
     automatic_switching_->fired(k, state_.time);
   }
   if (!due.empty()) {
@@ -391,7 +398,11 @@ void Simulation::apply_switch(model::Id swset, const std::vector<model::PartSwit
   double cap = tssfac * released_dt;
   if (switch_dt_cap_ > 0.0) cap = std::min(cap, switch_dt_cap_);
   if (state_.dt > 0.0 && state_.dt > cap) {
+    // The released elements' forces act from t^n on: their first velocity kick must respect
+    // their own limit too, so the half step behind counts at most the new step (a long rigid
+    // phase step there would over-kick them and start an instability).
     state_.dt = cap;
+    state_.dt_prev = std::min(state_.dt_prev, cap);
     dt_average_ = 0.5 * (state_.dt_prev + state_.dt);
   }
   for (auto& event : events) {

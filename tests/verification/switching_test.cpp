@@ -8,6 +8,8 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <sstream>
 
 #include "deck_builder.hpp"
 #include "sensor/sensor.hpp"
@@ -26,6 +28,13 @@ struct NodalMomenta {
   Vector3d p = Vector3d::Zero(), h = Vector3d::Zero(), centre = Vector3d::Zero(),
            omega = Vector3d::Zero();
 };
+
+std::string read_deck_text_of(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
 
 NodalMomenta nodal_momenta(const solver::State& s) {
   NodalMomenta m;
@@ -353,6 +362,53 @@ TEST(PartSwitching, SensorControlledSetFiresWhenTheControlTurnsOn) {
   EXPECT_TRUE(event.to_rigid);
   EXPECT_GE(event.time, crossing + 1e-5 - 1e-12);
   EXPECT_LE(event.time, crossing + 1e-5 + 2.0 * dt);
+}
+
+// A block that hits a rigid wall is made rigid mid-impact (its compressive stresses frozen),
+// rests and slides on the wall as a rigid body, and is released there. The released elements'
+// first kick must respect their own stable step (not the rigid phase's DTMAX): the run ends
+// normally with the energy balance closed (switch energy and wall work included), and no node
+// ends behind the wall.
+TEST(PartSwitching, ReleasedWhileOnARigidWallStaysStable) {
+  solver::Simulation sim(
+      io::read_deck(std::string(RIGIDFLEX_TEST_DECKS) + "/rigidwall_switching_block.k"), {});
+  double rigid_dt = 0.0;
+  while (!sim.finished()) {
+    if (!sim.rigid_bodies().bodies.empty()) rigid_dt = std::max(rigid_dt, sim.state().dt);
+    sim.cycle();
+  }
+  ASSERT_EQ(sim.switch_events().size(), 2u);
+  EXPECT_DOUBLE_EQ(rigid_dt, 0.005);  // DTMAX of the rigid phase
+  EXPECT_LT(sim.state().dt, 0.5 * rigid_dt);
+  EXPECT_NEAR(sim.energy().ratio(), 1.0, 1e-6);
+  const auto& z = sim.state().nodes.x.z;
+  EXPECT_GE(*std::min_element(z.begin(), z.end()), -0.30 - 1e-9);
+}
+
+// RWF = 1 deletes the rigid walls when the set fires (remark 4: all of them), RWF = 2 brings
+// them back: with the wall deleted at 0.02 s the falling block passes the wall's plane.
+TEST(PartSwitching, RwfDeletesAndActivatesRigidWalls) {
+  std::string deck =
+      read_deck_text_of(std::string(RIGIDFLEX_TEST_DECKS) + "/rigidwall_switching_block.k");
+  // Set 10 (rigid at 0.05 s) gets RWF = 1; set 20 (released at 0.12 s) RWF = 2.
+  const std::string card10 = "         0         0         0     0.005         1         0";
+  const std::string card20 = "         0         0         0         0         0         1";
+  deck.replace(deck.find(card10), card10.size(),
+               "         0         0         1     0.005         1         0");
+  deck.replace(deck.find(card20), card20.size(),
+               "         0         0         2         0         0         1");
+  // Make set 10 fire before the impact (0.0325 s): at 0.02 s.
+  const std::string time10 = "        10         0      0.05      0.06";
+  deck.replace(deck.find(time10), time10.size(), "        10         0      0.02      0.06");
+  solver::Simulation sim(read(deck), {});
+  while (sim.switch_events().empty()) sim.cycle();
+  sim.cycle();
+  EXPECT_FALSE(sim.rigid_walls().walls[0].active);
+  while (sim.switch_events().size() < 2) sim.cycle();
+  EXPECT_TRUE(sim.rigid_walls().walls[0].active);
+  // While the wall was deleted the rigid block fell through its plane (z = -0.3).
+  const auto& z = sim.state().nodes.x.z;
+  EXPECT_LT(*std::min_element(z.begin(), z.end()), -0.35);
 }
 
 }  // namespace
