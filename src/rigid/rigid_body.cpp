@@ -137,6 +137,20 @@ bool columns_independent(const ConstraintAxes& axes) {
 
 }  // namespace
 
+MassProperties combine(const std::vector<MassProperties>& parts) {
+  MassProperties sum;
+  for (const auto& p : parts) sum.mass += p.mass;
+  if (!(sum.mass > 0.0)) return sum;
+  for (const auto& p : parts) sum.centre += p.mass * p.centre;
+  sum.centre /= sum.mass;
+  for (const auto& p : parts) {
+    const Eigen::Vector3d d = p.centre - sum.centre;
+    sum.inertia +=
+        p.inertia + p.mass * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
+  }
+  return sum;
+}
+
 MassProperties mass_properties(std::span<const double> masses,
                                std::span<const Eigen::Vector3d> positions) {
   if (masses.size() != positions.size()) {

@@ -74,6 +74,9 @@ struct MassProperties {
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();  // global axes, about the centre
 };
 
+// Parallel-axis sum of mass properties, each about its own centre (merged bodies).
+MassProperties combine(const std::vector<MassProperties>& parts);
+
 MassProperties mass_properties(std::span<const double> masses,
                                std::span<const Eigen::Vector3d> positions);
 // The same for the nodes `nodes` of struct-of-arrays nodal data (the solver's NodalState).

@@ -22,21 +22,6 @@ Eigen::Vector3d vec(const std::array<double, 3>& a) {
   return {a[0], a[1], a[2]};
 }
 
-// Parallel-axis sum of mass properties (each about its own centre).
-rigid::MassProperties combine(const std::vector<rigid::MassProperties>& parts) {
-  rigid::MassProperties sum;
-  for (const auto& p : parts) sum.mass += p.mass;
-  if (!(sum.mass > 0.0)) return sum;
-  for (const auto& p : parts) sum.centre += p.mass * p.centre;
-  sum.centre /= sum.mass;
-  for (const auto& p : parts) {
-    const Eigen::Vector3d d = p.centre - sum.centre;
-    sum.inertia +=
-        p.inertia + p.mass * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
-  }
-  return sum;
-}
-
 rigid::MassProperties card_properties(const model::RigidInertia& in) {
   rigid::MassProperties p;
   p.mass = in.tm;
@@ -283,8 +268,8 @@ RigidSystem build_rigid_system(const model::Model& model, const NodeIndex& node_
                                                nodes.x.z.data()));
       }
     }
-    body.state =
-        make_body(combine(parts), body, where_of[b], body.nodal ? "NSID" : "PID", rigid.warnings);
+    body.state = make_body(rigid::combine(parts), body, where_of[b], body.nodal ? "NSID" : "PID",
+                           rigid.warnings);
     body.initial_rotation = body.state.rotation;
     body.body_coordinates = rigid::body_coordinates(body.state, body.nodes, nodes.x.x.data(),
                                                     nodes.x.y.data(), nodes.x.z.data());

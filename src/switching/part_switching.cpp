@@ -46,21 +46,6 @@ struct Momenta {
   }
 };
 
-// Parallel-axis sum of mass properties (each about its own centre).
-rigid::MassProperties combine(const std::vector<rigid::MassProperties>& parts) {
-  rigid::MassProperties sum;
-  for (const auto& p : parts) sum.mass += p.mass;
-  if (!(sum.mass > 0.0)) return sum;
-  for (const auto& p : parts) sum.centre += p.mass * p.centre;
-  sum.centre /= sum.mass;
-  for (const auto& p : parts) {
-    const Eigen::Vector3d d = p.centre - sum.centre;
-    sum.inertia +=
-        p.inertia + p.mass * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
-  }
-  return sum;
-}
-
 rigid::MassProperties body_properties(const rigid::RigidBodyState& b) {
   return {b.mass, b.centre, rigid::global_inertia(b)};
 }
@@ -348,7 +333,7 @@ SwitchEvent PartSwitcher::to_rigid(const std::vector<model::PartSwitch>& cards, 
                                              state.nodes.x.x.data(), state.nodes.x.y.data(),
                                              state.nodes.x.z.data()));
     }
-    const rigid::MassProperties combined = combine(props);
+    const rigid::MassProperties combined = rigid::combine(props);
     if (!(combined.mass > 0.0)) {
       throw SolverError(fmt::format("at time {:.6g}: part {} has no mass to make a rigid body of",
                                     time, group.parts.front()));
