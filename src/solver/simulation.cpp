@@ -292,6 +292,10 @@ void Simulation::switch_parts_if_due() {
     }
     energy_.switch_energy -= activation;
     energy_.kinetic += activation;
+    if (set.nrbf != 0) {  // nodal rigid bodies deleted or made: their nodes' body forces
+      set_body_force_masses(boundary_, state_.nodes, rigid_.body_of_node);
+      compute_external_forces();
+    }
     automatic_switching_->fired(k, state_.time);
   }
   if (!due.empty()) {
@@ -329,6 +333,9 @@ void Simulation::apply_switch(model::Id swset, const std::vector<model::PartSwit
   if (!to_deformable.empty()) {
     events.push_back(switcher_->to_deformable(to_deformable, state_.time, state_, rigid_));
   }
+  // *LOAD_BODY acts on a body at its centre, on free nodes directly: f_ext^n with the new split.
+  set_body_force_masses(boundary_, state_.nodes, rigid_.body_of_node);
+  compute_external_forces();
   // Internal forces of the elements that became deformable, at x^n with their restored
   // stresses (dt = 0: no increment), and the step they allow.
   const element::NodalView view = view_of(state_.nodes);
