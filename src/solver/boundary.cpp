@@ -228,10 +228,7 @@ Boundary resolve_boundary(const model::Model& model, const NodeIndex& node_index
   for (std::size_t i = 0; i < n; ++i) {
     if (b.fixed[i]) b.constrained_nodes.push_back(static_cast<std::int32_t>(i));
   }
-  b.body_force_mass = state.nodes.mass;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (rigid(static_cast<std::int32_t>(i))) b.body_force_mass[i] = 0.0;
-  }
+  set_body_force_masses(b, state.nodes, body_of_node);
   for (const auto& p : b.prescribed) b.constrained_nodes.push_back(p.node);
   std::sort(b.constrained_nodes.begin(), b.constrained_nodes.end());
   b.constrained_nodes.erase(std::unique(b.constrained_nodes.begin(), b.constrained_nodes.end()),
@@ -275,6 +272,15 @@ void apply_initial_velocities(const model::Model& model, const NodeIndex& node_i
       nodes.v.y[i] = iv.v[1] + iv.omega * (az * rx - ax * rz);
       nodes.v.z[i] = iv.v[2] + iv.omega * (ax * ry - ay * rx);
     }
+  }
+}
+
+void set_body_force_masses(Boundary& boundary, const NodalState& nodes,
+                           const std::vector<std::int32_t>& body_of_node) {
+  boundary.body_force_mass = nodes.mass;
+  if (body_of_node.empty()) return;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (body_of_node[i] >= 0) boundary.body_force_mass[i] = 0.0;
   }
 }
 

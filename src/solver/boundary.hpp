@@ -66,6 +66,13 @@ Boundary resolve_boundary(const model::Model& model, const NodeIndex& node_index
                           const State& state, const std::vector<std::int32_t>& body_of_node,
                           std::vector<model::Warning>& warnings);
 
+// Sets body_force_mass from the nodes' rigid-body membership (`body_of_node`, empty: none).
+// Part switching changes membership at run time and must call it again, else a body made
+// by switching would take *LOAD_BODY twice (at its centre and through its nodes) and nodes
+// freed from a body none.
+void set_body_force_masses(Boundary& boundary, const NodalState& nodes,
+                           const std::vector<std::int32_t>& body_of_node);
+
 // Nodes addressed by a target (node, node set, part, part set, all), as dense indices.
 std::vector<std::int32_t> resolve_nodes(const model::Model& model, const NodeIndex& node_index,
                                         const State& state, model::Target target, model::Id id,

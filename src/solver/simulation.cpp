@@ -339,6 +339,10 @@ void Simulation::switch_parts_if_due() {
         contact::set_wall_active(walls_, wall.number, set.rwf == 2);
       }
     }
+    if (set.nrbf != 0) {  // nodal rigid bodies deleted or made: their nodes' body forces
+      set_body_force_masses(boundary_, state_.nodes, rigid_.body_of_node);
+      compute_external_forces();
+    }
     automatic_switching_->fired(k, state_.time);
   }
   if (!due.empty()) {
@@ -376,6 +380,9 @@ void Simulation::apply_switch(model::Id swset, const std::vector<model::PartSwit
   if (!to_deformable.empty()) {
     events.push_back(switcher_->to_deformable(to_deformable, state_.time, state_, rigid_));
   }
+  // *LOAD_BODY acts on a body at its centre, on free nodes directly: f_ext^n with the new split.
+  set_body_force_masses(boundary_, state_.nodes, rigid_.body_of_node);
+  compute_external_forces();
   // Internal forces of the elements that became deformable, at x^n with their restored
   // stresses (dt = 0: no increment), and the step they allow.
   const element::NodalView view = view_of(state_.nodes);
@@ -386,7 +393,6 @@ void Simulation::apply_switch(model::Id swset, const std::vector<model::PartSwit
     const element::KernelResult r = element::compute_block_forces(block, view, 0.0);
     released_dt = std::min(released_dt, r.min_dt);
   }
-  assemble_internal_forces(state_);
   element_dt_ = std::numeric_limits<double>::infinity();
   for (const auto& block : state_.hex_blocks) {
     if (block.rigid) continue;
@@ -398,13 +404,22 @@ void Simulation::apply_switch(model::Id swset, const std::vector<model::PartSwit
   double cap = tssfac * released_dt;
   if (switch_dt_cap_ > 0.0) cap = std::min(cap, switch_dt_cap_);
   if (state_.dt > 0.0 && state_.dt > cap) {
-    // The released elements' forces act from t^n on: their first velocity kick must respect
-    // their own limit too, so the half step behind counts at most the new step (a long rigid
-    // phase step there would over-kick them and start an instability).
     state_.dt = cap;
-    state_.dt_prev = std::min(state_.dt_prev, cap);
     dt_average_ = 0.5 * (state_.dt_prev + state_.dt);
+    // The released elements' forces act from t^n on, so their first velocity kick must respect
+    // their own stable step: dt_avg = (dt_prev + dt) / 2 with a long rigid-phase dt_prev would
+    // over-kick them and start an instability. Their (self-equilibrated) force slots are
+    // scaled to the kick of a half step no longer than the new step; every other force keeps
+    // the true dt_avg, so external impulses still add up to the elapsed time, momentum is
+    // unchanged and the work balance uses the same scaled forces.
+    const double kick = 0.5 * (std::min(state_.dt_prev, cap) + cap) / dt_average_;
+    for (std::size_t b = 0; b < state_.hex_blocks.size(); ++b) {
+      auto& block = state_.hex_blocks[b];
+      if (!was_rigid[b] || block.rigid) continue;
+      for (double& f : block.force) f *= kick;
+    }
   }
+  assemble_internal_forces(state_);
   for (auto& event : events) {
     if (event.parts.empty()) continue;
     event.swset = swset;
