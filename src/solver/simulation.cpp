@@ -228,7 +228,6 @@ void Simulation::enable_restart_dumps(std::unique_ptr<restart::Dumper> dumper) {
   dumper_ = std::move(dumper);
 }
 
-// Placeholder until deformable<->rigid switching lands; its author replaces this definition.
 // A restart deck's *DEFORMABLE_TO_RIGID / *RIGID_TO_DEFORMABLE, applied in deck order at the
 // restart time exactly as an automatic switch would be (switch.csv rows with SWSET 0). The
 // first run need not have flagged switching: the switcher is made here if it is missing.
@@ -241,16 +240,15 @@ void Simulation::apply_restart_switches(const std::vector<model::RestartSwitch>&
   }
   for (const auto& request : switches) {
     for (const model::Id pid : request.parts) {
-      const bool known = std::any_of(state_.hex_blocks.begin(), state_.hex_blocks.end(),
-                                     [&](const auto& b) { return b.part_id == pid; });
-      const bool mat_rigid =
-          std::any_of(state_.hex_blocks.begin(), state_.hex_blocks.end(),
-                      [&](const auto& b) { return b.part_id == pid && !b.has_force_slots; });
-      if (!known) {
+      const auto block = std::find_if(state_.hex_blocks.begin(), state_.hex_blocks.end(),
+                                      [&](const auto& b) { return b.part_id == pid; });
+      if (block == state_.hex_blocks.end()) {
         throw InputError(model::context_of(request.where, "PID"),
                          fmt::format("part {} has no elements in the restarted model", pid));
       }
-      if (mat_rigid && request.direction == model::RestartSwitch::Direction::kRigidToDeformable) {
+      // *MAT_RIGID blocks are the ones without force slots.
+      if (!block->has_force_slots &&
+          request.direction == model::RestartSwitch::Direction::kRigidToDeformable) {
         throw InputError(model::context_of(request.where, "PID"),
                          fmt::format("part {} is *MAT_RIGID: parts defined rigid in the input "
                                      "are permanently rigid",
@@ -311,10 +309,8 @@ void Simulation::switch_parts_if_due() {
       if (set.code != 5 || set.swset != event.swset) continue;
       if (event.status_on) {
         apply_switch(set.swset, set.to_rigid, set.to_deformable, set.dtmax);
-      } else {
-        std::vector<model::PartSwitch> back_to_rigid = set.to_deformable;
-        std::vector<model::PartSwitch> back_to_deformable = set.to_rigid;
-        apply_switch(set.swset, back_to_rigid, back_to_deformable, set.dtmax);
+      } else {  // the reverse switch: R2D parts back to rigid, D2R parts back to deformable
+        apply_switch(set.swset, set.to_deformable, set.to_rigid, set.dtmax);
       }
     }
   }
