@@ -10,7 +10,9 @@ PACKAGES=(
   libmuparser-dev    # *PARAMETER_EXPRESSION and function expressions
   libcli11-dev       # command line
   libfmt-dev         # formatting of messages and output files
-  libhdf5-dev        # restart dumps (HDF5 C API)
+  libhdf5-dev        # restart dumps and the mode database (HDF5 C API)
+  libspectra-dev     # Lanczos eigensolver (eigen analysis)
+  libsuitesparse-dev # CHOLMOD sparse Cholesky (eigen analysis)
   libgtest-dev       # unit and verification tests
   libbenchmark-dev   # kernel benchmarks
 )
