@@ -379,6 +379,36 @@ struct RigidWall {
   SourceLocation where;
 };
 
+// *CONTACT_AUTOMATIC_SURFACE_TO_SURFACE / _NODES_TO_SURFACE / _ONE_WAY_SURFACE_TO_SURFACE /
+// _SINGLE_SURFACE (with _ID), as written. The solver's form is contact::ContactSystem
+// (src/contact/contact.hpp); docs/contact.md and docs/keywords.md give the rules.
+enum class ContactKind { SurfaceToSurface, NodesToSurface, OneWaySurfaceToSurface, SingleSurface };
+
+struct Contact {
+  int number = 0;  // 1-based position among the deck's contacts (reading order)
+  Id id = 0;       // CID of the _ID card, else equal to `number`
+  std::string heading;
+  ContactKind kind = ContactKind::SurfaceToSurface;
+  Id ssid = 0;     // slave (SURFA) side: set or part ID per sstyp
+  Id msid = 0;     // master (SURFB) side
+  int sstyp = 0;   // 0 segment set, 2 part set, 3 part, 4 node set, 5 all parts
+  int mstyp = 0;   // 0 segment set, 2 part set, 3 part, 5 all parts
+  double fs = 0.0;    // static friction coefficient
+  double fd = 0.0;    // dynamic friction coefficient
+  double dc = 0.0;    // exponential decay coefficient: mu = FD + (FS - FD) exp(-DC |v_rel|)
+  double vdc = 0.0;   // viscous damping, percent of critical, normal direction
+  double birth = 0.0;
+  double death = 1e20;
+  double sfs = 1.0;   // penalty scale, slave side
+  double sfm = 1.0;   // penalty scale, master side
+  double sst = 0.0;   // contact thickness of the slave surface (solids: 0)
+  double mst = 0.0;   // contact thickness of the master surface
+  double fsf = 1.0;   // friction coefficient scale
+  int soft = 0;           // 0 segment-based (bulk modulus) stiffness, 1 mass/time-step based
+  double sofscl = 0.1;    // SOFT = 1 scale
+  SourceLocation where;
+};
+
 // ---- Deformable <-> rigid part switching (*DEFORMABLE_TO_RIGID*, docs/switching.md) ----
 
 // One part (or part set) named on *DEFORMABLE_TO_RIGID or on a D2R / R2D card of
@@ -524,6 +554,7 @@ struct OutputControl {
   double rbdout_dt = 0.0;  // *DATABASE_RBDOUT DT; 0: no rigid body output requested
   bool rbdout = false;     // true when *DATABASE_RBDOUT is present
   double rwforc_dt = 0.0;  // *DATABASE_RWFORC DT; 0: about 1000 rows per run
+  double rcforc_dt = 0.0;  // *DATABASE_RCFORC DT; 0: about 1000 rows per run
 };
 
 struct Warning {
@@ -576,6 +607,7 @@ struct Model {
   std::map<Id, SensorControl> sensor_controls;
   std::map<Id, Box> boxes;             // *DEFINE_BOX
   std::vector<RigidWall> rigid_walls;  // in deck order: rigid_walls[k].number == k + 1
+  std::vector<Contact> contacts;       // in deck order: contacts[k].number == k + 1
 
   Termination termination;
   TimestepControl timestep;

@@ -31,6 +31,8 @@ struct GlstatRow {
   double frozen_energy = 0.0;              // strain energy held by parts rigid by switching
   // The part of external_work done by rigid walls.
   double rigidwall_work = 0.0;
+  // Minus the work of the contact forces (stored penalty energy + dissipation).
+  double contact_energy = 0.0;
 };
 
 // Plain CSV file with a fixed header; rows are flushed at close. Numbers use %.9g or
@@ -73,13 +75,14 @@ struct CsvContinuation {
   std::int64_t switches = -1;  // switch.csv
   std::int64_t sensor = -1;    // sensor.csv
   std::int64_t rwforc = -1;    // rwforc.csv
+  std::int64_t rcforc = -1;    // rcforc.csv
 };
 
 // Column headers, exactly as written (docs/output.md).
 inline constexpr std::string_view kGlstatHeader =
     "time,dt,cycle,kinetic_energy,internal_energy,hourglass_energy,external_work,total_energy,"
     "energy_ratio,momentum_x,momentum_y,momentum_z,angular_momentum_x,angular_momentum_y,"
-    "angular_momentum_z,switch_energy,frozen_energy,rigidwall_work";
+    "angular_momentum_z,switch_energy,frozen_energy,rigidwall_work,contact_energy";
 inline constexpr std::string_view kNodoutHeader = "time,node,x,y,z,vx,vy,vz,ax,ay,az";
 inline constexpr std::string_view kRbdoutHeader =
     "time,body,mass,x,y,z,vx,vy,vz,ax,ay,az,wx,wy,wz,r11,r12,r13,r21,r22,r23,r31,r32,r33";
@@ -124,6 +127,32 @@ struct RwforcRow {
   double velocity = 0.0;
   double normal_impulse = 0.0;
   double work = 0.0;
+};
+
+inline constexpr std::string_view kRcforcHeader =
+    "time,contact,slave_fx,slave_fy,slave_fz,master_fx,master_fy,master_fz,contact_nodes";
+
+// One row of rcforc.csv: a contact interface at an output time t^n. slave_force is the resultant
+// of the contact forces on the slave (SURFA) side's nodes at the last evaluation (t^n, global
+// axes); the master side's resultant is its negative (written too). contact_nodes counts the
+// nodes in contact over all passes.
+struct RcforcRow {
+  double time = 0.0;
+  std::int64_t contact = 0;
+  std::array<double, 3> slave_force{};
+  std::int64_t active_nodes = 0;
+};
+
+// rcforc.csv: one row per contact interface at each output time (src/output/rcforc_writer.cpp).
+class RcforcWriter {
+ public:
+  explicit RcforcWriter(const std::filesystem::path& path, std::int64_t continue_at = -1);
+  void write(const std::vector<RcforcRow>& rows);
+  void flush() { csv_.flush(); }
+  std::int64_t flushed_size() { return csv_.flushed_size(); }
+
+ private:
+  CsvFile csv_;
 };
 
 // rwforc.csv: one row per rigid wall at each output time (src/output/rwforc_writer.cpp).

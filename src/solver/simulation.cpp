@@ -95,6 +95,15 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
                                               const std::vector<model::Id>& parts) {
     return contact::wall_within_offset(walls_, static_cast<int>(number), offset, parts, state_);
   };
+  contacts_ = contact::build_contacts(model_, node_index_, state_);
+  // CODE 2/4 of automatic switching ask the contacts (ENTNO is the contact ID).
+  switch_queries_.contact_force = [this](model::Id id) {
+    return contact::resultant_force(contacts_, id);
+  };
+  switch_queries_.contact_within_offset = [this](model::Id id, double offset,
+                                                 const std::vector<model::Id>& parts) {
+    return contact::within_offset(contacts_, id, offset, parts, state_);
+  };
 
   sensors_ = std::make_unique<sensor::SensorSystem>(
       sensor::build_sensor_system(model_, node_index_, state_));
@@ -135,6 +144,12 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
       rwforc_ = std::make_unique<output::RwforcWriter>(options_.output_directory / "rwforc.csv",
                                                        options_.continuation.rwforc);
     }
+    if (!contacts_.empty()) {
+      // *DATABASE_RCFORC interval, else about 1000 rows per contact and run.
+      rcforc_schedule_.interval = default_interval(model.output.rcforc_dt, span, 1000.0);
+      rcforc_ = std::make_unique<output::RcforcWriter>(options_.output_directory / "rcforc.csv",
+                                                       options_.continuation.rcforc);
+    }
     if (options_.write_fields) {
       d3plot_schedule_.interval = default_interval(model.output.d3plot_dt, span, 20.0);
       fields_ = std::make_unique<output::FieldWriter>(options_.output_directory);
@@ -157,6 +172,7 @@ void Simulation::initialize() {
   v_previous_ = state_.nodes.v;
   state_.time = 0.0;
   compute_internal_forces();
+  compute_contact_forces();
   compute_external_forces();
   check_breakdown();
   update_sensors();
@@ -212,6 +228,7 @@ void Simulation::cycle() {
   }
   update_positions();
   compute_internal_forces();
+  compute_contact_forces();
   compute_external_forces();
   check_breakdown();
   update_sensors();
@@ -289,6 +306,7 @@ void Simulation::run(const std::function<void(const Simulation&)>& on_progress) 
     if (rbdout_) rbdout_->flush();
     if (sensor_csv_) sensor_csv_->flush();
     if (rwforc_) rwforc_->flush();
+    if (rcforc_) rcforc_->flush();
     if (switch_csv_) switch_csv_->flush();
     throw;
   }
@@ -297,6 +315,7 @@ void Simulation::run(const std::function<void(const Simulation&)>& on_progress) 
   if (rbdout_) rbdout_->flush();
   if (sensor_csv_) sensor_csv_->flush();
   if (rwforc_) rwforc_->flush();
+  if (rcforc_) rcforc_->flush();
   if (switch_csv_) switch_csv_->flush();
 }
 
@@ -482,8 +501,9 @@ void Simulation::update_velocities() {
   // summed over every node (forces on rigid-body nodes do work on the bodies); kinetic energy
   // and momenta of rigid-body nodes are those of their bodies.
   const std::int32_t* body_of = rigid_.empty() ? nullptr : rigid_.body_of_node.data();
+  const Vec3Array* contact_force = contacts_.empty() ? nullptr : &contacts_.force;
   auto sums =
-      deterministic_sum<9>(n, reduction_scratch_, [&](std::int64_t i, std::array<double, 9>& acc) {
+      deterministic_sum<10>(n, reduction_scratch_, [&](std::int64_t i, std::array<double, 10>& acc) {
         const double m = nodes.mass[i];
         const double vx = nodes.v.x[i], vy = nodes.v.y[i], vz = nodes.v.z[i];
         double dx = 0.5 * dt_avg * (vp.x[i] + vx);
@@ -507,6 +527,9 @@ void Simulation::update_velocities() {
         }
         acc[1] += nodes.f_int.x[i] * dx + nodes.f_int.y[i] * dy + nodes.f_int.z[i] * dz;
         acc[2] += nodes.f_ext.x[i] * dx + nodes.f_ext.y[i] * dy + nodes.f_ext.z[i] * dz;
+        if (contact_force) {  // the contact share of f_ext
+          acc[9] += contact_force->x[i] * dx + contact_force->y[i] * dy + contact_force->z[i] * dz;
+        }
         if (rigid_node) return;
         acc[0] += 0.5 * m * (vx * vx + vy * vy + vz * vz);
         acc[3] += m * vx;
@@ -543,7 +566,8 @@ void Simulation::update_velocities() {
   }
   energy_.kinetic = sums[0];
   energy_.internal_work += sums[1];
-  energy_.external_work += sums[2] + reaction_work + rigid_sums.external_work;
+  energy_.external_work += sums[2] - sums[9] + reaction_work + rigid_sums.external_work;
+  energy_.contact_energy -= sums[9];
   if (!walls_.empty()) {  // already in sums[2] (the wall forces are in f_ext): its share
     energy_.rigidwall_work += contact::rigid_wall_work(walls_, rigid_, vp, state_, dt_avg);
   }
@@ -615,6 +639,7 @@ void Simulation::write_output_if_due(bool force) {
     row.rigidwall_work = energy_.rigidwall_work;
     row.switch_energy = energy_.switch_energy;
     row.frozen_energy = energy_.frozen_energy;
+    row.contact_energy = energy_.contact_energy;
     glstat_->write(row);
     glstat_schedule_.mark_written(t, cycle);
   }
@@ -660,6 +685,19 @@ void Simulation::write_output_if_due(bool force) {
     }
     rwforc_->write(rwforc_rows_);
     rwforc_schedule_.mark_written(t, cycle);
+  }
+  if (rcforc_ && wanted(rcforc_schedule_)) {
+    rcforc_rows_.clear();
+    for (const auto& contact : contacts_.interfaces) {
+      output::RcforcRow row;
+      row.time = t;
+      row.contact = contact.id;
+      for (int k = 0; k < 3; ++k) row.slave_force[k] = contact.slave_force[k];
+      row.active_nodes = contact.active_nodes;
+      rcforc_rows_.push_back(row);
+    }
+    rcforc_->write(rcforc_rows_);
+    rcforc_schedule_.mark_written(t, cycle);
   }
   if (fields_ && wanted(d3plot_schedule_)) {
     fields_->write_frame(state_);
@@ -707,8 +745,13 @@ void Simulation::compute_internal_forces() {
   assemble_internal_forces(state_);
 }
 
+void Simulation::compute_contact_forces() {
+  contact::compute_contact_forces(contacts_, state_, state_.dt);
+}
+
 void Simulation::compute_external_forces() {
   solver::compute_external_forces(boundary_, state_.time, state_);
+  contact::add_contact_forces(contacts_, state_);
 }
 
 void Simulation::check_breakdown() {

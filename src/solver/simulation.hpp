@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include "contact/contact.hpp"
 #include "contact/rigid_wall.hpp"
 #include "model/model.hpp"
 #include "model/restart_switch.hpp"
@@ -49,12 +50,15 @@ struct EnergyAccount {
   // Strain energy held by elements frozen in parts that are rigid by switching (part of
   // internal_work; reported, not added again).
   double frozen_energy = 0.0;
+  // Minus the work of the contact forces (penalty energy stored plus friction and damping
+  // dissipation); kept out of external_work and counted in the total (docs/contact.md).
+  double contact_energy = 0.0;
   double initial_total = 0.0;
   double momentum[3] = {0, 0, 0};
   double angular_momentum[3] = {0, 0, 0};
 
   double internal() const { return internal_work - hourglass; }
-  double total() const { return kinetic + internal_work + switch_energy; }
+  double total() const { return kinetic + internal_work + switch_energy + contact_energy; }
   double ratio() const {
     const double reference = initial_total + external_work;
     return reference != 0.0 ? total() / reference : 1.0;
@@ -95,6 +99,7 @@ class Simulation {
   const RigidSystem& rigid_bodies() const { return rigid_; }
   const contact::RigidWallSystem& rigid_walls() const { return walls_; }
   contact::RigidWallSystem& mutable_rigid_walls() { return walls_; }
+  const contact::ContactSystem& contacts() const { return contacts_; }
   // Notices found while turning the model into a state (ignored constraints, regularised
   // inertia); the reader's warnings are in the model.
   const std::vector<model::Warning>& warnings() const { return warnings_; }
@@ -118,7 +123,8 @@ class Simulation {
   void write_output_if_due(bool force);
   void update_positions();         // x^{n+1} = x^n + dt v^{n+1/2}
   void compute_internal_forces();  // element kernels at n+1, assembly, element time step
-  void compute_external_forces();  // loads at t^{n+1}
+  void compute_contact_forces();   // contact at x^{n+1} (contact/contact.hpp)
+  void compute_external_forces();  // loads at t^{n+1}, plus the contact forces
   void select_time_step();         // dt^{n+3/2}
   void update_sensors();           // sensors, switches, controls at t^{n+1} (sensor/sensor.hpp)
 
@@ -142,6 +148,7 @@ class Simulation {
   std::vector<model::Warning> warnings_;
   Boundary boundary_;
   contact::RigidWallSystem walls_;
+  contact::ContactSystem contacts_;
   EnergyAccount energy_;
   Vec3Array v_previous_;  // v^{n-1/2}, kept for the energy balance and full-step velocities
 
@@ -178,6 +185,9 @@ class Simulation {
   std::unique_ptr<output::RwforcWriter> rwforc_;
   OutputSchedule rwforc_schedule_;
   std::vector<output::RwforcRow> rwforc_rows_;
+  std::unique_ptr<output::RcforcWriter> rcforc_;
+  OutputSchedule rcforc_schedule_;
+  std::vector<output::RcforcRow> rcforc_rows_;
   std::unique_ptr<output::FieldWriter> fields_;
   std::vector<double> reduction_scratch_;
 

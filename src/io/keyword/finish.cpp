@@ -529,6 +529,7 @@ void finish_model(ReaderContext& context) {
   }
   finish_rigid(m, nodes);
   handlers::check_rigid_walls(m);
+  handlers::check_contacts(m);
   finish_switching(m);
   handlers::finish_sensors(context, nodes);
 }

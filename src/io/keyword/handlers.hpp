@@ -75,6 +75,10 @@ void rigidwall_planar(const Block&, ReaderContext&);
 void define_box(const Block&, ReaderContext&);
 // After reading: the node sets and boxes the rigid walls name must exist.
 void check_rigid_walls(const model::Model& model);
+// handlers_contact.cpp
+void contact_automatic(const Block&, ReaderContext&);
+// After reading: the sets and parts the contacts name must exist.
+void check_contacts(const model::Model& model);
 
 // Cards shared by *MAT_RIGID, *PART_INERTIA and *CONSTRAINED_NODAL_RIGID_BODY.
 struct RigidConstraints {

@@ -98,6 +98,8 @@ void database_ascii(const Block& block, ReaderContext& context) {
     context.model.output.rbdout = true;
   } else if (block.base == "*DATABASE_RWFORC") {
     context.model.output.rwforc_dt = dt;
+  } else if (block.base == "*DATABASE_RCFORC") {
+    context.model.output.rcforc_dt = dt;
   } else {
     context.model.output.nodout_dt = dt;
   }

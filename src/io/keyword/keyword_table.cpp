@@ -42,6 +42,10 @@ const std::vector<KeywordEntry>& table() {
       {"*RIGID_BODY_UPDATE", rigid_body_update, {}},
       {"*CONTROL_RIGID", control_rigid, {}},
       {"*RIGIDWALL_PLANAR", rigidwall_planar, {"ID", "FINITE", "MOVING"}},
+      {"*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE", contact_automatic, {"ID"}},
+      {"*CONTACT_AUTOMATIC_NODES_TO_SURFACE", contact_automatic, {"ID"}},
+      {"*CONTACT_AUTOMATIC_ONE_WAY_SURFACE_TO_SURFACE", contact_automatic, {"ID"}},
+      {"*CONTACT_AUTOMATIC_SINGLE_SURFACE", contact_automatic, {"ID"}},
       // The other *DEFINE_BOX_... keywords (adaptivity, SPH, drawbeads, local boxes) are
       // separate keywords in LS-DYNA: skipped with a warning like unknown keywords.
       {"*DEFINE_BOX",
@@ -65,6 +69,7 @@ const std::vector<KeywordEntry>& table() {
       {"*DATABASE_NODOUT", database_ascii, {}},
       {"*DATABASE_RBDOUT", database_ascii, {}},
       {"*DATABASE_RWFORC", database_ascii, {}},
+      {"*DATABASE_RCFORC", database_ascii, {}},
       {"*DATABASE_BINARY_D3PLOT", database_binary_d3plot, {}},
       {"*DATABASE_HISTORY_NODE", database_history_node, {}},
       {"*DATABASE_HISTORY_NODE_SET", database_history_node, {}},

@@ -1,0 +1,779 @@
+#include "contact/contact.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+
+#include "model/error.hpp"
+#include "model/error_context.hpp"
+
+namespace rf::contact {
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// LS-DYNA's default penalty scale SLSFAC (*CONTROL_CONTACT), Theory Manual eq. for k_i.
+constexpr double kSlsfac = 0.1;
+// A node whose projection leaves the segment by more than this fraction of its size is not on
+// that segment (it is beside it: an edge or corner of the master surface).
+constexpr double kEdgeTolerance = 0.05;
+// Nodes deeper than this fraction of the segment size are not pushed back (they came from the
+// other side, or the surface is thinner than the penetration: LS-DYNA releases them as well).
+constexpr double kDepthFraction = 0.5;
+
+using Vec = std::array<double, 3>;
+
+Vec sub(const Vec& a, const Vec& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+Vec cross(const Vec& a, const Vec& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double dot(const Vec& a, const Vec& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+double norm(const Vec& a) {
+  return std::sqrt(dot(a, a));
+}
+
+Vec position(const solver::Vec3Array& x, std::int32_t i) {
+  return {x.x[i], x.y[i], x.z[i]};
+}
+
+// Area of a quadrilateral (exact when planar): half the cross product of its diagonals.
+Vec diagonal_normal(const Vec& a, const Vec& b, const Vec& c, const Vec& d) {
+  return cross(sub(c, a), sub(d, b));
+}
+
+// Tensor positions of the corners of side s (0..5: i=0, i=p, j=0, j=p, k=0, k=p), cyclic, and
+// of the node (u, v) of that side's node grid.
+std::array<int, 3> side_node(int s, int p, int u, int v) {
+  const int a = (s % 2 == 0) ? 0 : p;
+  switch (s / 2) {
+    case 0:
+      return {a, u, v};
+    case 1:
+      return {u, a, v};
+    default:
+      return {u, v, a};
+  }
+}
+
+std::int32_t block_node(const element::HexBlock& block, std::size_t e,
+                        const std::array<int, 3>& t) {
+  const std::int32_t* conn = block.conn.data() + e * block.nodes_per_element();
+  if (block.order == 1) {
+    static constexpr int kCorner[2][2][2] = {{{0, 4}, {3, 7}}, {{1, 5}, {2, 6}}};  // [i][j][k]
+    return conn[kCorner[t[0]][t[1]][t[2]]];
+  }
+  const int n = block.order + 1;
+  return conn[t[0] + n * (t[1] + n * t[2])];
+}
+
+using FaceKey = std::array<std::int32_t, 4>;
+
+// Sorted distinct corner nodes (a repeated node is kept once; fewer than 3: no face).
+std::optional<FaceKey> face_key(std::array<std::int32_t, 4> corners) {
+  std::sort(corners.begin(), corners.end());
+  const auto end = std::unique(corners.begin(), corners.end());
+  const auto distinct = end - corners.begin();
+  if (distinct < 3) return std::nullopt;
+  if (distinct == 3) corners[3] = -1;
+  return corners;
+}
+
+struct FaceRef {
+  std::int32_t block = 0;
+  std::int64_t element = 0;
+  int side = 0;
+  int count = 0;
+};
+
+std::array<std::int32_t, 4> corners_of(const element::HexBlock& block, std::size_t e, int s) {
+  const int p = block.order;
+  return {block_node(block, e, side_node(s, p, 0, 0)), block_node(block, e, side_node(s, p, p, 0)),
+          block_node(block, e, side_node(s, p, p, p)), block_node(block, e, side_node(s, p, 0, p))};
+}
+
+// Every face of the blocks accepted by `use_block`, with how many elements share it.
+std::map<FaceKey, FaceRef> face_table(const solver::State& state,
+                                      const std::vector<bool>& use_block) {
+  std::map<FaceKey, FaceRef> faces;
+  for (std::size_t b = 0; b < state.hex_blocks.size(); ++b) {
+    if (!use_block[b]) continue;
+    const auto& block = state.hex_blocks[b];
+    for (std::size_t e = 0; e < block.size(); ++e) {
+      for (int s = 0; s < 6; ++s) {
+        const auto key = face_key(corners_of(block, e, s));
+        if (!key) continue;
+        auto [it, inserted] = faces.try_emplace(
+            *key, FaceRef{static_cast<std::int32_t>(b), static_cast<std::int64_t>(e), s, 0});
+        ++it->second.count;
+      }
+    }
+  }
+  return faces;
+}
+
+// Adds the segments of face `s` of element e: the face itself (order 1) or the p x p linear
+// sub-quads of its node grid, each ordered so that its normal points out of the element.
+void add_face_segments(const solver::State& state, const FaceRef& face, ContactSurface& surface) {
+  const auto& block = state.hex_blocks[face.block];
+  const std::size_t e = static_cast<std::size_t>(face.element);
+  const int p = block.order;
+  const auto& x = state.nodes.x;
+  // Element centre from its 8 corners; face centre and area from its 4 corners.
+  Vec centre{0, 0, 0};
+  for (int i = 0; i <= 1; ++i)
+    for (int j = 0; j <= 1; ++j)
+      for (int k = 0; k <= 1; ++k) {
+        const Vec c = position(x, block_node(block, e, {i * p, j * p, k * p}));
+        for (int d = 0; d < 3; ++d) centre[d] += c[d] / 8.0;
+      }
+  const auto corners = corners_of(block, e, face.side);
+  Vec face_centre{0, 0, 0};
+  for (const auto n : corners) {
+    const Vec c = position(x, n);
+    for (int d = 0; d < 3; ++d) face_centre[d] += c[d] / 4.0;
+  }
+  const Vec outward = sub(face_centre, centre);
+  const double face_area =
+      0.5 * norm(diagonal_normal(position(x, corners[0]), position(x, corners[1]),
+                                 position(x, corners[2]), position(x, corners[3])));
+  double volume = (e < block.volume0.size()) ? block.volume0[e] : 0.0;
+  if (!(volume > 0.0)) volume = face_area * std::sqrt(face_area);
+  // Penalty stiffness of a solid segment, LS-DYNA Theory Manual (contact, penalty method):
+  // k = SLSFAC K A^2 / V. A sub-quad of a higher-order face takes the element's thickness
+  // normal to the face divided by p as its depth (V / (A_face p)); for p = 1 the formula.
+  const double bulk = block.material.bulk;
+  const double depth = volume / (face_area * p);
+  for (int u = 0; u < p; ++u) {
+    for (int v = 0; v < p; ++v) {
+      std::array<std::int32_t, 4> q = {block_node(block, e, side_node(face.side, p, u, v)),
+                                       block_node(block, e, side_node(face.side, p, u + 1, v)),
+                                       block_node(block, e, side_node(face.side, p, u + 1, v + 1)),
+                                       block_node(block, e, side_node(face.side, p, u, v + 1))};
+      // Degenerate elements: drop repeated corners (a triangle repeats its third node).
+      std::array<std::int32_t, 4> distinct{};
+      int count = 0;
+      for (int c = 0; c < 4; ++c) {
+        bool seen = false;
+        for (int d = 0; d < count; ++d) seen |= distinct[d] == q[c];
+        if (!seen) distinct[count++] = q[c];
+      }
+      if (count < 3) continue;
+      if (count == 3) distinct[3] = distinct[2];
+      q = distinct;
+      const Vec n = diagonal_normal(position(x, q[0]), position(x, q[1]), position(x, q[2]),
+                                    position(x, q[3]));
+      if (dot(n, outward) < 0.0) std::swap(q[1], q[3]);
+      const double area = 0.5 * norm(n);
+      surface.segments.push_back(q);
+      surface.stiffness.push_back(bulk > 0.0 && depth > 0.0 ? kSlsfac * bulk * area / depth
+                                                            : kInfinity);
+      surface.size.push_back(std::sqrt(area));
+      surface.part.push_back(block.part_id);
+      double m = 0.0;
+      for (const auto node : q) m += state.nodes.mass[node] / 4.0;
+      surface.mass.push_back(m);
+    }
+  }
+}
+
+std::vector<model::Id> parts_of_side(const model::Model& model, model::Id id, int type) {
+  std::vector<model::Id> parts;
+  if (type == 3) parts.push_back(id);
+  if (type == 2) parts = model.part_sets.at(id).parts;
+  if (type == 5) {
+    for (const auto& [pid, part] : model.parts) parts.push_back(pid);
+  }
+  std::sort(parts.begin(), parts.end());
+  parts.erase(std::unique(parts.begin(), parts.end()), parts.end());
+  return parts;
+}
+
+void finish_surface(const solver::State& state, ContactSurface& surface) {
+  std::map<std::int32_t, std::pair<double, model::Id>> node_data;  // stiffness, part
+  for (std::size_t s = 0; s < surface.segments.size(); ++s) {
+    for (const auto n : surface.segments[s]) {
+      auto [it, inserted] = node_data.try_emplace(n, surface.stiffness[s], surface.part[s]);
+      if (!inserted) it->second.first = std::min(it->second.first, surface.stiffness[s]);
+    }
+    surface.max_size = std::max(surface.max_size, surface.size[s]);
+  }
+  if (surface.nodes.empty()) {  // segment-based side: its nodes are the segments' nodes
+    for (const auto& [n, data] : node_data) surface.nodes.push_back(n);
+  }
+  // Part of a node without segments (node set): the first block that uses it.
+  std::vector<model::Id> block_part;
+  if (node_data.size() < surface.nodes.size()) {
+    block_part.assign(state.nodes.size(), 0);
+    for (auto b = state.hex_blocks.rbegin(); b != state.hex_blocks.rend(); ++b) {
+      for (const auto n : b->conn) block_part[n] = b->part_id;
+    }
+  }
+  for (const auto n : surface.nodes) {
+    if (const auto it = node_data.find(n); it != node_data.end()) {
+      surface.node_stiffness.push_back(it->second.first);
+      surface.node_part.push_back(it->second.second);
+      continue;
+    }
+    surface.node_stiffness.push_back(kInfinity);
+    surface.node_part.push_back(block_part[n]);
+  }
+}
+
+ContactSurface build_side(const model::Model& model, const solver::NodeIndex& node_index,
+                          const solver::State& state, const model::Contact& contact, model::Id id,
+                          int type, const char* field) {
+  ContactSurface surface;
+  if (type == 4) {  // node set: slave nodes only
+    for (const auto nid : model.node_sets.at(id).nodes) {
+      surface.nodes.push_back(node_index.at(nid, contact.where, field));
+    }
+    std::sort(surface.nodes.begin(), surface.nodes.end());
+    surface.nodes.erase(std::unique(surface.nodes.begin(), surface.nodes.end()),
+                        surface.nodes.end());
+    finish_surface(state, surface);
+    return surface;
+  }
+  if (type == 0) {  // segment set: each segment must be a face of a solid element
+    const std::vector<bool> all(state.hex_blocks.size(), true);
+    const auto faces = face_table(state, all);
+    for (const auto& segment : model.segment_sets.at(id).segments) {
+      std::array<std::int32_t, 4> dense{};
+      for (int k = 0; k < 4; ++k) dense[k] = node_index.at(segment[k], contact.where, field);
+      const auto key = face_key(dense);
+      const auto it = key ? faces.find(*key) : faces.end();
+      if (it == faces.end()) {
+        throw InputError(model::context_of(contact.where, field),
+                         fmt::format("segment {} {} {} {} of segment set {} is not a face of a "
+                                     "solid element: contact segments need the element behind "
+                                     "them (stiffness, orientation)",
+                                     segment[0], segment[1], segment[2], segment[3], id));
+      }
+      add_face_segments(state, it->second, surface);
+    }
+    finish_surface(state, surface);
+    return surface;
+  }
+  const auto parts = parts_of_side(model, id, type);
+  std::vector<bool> use(state.hex_blocks.size(), false);
+  for (std::size_t b = 0; b < state.hex_blocks.size(); ++b) {
+    use[b] = std::binary_search(parts.begin(), parts.end(), state.hex_blocks[b].part_id);
+  }
+  // Exterior faces: those of one element only among the side's elements.
+  for (const auto& [key, face] : face_table(state, use)) {
+    if (face.count == 1) add_face_segments(state, face, surface);
+  }
+  if (surface.segments.empty()) {
+    throw InputError(model::context_of(contact.where, field),
+                     fmt::format("{} {} has no solid elements, so no contact surface",
+                                 type == 3 ? "part" : "part set", id));
+  }
+  finish_surface(state, surface);
+  return surface;
+}
+
+// ---- Broad phase ----
+
+void segment_box(const solver::Vec3Array& x, const std::array<std::int32_t, 4>& s, double grow,
+                 Vec& lo, Vec& hi) {
+  lo = {kInfinity, kInfinity, kInfinity};
+  hi = {-kInfinity, -kInfinity, -kInfinity};
+  for (const auto n : s) {
+    const Vec p = position(x, n);
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = std::min(lo[d], p[d] - grow);
+      hi[d] = std::max(hi[d], p[d] + grow);
+    }
+  }
+}
+
+std::int64_t cell_coordinate(const SegmentGrid& grid, double value, int d) {
+  return static_cast<std::int64_t>(std::floor((value - grid.origin[d]) / grid.cell));
+}
+
+void build_grid(SegmentGrid& grid, const ContactSurface& master, const ContactSurface& moved,
+                const solver::State& state) {
+  const auto& x = state.nodes.x;
+  const std::size_t nseg = master.segments.size();
+  ++grid.rebuilds;
+  grid.built = true;
+  grid.built_x.resize(moved.nodes.size());
+  grid.built_y.resize(moved.nodes.size());
+  grid.built_z.resize(moved.nodes.size());
+  for (std::size_t j = 0; j < moved.nodes.size(); ++j) {
+    grid.built_x[j] = x.x[moved.nodes[j]];
+    grid.built_y[j] = x.y[moved.nodes[j]];
+    grid.built_z[j] = x.z[moved.nodes[j]];
+  }
+  Vec lo_all{kInfinity, kInfinity, kInfinity}, hi_all{-kInfinity, -kInfinity, -kInfinity};
+  double extent = 0.0;
+  for (std::size_t s = 0; s < nseg; ++s) {
+    Vec lo, hi;
+    segment_box(x, master.segments[s], grid.expansion, lo, hi);
+    for (int d = 0; d < 3; ++d) {
+      lo_all[d] = std::min(lo_all[d], lo[d]);
+      hi_all[d] = std::max(hi_all[d], hi[d]);
+      extent = std::max(extent, hi[d] - lo[d]);
+    }
+  }
+  if (nseg == 0) {
+    grid.dims = {0, 0, 0};
+    grid.cell_start.assign(1, 0);
+    grid.cell_segments.clear();
+    return;
+  }
+  // Cells as large as the largest grown box: a segment is listed in at most 8 cells. The
+  // number of cells is kept within a few times the number of segments (O(n) memory).
+  grid.cell = std::max(
+      extent, 1e-12 * (1.0 + std::abs(hi_all[0]) + std::abs(hi_all[1]) + std::abs(hi_all[2])));
+  const double limit = 4.0 * static_cast<double>(nseg) + 64.0;
+  for (;;) {
+    double cells = 1.0;
+    for (int d = 0; d < 3; ++d) {
+      grid.dims[d] = static_cast<std::int64_t>(std::floor((hi_all[d] - lo_all[d]) / grid.cell)) + 1;
+      cells *= static_cast<double>(grid.dims[d]);
+    }
+    if (cells <= limit) break;
+    grid.cell *= std::cbrt(cells / limit) * 1.01;
+  }
+  grid.origin = lo_all;
+  const std::int64_t cells = grid.dims[0] * grid.dims[1] * grid.dims[2];
+  grid.cell_start.assign(static_cast<std::size_t>(cells) + 1, 0);
+  auto for_cells = [&](std::size_t s, auto&& visit) {
+    Vec lo, hi;
+    segment_box(x, master.segments[s], grid.expansion, lo, hi);
+    std::array<std::int64_t, 3> a{}, b{};
+    for (int d = 0; d < 3; ++d) {
+      a[d] = std::clamp<std::int64_t>(cell_coordinate(grid, lo[d], d), 0, grid.dims[d] - 1);
+      b[d] = std::clamp<std::int64_t>(cell_coordinate(grid, hi[d], d), 0, grid.dims[d] - 1);
+    }
+    for (auto k = a[2]; k <= b[2]; ++k)
+      for (auto j = a[1]; j <= b[1]; ++j)
+        for (auto i = a[0]; i <= b[0]; ++i) visit(i + grid.dims[0] * (j + grid.dims[1] * k));
+  };
+  for (std::size_t s = 0; s < nseg; ++s)
+    for_cells(s, [&](std::int64_t c) { ++grid.cell_start[c + 1]; });
+  for (std::int64_t c = 0; c < cells; ++c) grid.cell_start[c + 1] += grid.cell_start[c];
+  grid.cell_segments.resize(static_cast<std::size_t>(grid.cell_start[cells]));
+  grid.fill.assign(grid.cell_start.begin(), grid.cell_start.end() - 1);
+  for (std::size_t s = 0; s < nseg; ++s) {
+    for_cells(s, [&](std::int64_t c) {
+      grid.cell_segments[grid.fill[c]++] = static_cast<std::int32_t>(s);
+    });
+  }
+  grid.visit_stamp.assign(nseg, 0);
+}
+
+// Largest displacement of the searched surface's nodes since the grid was built.
+double moved_since_build(const SegmentGrid& grid, const ContactSurface& moved,
+                         const solver::State& state) {
+  const auto& x = state.nodes.x;
+  const std::int64_t n = static_cast<std::int64_t>(moved.nodes.size());
+  double worst2 = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : worst2)
+  for (std::int64_t j = 0; j < n; ++j) {
+    const auto i = moved.nodes[j];
+    const double dx = x.x[i] - grid.built_x[j];
+    const double dy = x.y[i] - grid.built_y[j];
+    const double dz = x.z[i] - grid.built_z[j];
+    worst2 = std::max(worst2, dx * dx + dy * dy + dz * dz);
+  }
+  return std::sqrt(worst2);
+}
+
+// Cell index range of the box p +- r (empty when outside the grid).
+bool cell_range(const SegmentGrid& grid, const Vec& p, double r, std::array<std::int64_t, 3>& a,
+                std::array<std::int64_t, 3>& b) {
+  if (grid.dims[0] == 0) return false;
+  for (int d = 0; d < 3; ++d) {
+    a[d] = cell_coordinate(grid, p[d] - r, d);
+    b[d] = cell_coordinate(grid, p[d] + r, d);
+    if (b[d] < 0 || a[d] >= grid.dims[d]) return false;
+    a[d] = std::max<std::int64_t>(a[d], 0);
+    b[d] = std::min<std::int64_t>(b[d], grid.dims[d] - 1);
+  }
+  return true;
+}
+
+// ---- Narrow phase ----
+
+struct Projection {
+  double xi = 0.0, eta = 0.0;
+  double weight[4] = {0, 0, 0, 0};
+  Vec point{};
+  Vec normal{};  // unit, outward
+  double distance2 = kInfinity;
+};
+
+// Closest point of the bilinear segment to p: Gauss-Newton on |x(xi, eta) - p|^2 with the
+// parameters kept in [-1, 1]^2.
+Projection project(const solver::Vec3Array& x, const std::array<std::int32_t, 4>& s, const Vec& p) {
+  const Vec x1 = position(x, s[0]), x2 = position(x, s[1]), x3 = position(x, s[2]),
+            x4 = position(x, s[3]);
+  Projection r;
+  double xi = 0.0, eta = 0.0;
+  Vec xx{}, t1{}, t2{};
+  for (int it = 0; it < 8; ++it) {
+    const double n1 = 0.25 * (1 - xi) * (1 - eta), n2 = 0.25 * (1 + xi) * (1 - eta),
+                 n3 = 0.25 * (1 + xi) * (1 + eta), n4 = 0.25 * (1 - xi) * (1 + eta);
+    for (int d = 0; d < 3; ++d) {
+      xx[d] = n1 * x1[d] + n2 * x2[d] + n3 * x3[d] + n4 * x4[d];
+      t1[d] = 0.25 * ((1 - eta) * (x2[d] - x1[d]) + (1 + eta) * (x3[d] - x4[d]));
+      t2[d] = 0.25 * ((1 - xi) * (x4[d] - x1[d]) + (1 + xi) * (x3[d] - x2[d]));
+    }
+    const Vec res = sub(p, xx);
+    const double a11 = dot(t1, t1), a12 = dot(t1, t2), a22 = dot(t2, t2);
+    const double b1 = dot(t1, res), b2 = dot(t2, res);
+    const double det = a11 * a22 - a12 * a12;
+    if (!(det > 0.0)) break;
+    const double dxi = (a22 * b1 - a12 * b2) / det;
+    const double deta = (a11 * b2 - a12 * b1) / det;
+    const double xi_new = std::clamp(xi + dxi, -1.0, 1.0);
+    const double eta_new = std::clamp(eta + deta, -1.0, 1.0);
+    const double change = std::abs(xi_new - xi) + std::abs(eta_new - eta);
+    xi = xi_new;
+    eta = eta_new;
+    if (change < 1e-12) break;
+  }
+  r.xi = xi;
+  r.eta = eta;
+  r.weight[0] = 0.25 * (1 - xi) * (1 - eta);
+  r.weight[1] = 0.25 * (1 + xi) * (1 - eta);
+  r.weight[2] = 0.25 * (1 + xi) * (1 + eta);
+  r.weight[3] = 0.25 * (1 - xi) * (1 + eta);
+  for (int d = 0; d < 3; ++d) {
+    r.point[d] =
+        r.weight[0] * x1[d] + r.weight[1] * x2[d] + r.weight[2] * x3[d] + r.weight[3] * x4[d];
+    t1[d] = 0.25 * ((1 - eta) * (x2[d] - x1[d]) + (1 + eta) * (x3[d] - x4[d]));
+    t2[d] = 0.25 * ((1 - xi) * (x4[d] - x1[d]) + (1 + xi) * (x3[d] - x2[d]));
+  }
+  Vec n = cross(t1, t2);
+  double length = norm(n);
+  if (!(length > 0.0)) {  // collapsed corner of a triangle: the diagonal normal
+    n = diagonal_normal(x1, x2, x3, x4);
+    length = norm(n);
+  }
+  if (length > 0.0) {
+    for (int d = 0; d < 3; ++d) r.normal[d] = n[d] / length;
+  }
+  const Vec diff = sub(p, r.point);
+  r.distance2 = dot(diff, diff);
+  return r;
+}
+
+bool contains(const std::array<std::int32_t, 4>& s, std::int32_t node) {
+  return s[0] == node || s[1] == node || s[2] == node || s[3] == node;
+}
+
+void evaluate_pass(ContactInterface& contact, ContactPass& pass, const solver::State& state,
+                   double dt) {
+  const ContactSurface& slave = contact.sides[pass.slave_side];
+  const ContactSurface& master = contact.sides[pass.master_side];
+  const auto& x = state.nodes.x;
+  const auto& v = state.nodes.v;
+  const auto& mass = state.nodes.mass;
+  const SegmentGrid& grid = pass.grid;
+  const std::int64_t n = static_cast<std::int64_t>(slave.nodes.size());
+  const double soft_dt = contact.soft_dt;
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::int64_t j = 0; j < n; ++j) {
+    const std::int32_t node = slave.nodes[j];
+    NodeContact& result = pass.results[j];
+    double* ft = pass.tangential_force.data() + 3 * j;
+    result.segment = -1;
+    const Vec p = position(x, node);
+    std::array<std::int64_t, 3> a{}, b{};
+    Projection best;
+    std::int32_t best_segment = -1;
+    if (cell_range(grid, p, 0.0, a, b)) {
+      const std::int64_t c = a[0] + grid.dims[0] * (a[1] + grid.dims[1] * a[2]);
+      for (auto k = grid.cell_start[c]; k < grid.cell_start[c + 1]; ++k) {
+        const std::int32_t s = grid.cell_segments[k];
+        if (contains(master.segments[s], node)) continue;
+        const Projection trial = project(x, master.segments[s], p);
+        if (trial.distance2 < best.distance2 ||
+            (trial.distance2 == best.distance2 && s < best_segment)) {
+          best = trial;
+          best_segment = s;
+        }
+      }
+    }
+    bool touching = false;
+    double gap = 0.0;
+    if (best_segment >= 0) {
+      const Vec diff = sub(p, best.point);
+      const double along = dot(diff, best.normal);
+      gap = along - contact.offset;
+      const double size = master.size[best_segment];
+      Vec beside{};
+      for (int d = 0; d < 3; ++d) beside[d] = diff[d] - along * best.normal[d];
+      touching = gap < 0.0 && gap > -kDepthFraction * size && norm(beside) <= kEdgeTolerance * size;
+    }
+    if (!touching) {
+      ft[0] = ft[1] = ft[2] = 0.0;
+      continue;
+    }
+    const auto& segment = master.segments[best_segment];
+    // Stiffness (docs/contact.md): SOFT = 0, the segment's SLSFAC K A^2 / V with its side's
+    // scale (SFM, or SFS in the symmetric pass); SOFT = 1, at least the soft-constraint
+    // stiffness 0.5 SOFSCL m / dt_c^2 with m the pair's reduced mass.
+    double k = pass.master_scale * master.stiffness[best_segment];
+    const double m_slave = mass[node];
+    const double m_master = master.mass[best_segment];
+    double m_pair = m_slave;
+    if (m_slave > 0.0 && m_master > 0.0) m_pair = m_slave * m_master / (m_slave + m_master);
+    if (m_slave <= 0.0) m_pair = m_master;
+    if (contact.soft == 1 && soft_dt > 0.0) {
+      const double k_soft = 0.5 * contact.sofscl * m_pair / (soft_dt * soft_dt);
+      k = std::isinf(k) ? k_soft : std::max(k, k_soft);
+    }
+    if (std::isinf(k)) k = 0.0;  // neither side has a stiffness (rejected when building)
+    // Relative velocity of the node and the segment point at n+1/2.
+    Vec v_rel{v.x[node], v.y[node], v.z[node]};
+    for (int a4 = 0; a4 < 4; ++a4) {
+      const auto m = segment[a4];
+      v_rel[0] -= best.weight[a4] * v.x[m];
+      v_rel[1] -= best.weight[a4] * v.y[m];
+      v_rel[2] -= best.weight[a4] * v.z[m];
+    }
+    const Vec& nrm = best.normal;
+    const double vn = dot(v_rel, nrm);
+    double fn = -k * gap;
+    if (contact.vdc > 0.0 && m_pair > 0.0) {
+      // Viscous damping VDC percent of critical for the pair's oscillator (k, m_pair).
+      fn -= 0.01 * contact.vdc * 2.0 * std::sqrt(k * m_pair) * vn;
+    }
+    fn = std::max(fn, 0.0);  // contact pushes only
+    Vec force{fn * nrm[0], fn * nrm[1], fn * nrm[2]};
+    const double mu_static = contact.fs * contact.fsf;
+    if (mu_static > 0.0 || contact.fd > 0.0) {
+      Vec vt{};
+      for (int d = 0; d < 3; ++d) vt[d] = v_rel[d] - vn * nrm[d];
+      // The spring force kept from the last cycle, turned into the current tangent plane with
+      // its magnitude kept, then the trial increment -k dt v_t and the return map onto the cone.
+      Vec f{ft[0], ft[1], ft[2]};
+      const double old_magnitude = norm(f);
+      const double fn_part = dot(f, nrm);
+      for (int d = 0; d < 3; ++d) f[d] -= fn_part * nrm[d];
+      const double projected = norm(f);
+      if (projected > 0.0) {
+        for (int d = 0; d < 3; ++d) f[d] *= old_magnitude / projected;
+      }
+      for (int d = 0; d < 3; ++d) f[d] -= k * dt * vt[d];
+      const double mu =
+          contact.fsf * (contact.fd + (contact.fs - contact.fd) * std::exp(-contact.dc * norm(vt)));
+      const double cap = mu * fn;
+      const double magnitude = norm(f);
+      if (magnitude > cap && magnitude > 0.0) {
+        for (int d = 0; d < 3; ++d) f[d] *= cap / magnitude;
+      }
+      for (int d = 0; d < 3; ++d) {
+        ft[d] = f[d];
+        force[d] += f[d];
+      }
+    } else {
+      ft[0] = ft[1] = ft[2] = 0.0;
+    }
+    result.segment = best_segment;
+    for (int a4 = 0; a4 < 4; ++a4) result.weight[a4] = best.weight[a4];
+    for (int d = 0; d < 3; ++d) result.force[d] = force[d];
+    result.gap = gap;
+  }
+}
+
+void update_grid(ContactInterface& contact, ContactPass& pass, const solver::State& state) {
+  const ContactSurface& master = contact.sides[pass.master_side];
+  SegmentGrid& grid = pass.grid;
+  if (!grid.built || moved_since_build(grid, master, state) > grid.slack) {
+    build_grid(grid, master, master, state);
+  }
+}
+
+}  // namespace
+
+ContactSystem build_contacts(const model::Model& model, const solver::NodeIndex& node_index,
+                             const solver::State& state) {
+  ContactSystem system;
+  std::set<std::int32_t> all_nodes;
+  for (const auto& c : model.contacts) {
+    ContactInterface contact;
+    contact.number = c.number;
+    contact.id = c.id;
+    contact.heading = c.heading;
+    contact.kind = c.kind;
+    contact.fs = c.fs;
+    contact.fd = c.fd;
+    contact.dc = c.dc;
+    contact.vdc = c.vdc;
+    contact.fsf = c.fsf;
+    contact.birth = c.birth;
+    contact.death = c.death;
+    contact.offset = 0.5 * (c.sst + c.mst);
+    contact.soft = c.soft;
+    contact.sofscl = c.sofscl;
+    contact.where = c.where;
+    const bool single = c.kind == model::ContactKind::SingleSurface;
+    contact.sides[0] = build_side(model, node_index, state, c, c.ssid, c.sstyp, "SSID");
+    contact.sides[1] = single ? contact.sides[0]
+                              : build_side(model, node_index, state, c, c.msid, c.mstyp, "MSID");
+    if (contact.sides[1].segments.empty()) {
+      throw InputError(model::context_of(c.where, "MSID"), "the master side has no segments");
+    }
+    auto add_pass = [&](int slave_side, int master_side) {
+      ContactPass pass;
+      pass.slave_side = slave_side;
+      pass.master_side = master_side;
+      pass.slave_scale = slave_side == 0 ? c.sfs : c.sfm;
+      pass.master_scale = master_side == 0 ? c.sfs : c.sfm;
+      const ContactSurface& master = contact.sides[master_side];
+      const ContactSurface& slave = contact.sides[slave_side];
+      bool stiff = false;
+      for (const double k : master.stiffness) stiff |= !std::isinf(k);
+      for (const double k : slave.node_stiffness) stiff |= !std::isinf(k);
+      if (!stiff && c.soft != 1) {
+        throw InputError(model::context_of(c.where, "SOFT"),
+                         "neither side of the contact has a bulk modulus to take the penalty "
+                         "stiffness from (give E and PR on the materials, or SOFT = 1)");
+      }
+      // Grid: nodes within reach (thickness offset plus the deepest penetration considered)
+      // of a segment find it; the grid is rebuilt after the segments moved half a segment.
+      const double reach = contact.offset + kDepthFraction * master.max_size;
+      pass.grid.slack = 0.5 * master.max_size;
+      pass.grid.expansion = reach + pass.grid.slack + 1e-9 * master.max_size;
+      pass.results.resize(slave.nodes.size());
+      pass.tangential_force.assign(3 * slave.nodes.size(), 0.0);
+      contact.passes.push_back(std::move(pass));
+    };
+    add_pass(0, 1);
+    if (c.kind == model::ContactKind::SurfaceToSurface) add_pass(1, 0);
+    for (const auto& side : contact.sides) all_nodes.insert(side.nodes.begin(), side.nodes.end());
+    system.interfaces.push_back(std::move(contact));
+  }
+  system.nodes.assign(all_nodes.begin(), all_nodes.end());
+  if (!system.interfaces.empty()) system.force.resize(state.nodes.size());
+  return system;
+}
+
+void compute_contact_forces(ContactSystem& system, const solver::State& state, double dt) {
+  if (system.empty()) return;
+  auto& f = system.force;
+  for (const auto i : system.nodes) f.x[i] = f.y[i] = f.z[i] = 0.0;
+  const double t = state.time;
+  for (auto& contact : system.interfaces) {
+    contact.slave_force = {0.0, 0.0, 0.0};
+    contact.active_nodes = 0;
+    for (auto& pass : contact.passes) update_grid(contact, pass, state);
+    const bool alive = t >= contact.birth && t <= contact.death;
+    if (!alive) {
+      for (auto& pass : contact.passes) {
+        std::fill(pass.tangential_force.begin(), pass.tangential_force.end(), 0.0);
+        for (auto& r : pass.results) r.segment = -1;
+      }
+      continue;
+    }
+    if (contact.soft == 1 && contact.soft_dt == 0.0 && dt > 0.0) contact.soft_dt = dt;
+    for (auto& pass : contact.passes) {
+      evaluate_pass(contact, pass, state, dt);
+      // Gather in slave-node order: the same sums for any number of threads.
+      const ContactSurface& slave = contact.sides[pass.slave_side];
+      const ContactSurface& master = contact.sides[pass.master_side];
+      const double sign = pass.slave_side == 0 ? 1.0 : -1.0;
+      for (std::size_t j = 0; j < slave.nodes.size(); ++j) {
+        const NodeContact& r = pass.results[j];
+        if (r.segment < 0) continue;
+        ++contact.active_nodes;
+        const auto node = slave.nodes[j];
+        f.x[node] += r.force[0];
+        f.y[node] += r.force[1];
+        f.z[node] += r.force[2];
+        const auto& segment = master.segments[r.segment];
+        for (int a = 0; a < 4; ++a) {
+          f.x[segment[a]] -= r.weight[a] * r.force[0];
+          f.y[segment[a]] -= r.weight[a] * r.force[1];
+          f.z[segment[a]] -= r.weight[a] * r.force[2];
+        }
+        for (int d = 0; d < 3; ++d) contact.slave_force[d] += sign * r.force[d];
+      }
+    }
+  }
+}
+
+void add_contact_forces(const ContactSystem& system, solver::State& state) {
+  if (system.empty()) return;
+  auto& f = state.nodes.f_ext;
+  for (const auto i : system.nodes) {
+    f.x[i] += system.force.x[i];
+    f.y[i] += system.force.y[i];
+    f.z[i] += system.force.z[i];
+  }
+}
+
+double resultant_force(const ContactSystem& system, model::Id contact_id) {
+  for (const auto& contact : system.interfaces) {
+    if (contact.id != contact_id) continue;
+    const auto& f = contact.slave_force;
+    return std::sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+  }
+  return -1.0;
+}
+
+bool within_offset(const ContactSystem& system, model::Id contact_id, double offset,
+                   const std::vector<model::Id>& parts, const solver::State& state) {
+  const ContactInterface* contact = nullptr;
+  for (const auto& c : system.interfaces) {
+    if (c.id == contact_id) contact = &c;
+  }
+  if (!contact || contact->passes.empty()) return false;
+  const ContactPass& pass = contact->passes.front();
+  const ContactSurface& slave = contact->sides[pass.slave_side];
+  const ContactSurface& master = contact->sides[pass.master_side];
+  auto named = [&](model::Id pid) {
+    return std::find(parts.begin(), parts.end(), pid) != parts.end();
+  };
+  bool master_named = false;
+  for (const auto pid : master.part) master_named |= named(pid);
+  const auto& x = state.nodes.x;
+  const SegmentGrid& grid = pass.grid;
+  const double offset2 = offset * offset;
+  for (std::size_t j = 0; j < slave.nodes.size(); ++j) {
+    const bool node_named = named(slave.node_part[j]);
+    if (!node_named && !master_named) continue;
+    const auto node = slave.nodes[j];
+    const Vec p = position(x, node);
+    auto close = [&](std::int32_t s) {
+      if (!node_named && !named(master.part[s])) return false;
+      if (contains(master.segments[s], node)) return false;
+      return project(x, master.segments[s], p).distance2 < offset2;
+    };
+    if (!grid.built) {  // before the first evaluation: every segment
+      for (std::size_t s = 0; s < master.segments.size(); ++s) {
+        if (close(static_cast<std::int32_t>(s))) return true;
+      }
+      continue;
+    }
+    std::array<std::int64_t, 3> a{}, b{};
+    if (!cell_range(grid, p, offset, a, b)) continue;
+    const std::int64_t stamp = ++grid.stamp;
+    for (auto k = a[2]; k <= b[2]; ++k)
+      for (auto jj = a[1]; jj <= b[1]; ++jj)
+        for (auto i = a[0]; i <= b[0]; ++i) {
+          const std::int64_t c = i + grid.dims[0] * (jj + grid.dims[1] * k);
+          for (auto q = grid.cell_start[c]; q < grid.cell_start[c + 1]; ++q) {
+            const std::int32_t s = grid.cell_segments[q];
+            if (grid.visit_stamp[s] == stamp) continue;
+            grid.visit_stamp[s] = stamp;
+            if (close(s)) return true;
+          }
+        }
+  }
+  return false;
+}
+
+}  // namespace rf::contact

@@ -1,0 +1,135 @@
+// Penalty contact between surfaces of solid parts (*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE,
+// _NODES_TO_SURFACE, _ONE_WAY_SURFACE_TO_SURFACE, _SINGLE_SURFACE).
+//
+// Node-to-segment penalty method (LS-DYNA Theory Manual, "Contact-Impact Algorithm", penalty
+// method; Hallquist, Goudreau & Benson, CMAME 51 (1985) 107-137): every slave node is projected
+// on the nearest master segment (bilinear quadrilateral), and a node behind the segment by
+// g < 0 gets the force k |g| along the segment's outward normal, the segment's nodes the
+// opposite force distributed by the bilinear shape functions at the projection. Surface-to-
+// surface contact runs this twice with the sides exchanged (symmetric treatment), one-way and
+// nodes-to-surface once, single surface once with the surface against itself. Coulomb friction
+// uses an elastic tangential spring with a return map onto the friction cone; viscous damping
+// (VDC) acts along the normal. Forces are evaluated at x^{n+1} with v^{n+1/2} and added to
+// f_ext, so rigid bodies gather the forces on their nodes like any other nodal force. Node
+// positions are read from the state arrays every cycle: any node moved by any means (element,
+// rigid body, flexible body) takes part.
+//
+// The broad phase is a bucket sort of the master segments on a uniform grid, rebuilt when the
+// master nodes have moved farther than the grid's slack since the last build (O(n) build, O(1)
+// lookup per slave node). Results are deterministic for any thread count: each slave node's
+// force is computed independently, the reactions are gathered in slave-node order.
+// Theory, stiffness formulas, energy accounting and choices: docs/contact.md.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "model/model.hpp"
+#include "solver/build_state.hpp"
+#include "solver/state.hpp"
+
+namespace rf::contact {
+
+// Segments (bilinear quadrilaterals, triangles repeat their third node) of one contact side,
+// ordered so that (x2 - x1) x (x4 - x1) points out of the solid.
+struct ContactSurface {
+  std::vector<std::array<std::int32_t, 4>> segments;  // dense node indices
+  std::vector<double> stiffness;  // SOFT = 0 penalty stiffness, SLSFAC K A^2 / V (scale incl.)
+  std::vector<double> size;       // sqrt of the segment area at the start
+  std::vector<model::Id> part;    // part of the element the segment bounds
+  std::vector<double> mass;       // mean lumped mass of the segment's nodes (SOFT = 1)
+  // Distinct nodes of the side (ascending): segment nodes, or a node set (NODES_TO_SURFACE).
+  std::vector<std::int32_t> nodes;
+  std::vector<double> node_stiffness;  // smallest stiffness of the node's segments (inf: none)
+  std::vector<model::Id> node_part;    // part of the node's first segment (or element)
+  double max_size = 0.0;
+};
+
+// Uniform-grid bucket sort of a surface's segments. Each segment is listed in every cell that
+// its bounding box, grown by `expansion`, overlaps (the box at the build positions).
+struct SegmentGrid {
+  double cell = 0.0;
+  std::array<double, 3> origin{};
+  std::array<std::int64_t, 3> dims{};
+  std::vector<std::int64_t> cell_start;  // CSR over cells
+  std::vector<std::int32_t> cell_segments;
+  std::vector<std::int32_t> fill;  // scratch
+  double expansion = 0.0;
+  double slack = 0.0;  // rebuild when a segment node moved farther than this since the build
+  std::vector<double> built_x, built_y, built_z;  // positions of the surface nodes at the build
+  bool built = false;
+  std::int64_t rebuilds = 0;
+  mutable std::vector<std::int64_t> visit_stamp;  // per segment: within_offset de-duplication
+  mutable std::int64_t stamp = 0;
+};
+
+// What one slave node found in the last evaluation.
+struct NodeContact {
+  std::int32_t segment = -1;  // master segment in contact, -1: none
+  double weight[4] = {0, 0, 0, 0};
+  double force[3] = {0, 0, 0};  // on the slave node
+  double gap = 0.0;
+};
+
+// One search direction: the nodes of one side against the segments of the other.
+struct ContactPass {
+  int slave_side = 0;         // 0: the interface's slave surface, 1: its master surface
+  int master_side = 1;        // whose segments are searched
+  double slave_scale = 1.0;   // SFS or SFM of the node's side
+  double master_scale = 1.0;  // SFM or SFS of the segment's side
+  SegmentGrid grid;
+  std::vector<NodeContact> results;      // parallel to the slave side's nodes
+  std::vector<double> tangential_force;  // 3 per slave node: the friction spring (state)
+};
+
+struct ContactInterface {
+  int number = 0;
+  model::Id id = 0;
+  std::string heading;
+  model::ContactKind kind = model::ContactKind::SurfaceToSurface;
+  double fs = 0.0, fd = 0.0, dc = 0.0, vdc = 0.0, fsf = 1.0;
+  double birth = 0.0, death = 1e20;
+  double offset = 0.0;  // (SST + MST) / 2: the surfaces touch at this distance
+  int soft = 0;
+  double sofscl = 0.1;
+  double soft_dt = 0.0;  // SOFT = 1: the time step of the first evaluation with a step
+  std::array<ContactSurface, 2> sides;  // slave, master (single surface: both the same)
+  std::vector<ContactPass> passes;
+  // Last evaluation: resultant force on the slave side's nodes (the master side's is its
+  // negative), and how many nodes were in contact.
+  std::array<double, 3> slave_force{};
+  std::int64_t active_nodes = 0;
+  model::SourceLocation where;
+};
+
+struct ContactSystem {
+  std::vector<ContactInterface> interfaces;
+  solver::Vec3Array force;          // nodal contact forces of the last evaluation
+  std::vector<std::int32_t> nodes;  // every node any interface touches (ascending)
+  bool empty() const { return interfaces.empty(); }
+};
+
+// The contacts of the model with their surfaces (exterior faces of solid parts, higher-order
+// faces split into the linear sub-quads of their node grid). Throws rf::InputError for a
+// segment that bounds no solid element.
+ContactSystem build_contacts(const model::Model& model, const solver::NodeIndex& node_index,
+                             const solver::State& state);
+
+// The contact forces at the current positions x^{n+1}, velocities v^{n+1/2} and time t^{n+1}
+// (`dt` the step just taken, for the friction slip; 0 at the start). Fills system.force; does
+// not touch f_ext (add_contact_forces does). Call once per cycle: friction state advances.
+void compute_contact_forces(ContactSystem& system, const solver::State& state, double dt);
+// f_ext += the contact forces of the last evaluation (after the external forces were formed).
+void add_contact_forces(const ContactSystem& system, solver::State& state);
+
+// Query for part switching (CODE 2/4): |resultant contact force on the slave side| of the
+// interface with ID `contact_id` at the last evaluation; -1 if there is no such interface.
+double resultant_force(const ContactSystem& system, model::Id contact_id);
+// OFFSET of part switching (CODE 4): whether a node of one of `parts` on either side of the
+// interface is closer than `offset` to a segment of the other side (or a node of the other side
+// closer than `offset` to a segment of one of `parts`), at the current positions.
+bool within_offset(const ContactSystem& system, model::Id contact_id, double offset,
+                   const std::vector<model::Id>& parts, const solver::State& state);
+
+}  // namespace rf::contact
