@@ -24,6 +24,9 @@ constexpr double kEdgeTolerance = 0.05;
 // Nodes deeper than this fraction of the segment size are not pushed back (they came from the
 // other side, or the surface is thinner than the penetration: LS-DYNA releases them as well).
 constexpr double kDepthFraction = 0.5;
+// A segment faces a node when their outward normals make an angle above 90 degrees (cosine
+// below minus this).
+constexpr double kFacingTolerance = 1e-6;
 
 using Vec = std::array<double, 3>;
 
@@ -177,9 +180,10 @@ void add_face_segments(const solver::State& state, const FaceRef& face, ContactS
                                                             : kInfinity);
       surface.size.push_back(std::sqrt(area));
       surface.part.push_back(block.part_id);
+      // A rigid part's segment moves with the whole body: as heavy as it gets.
       double m = 0.0;
       for (const auto node : q) m += state.nodes.mass[node] / 4.0;
-      surface.mass.push_back(m);
+      surface.mass.push_back(block.rigid ? kInfinity : m);
     }
   }
 }
@@ -224,6 +228,52 @@ void finish_surface(const solver::State& state, ContactSurface& surface) {
     }
     surface.node_stiffness.push_back(kInfinity);
     surface.node_part.push_back(block_part[n]);
+  }
+  // Node -> segment incidence (CSR), segments in ascending order for each node.
+  const std::size_t nn = surface.nodes.size();
+  surface.node_segment_start.assign(nn + 1, 0);
+  auto slot = [&](std::int32_t node) {
+    const auto it = std::lower_bound(surface.nodes.begin(), surface.nodes.end(), node);
+    return static_cast<std::size_t>(it - surface.nodes.begin());
+  };
+  for (const auto& segment : surface.segments) {
+    for (int a = 0; a < 4; ++a) {
+      if (a == 3 && segment[3] == segment[2]) continue;
+      ++surface.node_segment_start[slot(segment[a]) + 1];
+    }
+  }
+  for (std::size_t j = 0; j < nn; ++j) {
+    surface.node_segment_start[j + 1] += surface.node_segment_start[j];
+  }
+  surface.node_segments.resize(static_cast<std::size_t>(surface.node_segment_start[nn]));
+  std::vector<std::int64_t> fill(surface.node_segment_start.begin(),
+                                 surface.node_segment_start.end() - 1);
+  for (std::size_t s = 0; s < surface.segments.size(); ++s) {
+    const auto& segment = surface.segments[s];
+    for (int a = 0; a < 4; ++a) {
+      if (a == 3 && segment[3] == segment[2]) continue;
+      surface.node_segments[fill[slot(segment[a])]++] = static_cast<std::int32_t>(s);
+    }
+  }
+  surface.node_normal.assign(3 * nn, 0.0);
+}
+
+// Outward node normals from the segments' area vectors at the current positions.
+void update_node_normals(ContactSurface& surface, const solver::Vec3Array& x,
+                         std::int64_t parallel_minimum) {
+  const std::int64_t nn = static_cast<std::int64_t>(surface.nodes.size());
+#pragma omp parallel for schedule(static) if (nn >= parallel_minimum)
+  for (std::int64_t j = 0; j < nn; ++j) {
+    Vec sum{0, 0, 0};
+    for (auto k = surface.node_segment_start[j]; k < surface.node_segment_start[j + 1]; ++k) {
+      const auto& q = surface.segments[surface.node_segments[k]];
+      const Vec n = diagonal_normal(position(x, q[0]), position(x, q[1]), position(x, q[2]),
+                                    position(x, q[3]));
+      for (int d = 0; d < 3; ++d) sum[d] += n[d];
+    }
+    const double length = norm(sum);
+    for (int d = 0; d < 3; ++d)
+      surface.node_normal[3 * j + d] = length > 0.0 ? sum[d] / length : 0.0;
   }
 }
 
@@ -373,11 +423,11 @@ void build_grid(SegmentGrid& grid, const ContactSurface& master, const ContactSu
 
 // Largest displacement of the searched surface's nodes since the grid was built.
 double moved_since_build(const SegmentGrid& grid, const ContactSurface& moved,
-                         const solver::State& state) {
+                         const solver::State& state, std::int64_t parallel_minimum) {
   const auto& x = state.nodes.x;
   const std::int64_t n = static_cast<std::int64_t>(moved.nodes.size());
   double worst2 = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : worst2)
+#pragma omp parallel for schedule(static) reduction(max : worst2) if (n >= parallel_minimum)
   for (std::int64_t j = 0; j < n; ++j) {
     const auto i = moved.nodes[j];
     const double dx = x.x[i] - grid.built_x[j];
@@ -473,7 +523,7 @@ bool contains(const std::array<std::int32_t, 4>& s, std::int32_t node) {
 }
 
 void evaluate_pass(ContactInterface& contact, ContactPass& pass, const solver::State& state,
-                   double dt) {
+                   double dt, std::int64_t parallel_minimum) {
   const ContactSurface& slave = contact.sides[pass.slave_side];
   const ContactSurface& master = contact.sides[pass.master_side];
   const auto& x = state.nodes.x;
@@ -482,7 +532,7 @@ void evaluate_pass(ContactInterface& contact, ContactPass& pass, const solver::S
   const SegmentGrid& grid = pass.grid;
   const std::int64_t n = static_cast<std::int64_t>(slave.nodes.size());
   const double soft_dt = contact.soft_dt;
-#pragma omp parallel for schedule(dynamic, 256)
+#pragma omp parallel for schedule(dynamic, 256) if (n >= parallel_minimum)
   for (std::int64_t j = 0; j < n; ++j) {
     const std::int32_t node = slave.nodes[j];
     NodeContact& result = pass.results[j];
@@ -492,12 +542,18 @@ void evaluate_pass(ContactInterface& contact, ContactPass& pass, const solver::S
     std::array<std::int64_t, 3> a{}, b{};
     Projection best;
     std::int32_t best_segment = -1;
+    const Vec node_normal{slave.node_normal[3 * j], slave.node_normal[3 * j + 1],
+                          slave.node_normal[3 * j + 2]};
+    const bool has_normal = dot(node_normal, node_normal) > 0.0;
     if (cell_range(grid, p, 0.0, a, b)) {
       const std::int64_t c = a[0] + grid.dims[0] * (a[1] + grid.dims[1] * a[2]);
       for (auto k = grid.cell_start[c]; k < grid.cell_start[c + 1]; ++k) {
         const std::int32_t s = grid.cell_segments[k];
         if (contains(master.segments[s], node)) continue;
         const Projection trial = project(x, master.segments[s], p);
+        // Only segments that face the node's own surface (not the sides of the body it is
+        // pressed against: an edge node lies in the plane of the other body's side faces).
+        if (has_normal && dot(trial.normal, node_normal) > -kFacingTolerance) continue;
         if (trial.distance2 < best.distance2 ||
             (trial.distance2 == best.distance2 && s < best_segment)) {
           best = trial;
@@ -521,19 +577,43 @@ void evaluate_pass(ContactInterface& contact, ContactPass& pass, const solver::S
       continue;
     }
     const auto& segment = master.segments[best_segment];
-    // Stiffness (docs/contact.md): SOFT = 0, the segment's SLSFAC K A^2 / V with its side's
-    // scale (SFM, or SFS in the symmetric pass); SOFT = 1, at least the soft-constraint
-    // stiffness 0.5 SOFSCL m / dt_c^2 with m the pair's reduced mass.
+    // Stiffness (docs/contact.md): SOFT = 0, the smaller of the master segment's SLSFAC K A^2 / V
+    // and that of the node's own segment that faces it most directly, each with its side's
+    // scale (SFM / SFS); SOFT = 1, at least the soft-constraint stiffness 0.5 SOFSCL m / dt_c^2
+    // with m the pair's reduced mass.
     double k = pass.master_scale * master.stiffness[best_segment];
+    {
+      double most_opposed = 2.0;
+      double k_slave = kInfinity;
+      for (auto q = slave.node_segment_start[j]; q < slave.node_segment_start[j + 1]; ++q) {
+        const auto& own = slave.segments[slave.node_segments[q]];
+        const Vec n_own = diagonal_normal(position(x, own[0]), position(x, own[1]),
+                                          position(x, own[2]), position(x, own[3]));
+        const double length = norm(n_own);
+        if (!(length > 0.0)) continue;
+        const double facing = dot(n_own, best.normal) / length;
+        if (facing < most_opposed) {
+          most_opposed = facing;
+          k_slave = slave.stiffness[slave.node_segments[q]];
+        }
+      }
+      k = std::min(k, pass.slave_scale * k_slave);
+    }
     const double m_slave = mass[node];
     const double m_master = master.mass[best_segment];
     double m_pair = m_slave;
-    if (m_slave > 0.0 && m_master > 0.0) m_pair = m_slave * m_master / (m_slave + m_master);
-    if (m_slave <= 0.0) m_pair = m_master;
+    if (m_slave > 0.0 && m_master > 0.0 && !std::isinf(m_master)) {
+      m_pair = m_slave * m_master / (m_slave + m_master);
+    }
+    if (m_slave <= 0.0) m_pair = std::isinf(m_master) ? 0.0 : m_master;
     if (contact.soft == 1 && soft_dt > 0.0) {
       const double k_soft = 0.5 * contact.sofscl * m_pair / (soft_dt * soft_dt);
       k = std::isinf(k) ? k_soft : std::max(k, k_soft);
     }
+    // Stability: the pair's spring must not raise the frequency of the nodes beyond what the
+    // element step leaves (omega_e dt <= 0.9 * 2): k dt^2 / m <= 0.5 leaves (omega dt)^2 <= 3.74
+    // even with a symmetric second pass, below the limit 4 (docs/contact.md).
+    if (dt > 0.0 && m_pair > 0.0) k = std::min(k, pass.stability_scale * m_pair / (dt * dt));
     if (std::isinf(k)) k = 0.0;  // neither side has a stiffness (rejected when building)
     // Relative velocity of the node and the segment point at n+1/2.
     Vec v_rel{v.x[node], v.y[node], v.z[node]};
@@ -588,10 +668,11 @@ void evaluate_pass(ContactInterface& contact, ContactPass& pass, const solver::S
   }
 }
 
-void update_grid(ContactInterface& contact, ContactPass& pass, const solver::State& state) {
+void update_grid(ContactInterface& contact, ContactPass& pass, const solver::State& state,
+                 std::int64_t parallel_minimum) {
   const ContactSurface& master = contact.sides[pass.master_side];
   SegmentGrid& grid = pass.grid;
-  if (!grid.built || moved_since_build(grid, master, state) > grid.slack) {
+  if (!grid.built || moved_since_build(grid, master, state, parallel_minimum) > grid.slack) {
     build_grid(grid, master, master, state);
   }
 }
@@ -652,7 +733,10 @@ ContactSystem build_contacts(const model::Model& model, const solver::NodeIndex&
       contact.passes.push_back(std::move(pass));
     };
     add_pass(0, 1);
-    if (c.kind == model::ContactKind::SurfaceToSurface) add_pass(1, 0);
+    if (c.kind == model::ContactKind::SurfaceToSurface) {
+      add_pass(1, 0);
+      for (auto& pass : contact.passes) pass.stability_scale = 0.25;
+    }
     for (const auto& side : contact.sides) all_nodes.insert(side.nodes.begin(), side.nodes.end());
     system.interfaces.push_back(std::move(contact));
   }
@@ -669,7 +753,7 @@ void compute_contact_forces(ContactSystem& system, const solver::State& state, d
   for (auto& contact : system.interfaces) {
     contact.slave_force = {0.0, 0.0, 0.0};
     contact.active_nodes = 0;
-    for (auto& pass : contact.passes) update_grid(contact, pass, state);
+    for (auto& pass : contact.passes) update_grid(contact, pass, state, system.parallel_minimum);
     const bool alive = t >= contact.birth && t <= contact.death;
     if (!alive) {
       for (auto& pass : contact.passes) {
@@ -679,8 +763,16 @@ void compute_contact_forces(ContactSystem& system, const solver::State& state, d
       continue;
     }
     if (contact.soft == 1 && contact.soft_dt == 0.0 && dt > 0.0) contact.soft_dt = dt;
+    for (int side = 0; side < 2; ++side) {
+      bool searched = false;
+      for (const auto& pass : contact.passes) searched |= pass.slave_side == side;
+      if (side == 1 && contact.kind == model::ContactKind::SingleSurface) searched = false;
+      if (searched && !contact.sides[side].segments.empty()) {
+        update_node_normals(contact.sides[side], state.nodes.x, system.parallel_minimum);
+      }
+    }
     for (auto& pass : contact.passes) {
-      evaluate_pass(contact, pass, state, dt);
+      evaluate_pass(contact, pass, state, dt, system.parallel_minimum);
       // Gather in slave-node order: the same sums for any number of threads.
       const ContactSurface& slave = contact.sides[pass.slave_side];
       const ContactSurface& master = contact.sides[pass.master_side];

@@ -43,6 +43,12 @@ struct ContactSurface {
   std::vector<std::int32_t> nodes;
   std::vector<double> node_stiffness;  // smallest stiffness of the node's segments (inf: none)
   std::vector<model::Id> node_part;    // part of the node's first segment (or element)
+  // Segments of each node (CSR over `nodes`) and the node's outward normal at the last
+  // evaluation (3 per node, the normalised sum of its segments' area vectors; zero for nodes
+  // without segments). A node only meets segments that face it (n_node . n_segment < 0).
+  std::vector<std::int64_t> node_segment_start;
+  std::vector<std::int32_t> node_segments;
+  std::vector<double> node_normal;
   double max_size = 0.0;
 };
 
@@ -78,6 +84,8 @@ struct ContactPass {
   int master_side = 1;        // whose segments are searched
   double slave_scale = 1.0;   // SFS or SFM of the node's side
   double master_scale = 1.0;  // SFM or SFS of the segment's side
+  // Largest k dt^2 / m of a pair (stability): 0.5, or 0.25 for each of two symmetric passes.
+  double stability_scale = 0.5;
   SegmentGrid grid;
   std::vector<NodeContact> results;      // parallel to the slave side's nodes
   std::vector<double> tangential_force;  // 3 per slave node: the friction spring (state)
@@ -107,6 +115,9 @@ struct ContactSystem {
   std::vector<ContactInterface> interfaces;
   solver::Vec3Array force;          // nodal contact forces of the last evaluation
   std::vector<std::int32_t> nodes;  // every node any interface touches (ascending)
+  // Loops over fewer items run on one thread (a parallel region costs more than they do);
+  // tests set 0 to exercise the parallel path on small models.
+  std::int64_t parallel_minimum = 2048;
   bool empty() const { return interfaces.empty(); }
 };
 

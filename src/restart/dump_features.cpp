@@ -157,6 +157,70 @@ void read_walls(contact::RigidWallSystem& walls, const Group& g) {
   }
 }
 
+// Contacts: per interface soft_dt, slave force x y z, active nodes; the friction springs of
+// every pass (3 per slave node, passes in order); the nodal contact forces of the last
+// evaluation (3 per contact node), which the first cycle after the restart applies and counts.
+// The search grids are rebuilt: the contact found does not depend on them (docs/contact.md).
+constexpr int kContactNumbers = 5;
+
+void write_contacts(const contact::ContactSystem& contacts, const Group& g) {
+  std::vector<double> numbers, springs, forces;
+  for (const auto& c : contacts.interfaces) {
+    for (const double v : {c.soft_dt, c.slave_force[0], c.slave_force[1], c.slave_force[2],
+                           static_cast<double>(c.active_nodes)}) {
+      numbers.push_back(v);
+    }
+    for (const auto& pass : c.passes) {
+      springs.insert(springs.end(), pass.tangential_force.begin(), pass.tangential_force.end());
+    }
+  }
+  for (const auto i : contacts.nodes) {
+    forces.push_back(contacts.force.x[i]);
+    forces.push_back(contacts.force.y[i]);
+    forces.push_back(contacts.force.z[i]);
+  }
+  g.set("count", static_cast<std::int64_t>(contacts.interfaces.size()));
+  g.write("numbers", span_of(numbers));
+  g.write("friction_springs", span_of(springs));
+  g.write("nodal_forces", span_of(forces));
+}
+
+void read_contacts(contact::ContactSystem& contacts, const Group& g) {
+  expect_count(g, "count", static_cast<std::size_t>(g.get_int("count")),
+               contacts.interfaces.size());
+  const auto numbers = g.read_doubles("numbers");
+  const auto springs = g.read_doubles("friction_springs");
+  const auto forces = g.read_doubles("nodal_forces");
+  expect_count(g, "numbers", numbers.size(), kContactNumbers * contacts.interfaces.size());
+  expect_count(g, "nodal_forces", forces.size(), 3 * contacts.nodes.size());
+  std::size_t spring_count = 0;
+  for (const auto& c : contacts.interfaces) {
+    for (const auto& pass : c.passes) spring_count += pass.tangential_force.size();
+  }
+  expect_count(g, "friction_springs", springs.size(), spring_count);
+  std::size_t at = 0;
+  for (std::size_t k = 0; k < contacts.interfaces.size(); ++k) {
+    auto& c = contacts.interfaces[k];
+    const double* n = &numbers[kContactNumbers * k];
+    c.soft_dt = n[0];
+    c.slave_force = {n[1], n[2], n[3]};
+    c.active_nodes = static_cast<std::int64_t>(n[4]);
+    for (auto& pass : c.passes) {
+      std::copy(springs.begin() + static_cast<long>(at),
+                springs.begin() + static_cast<long>(at + pass.tangential_force.size()),
+                pass.tangential_force.begin());
+      at += pass.tangential_force.size();
+      pass.grid.built = false;
+    }
+  }
+  for (std::size_t j = 0; j < contacts.nodes.size(); ++j) {
+    const auto i = contacts.nodes[j];
+    contacts.force.x[i] = forces[3 * j];
+    contacts.force.y[i] = forces[3 * j + 1];
+    contacts.force.z[i] = forces[3 * j + 2];
+  }
+}
+
 void write_sensors(const sensor::SensorSystem& s, const Group& g) {
   g.write("values", span_of(s.values));
   std::vector<double> velocities;
@@ -255,6 +319,7 @@ void read_sensors(sensor::SensorSystem& s, const Group& g) {
 void SimulationAccess::write_features(Simulation& s, const Group& g) {
   write_switching(s, g.create_group("switching"), s.switcher_.get(), s.automatic_switching_.get());
   write_walls(s.walls_, g.create_group("walls"));
+  if (!s.contacts_.empty()) write_contacts(s.contacts_, g.create_group("contacts"));
   if (s.sensors_) write_sensors(*s.sensors_, g.create_group("sensors"));
 }
 
@@ -267,6 +332,12 @@ void SimulationAccess::read_features(Simulation& s, const Group& g) {
   read_switching(sw, s.switcher_.get(), s.automatic_switching_.get(), s.state_.nodes.size());
   if (s.switcher_) s.energy_.frozen_energy = s.switcher_->frozen_energy();
   read_walls(s.walls_, g.group("walls"));
+  if (!s.contacts_.empty()) {
+    if (!g.has("contacts")) {
+      g.fail("contacts", "is missing: the dump was written without contacts, the deck has some");
+    }
+    read_contacts(s.contacts_, g.group("contacts"));
+  }
   if (s.sensors_ && g.has("sensors")) read_sensors(*s.sensors_, g.group("sensors"));
 }
 

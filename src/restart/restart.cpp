@@ -136,6 +136,11 @@ Restarted restart_from_dump(const RestartOptions& options) {
   sim_options.continuation.rwforc =
       continue_csv(dump_dir, result.output_directory, same, "rwforc.csv",
                    output.get_int("rwforc_bytes"), result.warnings);
+  sim_options.continuation.rcforc =
+      output.has_attribute("rcforc_bytes")
+          ? continue_csv(dump_dir, result.output_directory, same, "rcforc.csv",
+                         output.get_int("rcforc_bytes"), result.warnings)
+          : -1;
   if (!same && options.write_fields) {
     // Earlier frames, so that the new directory's d3plot.pvd is complete.
     for (const std::string& name : SimulationAccess::read_frames(output).files) {

@@ -52,6 +52,7 @@ void SimulationAccess::write_members(Simulation& s, const Group& g) {
   g.set("energy_switch", e.switch_energy);
   g.set("energy_frozen", e.frozen_energy);
   g.set("energy_rigidwall_work", e.rigidwall_work);
+  g.set("energy_contact", e.contact_energy);
   g.set("switch_dt_cap", s.switch_dt_cap_);
   for (int k = 0; k < 3; ++k) {
     g.set(fmt::format("energy_momentum_{}", k), e.momentum[k]);
@@ -90,6 +91,7 @@ void SimulationAccess::read_members(Simulation& s, const Group& g) {
   e.switch_energy = g.get_double("energy_switch");
   e.frozen_energy = g.get_double("energy_frozen");
   e.rigidwall_work = g.get_double("energy_rigidwall_work");
+  e.contact_energy = g.has_attribute("energy_contact") ? g.get_double("energy_contact") : 0.0;
   s.switch_dt_cap_ = g.get_double("switch_dt_cap");
   for (int k = 0; k < 3; ++k) {
     e.momentum[k] = g.get_double(fmt::format("energy_momentum_{}", k));
@@ -106,6 +108,9 @@ void SimulationAccess::write_output(Simulation& s, const Group& g) {
   g.set("rwforc_bytes", s.rwforc_ ? s.rwforc_->flushed_size() : std::int64_t{-1});
   write_schedule(g, "rwforc", s.rwforc_schedule_.interval, s.rwforc_schedule_.next,
                  s.rwforc_schedule_.last_cycle);
+  g.set("rcforc_bytes", s.rcforc_ ? s.rcforc_->flushed_size() : std::int64_t{-1});
+  write_schedule(g, "rcforc", s.rcforc_schedule_.interval, s.rcforc_schedule_.next,
+                 s.rcforc_schedule_.last_cycle);
   write_schedule(g, "glstat", s.glstat_schedule_.interval, s.glstat_schedule_.next,
                  s.glstat_schedule_.last_cycle);
   write_schedule(g, "nodout", s.nodout_schedule_.interval, s.nodout_schedule_.next,
@@ -134,6 +139,7 @@ void SimulationAccess::read_output(Simulation& s, const Group& g) {
   read_schedule(g, "rbdout", s.rbdout_schedule_);
   read_schedule(g, "d3plot", s.d3plot_schedule_);
   read_schedule(g, "rwforc", s.rwforc_schedule_);
+  if (g.has_attribute("rcforc_bytes")) read_schedule(g, "rcforc", s.rcforc_schedule_);
   if (s.fields_) {
     const auto frames = read_frames(g);
     s.fields_->resume(frames.times, frames.files);

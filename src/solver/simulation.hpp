@@ -100,6 +100,7 @@ class Simulation {
   const contact::RigidWallSystem& rigid_walls() const { return walls_; }
   contact::RigidWallSystem& mutable_rigid_walls() { return walls_; }
   const contact::ContactSystem& contacts() const { return contacts_; }
+  contact::ContactSystem& mutable_contacts() { return contacts_; }
   // Notices found while turning the model into a state (ignored constraints, regularised
   // inertia); the reader's warnings are in the model.
   const std::vector<model::Warning>& warnings() const { return warnings_; }

@@ -182,6 +182,9 @@ const Case kCases[] = {
     {"sensor_def2rig", "", RIGIDFLEX_EXAMPLES "/sensor_def2rig.k", {}, 4e-5, 1},
     // Rigid walls: forces, impulses, work and a moving wall's motion across the dump.
     {"rigid_walls", "", RIGIDFLEX_TEST_DECKS "/rigidwall_switching_block.k", {}, 0.04, 1},
+    // Contact: friction springs, nodal contact forces and contact energy across the dump.
+    {"contact", "", RIGIDFLEX_TEST_DECKS "/contact_sliding_block.k", {}, 0.004, 1},
+    {"contact", "", RIGIDFLEX_TEST_DECKS "/contact_sliding_block.k", {}, 0.004, 2},
 };
 
 INSTANTIATE_TEST_SUITE_P(Restart, RestartBitwise, testing::ValuesIn(kCases), case_name);

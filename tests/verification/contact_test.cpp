@@ -1,0 +1,358 @@
+// Penalty contact (*CONTACT_AUTOMATIC_*) through the whole deck path, against references that
+// do not come from the solver: 1D elastic wave theory for a bar dropped flat on a rigid plate
+// (contact stress rho c v0, contact time 2 L / c, rebound at v0) and for two equal bars
+// colliding head-on (velocities exchange), the Coulomb block on an inclined plane
+// (x = g (sin a - mu cos a) t^2 / 2, friction dissipation mu N x, sticking when tan a < mu),
+// conservation of momentum and energy, and thread-count determinism.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include "contact/contact.hpp"
+#include "deck_builder.hpp"
+
+namespace rf::test {
+namespace {
+
+using Eigen::Vector3d;
+
+// A block of nx x ny x nz hexahedra of part `pid` over [0, lx] x [0, ly] x [0, lz] + `local`,
+// rotated by `tilt` (radians) about the y axis. Node IDs first_node.., element IDs
+// first_element...
+struct Block {
+  int nx = 1, ny = 1, nz = 1;
+  double lx = 1.0, ly = 1.0, lz = 1.0;
+  Vector3d local = Vector3d::Zero();
+  double tilt = 0.0;
+  int first_node = 1, first_element = 1, pid = 1;
+
+  int node(int i, int j, int k) const { return first_node + i + (nx + 1) * (j + (ny + 1) * k); }
+  int last_node() const { return node(nx, ny, nz); }
+  Vector3d position(int i, int j, int k) const {
+    const Vector3d p = Vector3d(lx * i / nx, ly * j / ny, lz * k / nz) + local;
+    const double c = std::cos(tilt), s = std::sin(tilt);
+    return Vector3d(c * p.x() + s * p.z(), p.y(), -s * p.x() + c * p.z());
+  }
+  std::string text() const {
+    std::string out = "*NODE\n";
+    for (int k = 0; k <= nz; ++k)
+      for (int j = 0; j <= ny; ++j)
+        for (int i = 0; i <= nx; ++i) {
+          const Vector3d p = position(i, j, k);
+          out += fmt::format("{},{:.17g},{:.17g},{:.17g}\n", node(i, j, k), p.x(), p.y(), p.z());
+        }
+    out += "*ELEMENT_SOLID\n";
+    int eid = first_element;
+    for (int k = 0; k < nz; ++k)
+      for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) {
+          out += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", eid++, pid, node(i, j, k),
+                             node(i + 1, j, k), node(i + 1, j + 1, k), node(i, j + 1, k),
+                             node(i, j, k + 1), node(i + 1, j, k + 1), node(i + 1, j + 1, k + 1),
+                             node(i, j + 1, k + 1));
+        }
+    return out;
+  }
+};
+
+std::string elastic(int pid, double rho, double e, double nu) {
+  return fmt::format(
+      "*PART\npart {0}\n{0},{0},{0},0,{0}\n*SECTION_SOLID\n{0},1\n*MAT_ELASTIC\n{0},{1:.17g},"
+      "{2:.17g},{3:.17g}\n*HOURGLASS\n{0},1,0.1\n",
+      pid, rho, e, nu);
+}
+
+// A rigid part held fixed (CMO 1, CON1 = CON2 = 7). Its E and PR give the contact stiffness.
+std::string fixed_rigid(int pid, double rho, double e, double nu) {
+  return fmt::format(
+      "*PART\npart {0}\n{0},{0},{0}\n*SECTION_SOLID\n{0},1\n*MAT_RIGID\n{0},{1:.17g},{2:.17g},"
+      "{3:.17g}\n1.0,7,7\n",
+      pid, rho, e, nu);
+}
+
+std::string velocity(int pid, const Vector3d& v) {
+  return fmt::format("*INITIAL_VELOCITY_GENERATION\n{},2,0,{:.17g},{:.17g},{:.17g}\n0,0,0,0,0,0\n",
+                     pid, v.x(), v.y(), v.z());
+}
+
+std::string termination(double t_end) {
+  return fmt::format("*CONTROL_TERMINATION\n{:.17g},\n", t_end);
+}
+
+// Momentum and mass of the nodes with user IDs in [first, last].
+struct PartMotion {
+  double mass = 0.0;
+  Vector3d momentum = Vector3d::Zero();
+  Vector3d centre = Vector3d::Zero();
+  Vector3d velocity() const { return momentum / mass; }
+};
+PartMotion motion(const solver::State& state, int first, int last) {
+  PartMotion m;
+  const auto& n = state.nodes;
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    if (n.id[i] < first || n.id[i] > last) continue;
+    m.mass += n.mass[i];
+    m.momentum += n.mass[i] * Vector3d(n.v.x[i], n.v.y[i], n.v.z[i]);
+    m.centre += n.mass[i] * Vector3d(n.x.x[i], n.x.y[i], n.x.z[i]);
+  }
+  m.centre /= m.mass;
+  return m;
+}
+
+std::filesystem::path fresh_directory(const std::string& name) {
+  auto dir = std::filesystem::temp_directory_path() / ("rigidflex_contact_" + name);
+  std::filesystem::remove_all(dir);
+  return dir;
+}
+
+// ---------------------------------------------------------------------------------------
+// 1. An elastic bar (nu = 0: one-dimensional) dropped flat on a fixed rigid plate at v0.
+// Wave theory: the contact stress is rho c v0 (force rho c A v0), the bar stays in contact
+// for 2 L / c and leaves at v0. The penalty spring adds compliance: the duration is a few per
+// cent longer and a little energy stays in the bar as vibration.
+
+constexpr double kRho = 1000.0, kE = 1e7, kLength = 0.1, kWidth = 0.02, kV0 = 1.0;
+
+std::string bar_drop_deck(int nz, const std::string& extra = "") {
+  Block bar;
+  bar.nx = bar.ny = 2;
+  bar.nz = nz;
+  bar.lx = bar.ly = kWidth;
+  bar.lz = kLength;
+  bar.local = Vector3d(0, 0, 0.1 * kLength / nz);  // starts a tenth of an element above
+  Block plate;
+  plate.nx = plate.ny = 4;
+  plate.nz = 1;
+  plate.lx = plate.ly = 2 * kWidth;
+  plate.lz = 0.01;
+  plate.local = Vector3d(-0.5 * kWidth, -0.5 * kWidth, -0.01);
+  plate.first_node = 100001;
+  plate.first_element = 100001;
+  plate.pid = 2;
+  const double c = std::sqrt(kE / kRho);
+  return "*KEYWORD\n" + bar.text() + plate.text() + elastic(1, kRho, kE, 0.0) +
+         fixed_rigid(2, kRho, kE, 0.0) + velocity(1, Vector3d(0, 0, -kV0)) +
+         "*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE_ID\n7,drop\n1,2,3,3\n0,0,0,0,0\n10,10\n" + extra +
+         termination(0.1 * kLength / nz / kV0 + 3.0 * kLength / c);
+}
+
+TEST(Contact, BarDroppedOnRigidPlateReboundsAsWaveTheoryPredicts) {
+  const double c = std::sqrt(kE / kRho);
+  const double contact_time = 2.0 * kLength / c;
+  const double area = kWidth * kWidth;
+  const auto dir = fresh_directory("drop");
+  auto simulation = std::make_unique<solver::Simulation>(
+      read(bar_drop_deck(40, "*DATABASE_RCFORC\n1e-5\n")),
+      solver::SimulationOptions{.output_directory = dir, .write_fields = false});
+  solver::Simulation& sim = *simulation;
+  const PartMotion start = motion(sim.state(), 1, 99999);
+  EXPECT_NEAR(start.mass, kRho * area * kLength, 1e-9 * start.mass);
+  const double ke0 = 0.5 * start.mass * kV0 * kV0;
+  ASSERT_EQ(sim.contacts().interfaces.size(), 1u);
+  const auto& contact = sim.contacts().interfaces[0];
+  EXPECT_EQ(contact.id, 7);
+  double first = -1.0, last = -1.0, peak = 0.0, impulse = 0.0, worst_ratio = 0.0;
+  double previous_force = 0.0, previous_time = 0.0;
+  while (!sim.finished()) {
+    sim.cycle();
+    const double t = sim.state().time;
+    const double fz = contact.slave_force[2];  // on the bar, from the plate
+    // Trapezoidal impulse of the force history (independent of the solver's momentum sums).
+    impulse += 0.5 * (fz + previous_force) * (t - previous_time);
+    previous_force = fz;
+    previous_time = t;
+    if (fz > 1e-3 * kRho * c * area * kV0) {
+      if (first < 0.0) first = t;
+      last = t;
+    }
+    peak = std::max(peak, fz);
+    worst_ratio = std::max(worst_ratio, std::abs(sim.energy().ratio() - 1.0));
+  }
+  const PartMotion end = motion(sim.state(), 1, 99999);
+  // Contact force rho c A v0 while the wave runs (peak within 6 per cent).
+  EXPECT_NEAR(peak, kRho * c * area * kV0, 0.06 * kRho * c * area * kV0);
+  // Contact time 2 L / c, up to 10 per cent longer for the penalty spring.
+  EXPECT_GT(last - first, 0.98 * contact_time);
+  EXPECT_LT(last - first, 1.10 * contact_time);
+  // Rebound at v0 less the energy left vibrating in the bar (under 3 per cent).
+  EXPECT_GT(end.velocity().z(), 0.97 * kV0);
+  EXPECT_LT(end.velocity().z(), 1.0 * kV0);
+  // Symmetric problem: no sideways motion, up to the bilinear segments' corner normals (a node
+  // on the edge between two segments takes the lower-numbered one: measured 1.1e-3 v0).
+  EXPECT_NEAR(end.velocity().x(), 0.0, 3e-3 * kV0);
+  EXPECT_NEAR(end.velocity().y(), 0.0, 3e-3 * kV0);
+  // Momentum transferred = impulse of the contact force history (trapezoid: 1 per cent).
+  EXPECT_NEAR(end.momentum.z() - start.momentum.z(), impulse, 0.01 * std::abs(impulse));
+  // Energy: balanced to round-off with contact energy counted; after separation the contact
+  // energy (penalty work lost) is small against the impact energy.
+  EXPECT_LT(worst_ratio, 1e-9);
+  EXPECT_LT(std::abs(sim.energy().contact_energy), 2e-3 * ke0);
+  EXPECT_GT(sim.energy().kinetic, 0.94 * ke0);
+  simulation.reset();  // closes the output files
+  // rcforc.csv: slave and master resultants opposite.
+  std::string header;
+  std::ifstream in(dir / "rcforc.csv");
+  std::getline(in, header);
+  EXPECT_EQ(header,
+            "time,contact,slave_fx,slave_fy,slave_fz,master_fx,master_fy,master_fz,"
+            "contact_nodes");
+  int rows = 0;
+  double best = 0.0;
+  for (std::string line; std::getline(in, line); ++rows) {
+    std::vector<double> v;
+    std::stringstream ss(line);
+    for (std::string f; std::getline(ss, f, ',');) v.push_back(std::stod(f));
+    ASSERT_EQ(v.size(), 9u);
+    EXPECT_EQ(v[1], 7.0);
+    EXPECT_EQ(v[4], -v[7]);
+    best = std::max(best, v[4]);
+  }
+  EXPECT_GT(rows, 100);
+  EXPECT_NEAR(best, kRho * c * area * kV0, 0.06 * kRho * c * area * kV0);
+}
+
+// The same drop gives bit-identical results on 1 and 2 threads.
+TEST(Contact, ResultsDoNotDependOnThreadCount) {
+  std::vector<std::vector<double>> finals;
+  const int saved = omp_get_max_threads();
+  for (const int threads : {1, 2}) {
+    omp_set_num_threads(threads);
+    solver::Simulation sim(read(bar_drop_deck(20)), {});
+    sim.mutable_contacts().parallel_minimum = 0;  // the parallel loops even on this small model
+    while (!sim.finished()) sim.cycle();
+    const auto& n = sim.state().nodes;
+    std::vector<double> values(n.x.z);
+    values.insert(values.end(), n.v.z.begin(), n.v.z.end());
+    values.insert(values.end(), n.v.x.begin(), n.v.x.end());
+    values.push_back(sim.energy().contact_energy);
+    finals.push_back(values);
+  }
+  omp_set_num_threads(saved);
+  ASSERT_EQ(finals[0].size(), finals[1].size());
+  for (std::size_t i = 0; i < finals[0].size(); ++i) ASSERT_EQ(finals[0][i], finals[1][i]) << i;
+}
+
+// ---------------------------------------------------------------------------------------
+// 2. Two equal elastic bars (same material and length: equal impedance), one at v0, one at
+// rest, colliding head-on. 1D wave theory: after 2 L / c the moving bar stops and the other
+// leaves at v0 (the velocities exchange); momentum is conserved exactly.
+
+TEST(Contact, EqualBarsHeadOnExchangeVelocities) {
+  const double c = std::sqrt(kE / kRho);
+  const int nz = 40;
+  const double gap = 0.1 * kLength / nz;
+  Block left;
+  left.nx = left.ny = 2;
+  left.nz = nz;
+  left.lx = left.ly = kWidth;
+  left.lz = kLength;
+  Block right = left;
+  right.local = Vector3d(0, 0, kLength + gap);
+  right.first_node = 100001;
+  right.first_element = 100001;
+  right.pid = 2;
+  const std::string deck = "*KEYWORD\n" + left.text() + right.text() + elastic(1, kRho, kE, 0.0) +
+                           elastic(2, kRho, kE, 0.0) + velocity(1, Vector3d(0, 0, kV0)) +
+                           "*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE\n1,2,3,3\n0,0,0,0,0\n10,10\n" +
+                           termination(gap / kV0 + 2.6 * kLength / c);
+  solver::Simulation sim(read(deck), {});
+  const PartMotion a0 = motion(sim.state(), 1, 99999);
+  const PartMotion b0 = motion(sim.state(), 100001, 199999);
+  double worst_ratio = 0.0;
+  while (!sim.finished()) {
+    sim.cycle();
+    worst_ratio = std::max(worst_ratio, std::abs(sim.energy().ratio() - 1.0));
+  }
+  const PartMotion a = motion(sim.state(), 1, 99999);
+  const PartMotion b = motion(sim.state(), 100001, 199999);
+  EXPECT_NEAR(a.velocity().z(), 0.0, 0.03 * kV0);
+  EXPECT_NEAR(b.velocity().z(), kV0, 0.03 * kV0);
+  // Contact forces are equal and opposite: momentum conserved to round-off.
+  const double p0 = a0.momentum.z() + b0.momentum.z();
+  EXPECT_NEAR(a.momentum.z() + b.momentum.z(), p0, 1e-12 * std::abs(p0));
+  EXPECT_LT(worst_ratio, 1e-9);
+  EXPECT_EQ(sim.contacts().interfaces[0].active_nodes, 0);  // separated
+}
+
+// ---------------------------------------------------------------------------------------
+// 3. A block on a fixed rigid plane inclined at angle a, gravity -z, Coulomb friction mu
+// (FS = FD). Sliding (tan a > mu): x(t) = g (sin a - mu cos a) t^2 / 2 down the slope, and
+// the contact dissipates mu m g cos a x. Sticking (tan a < mu): it stays.
+
+struct InclineResult {
+  double along = 0.0;  // displacement of the centre of mass down the slope
+  double normal = 0.0;
+  double contact_energy = 0.0;
+  double mass = 0.0;
+  double ratio_error = 0.0;
+};
+
+InclineResult slide(double angle, double mu, double t_end) {
+  Block plate;
+  plate.nx = 12;
+  plate.ny = 2;
+  plate.nz = 1;
+  plate.lx = 0.24;
+  plate.ly = 0.04;
+  plate.lz = 0.01;
+  plate.local = Vector3d(-0.03, -0.01, -0.01);
+  plate.tilt = angle;
+  plate.first_node = 100001;
+  plate.first_element = 100001;
+  plate.pid = 2;
+  Block block;
+  block.nx = block.ny = block.nz = 2;
+  block.lx = block.ly = block.lz = 0.02;
+  block.tilt = angle;
+  const std::string deck =
+      "*KEYWORD\n" + block.text() + plate.text() + elastic(1, kRho, kE, 0.3) +
+      fixed_rigid(2, kRho, kE, 0.3) +
+      "*LOAD_BODY_Z\n99,1.0\n*DEFINE_CURVE\n99\n0,9.81\n1e3,9.81\n" +
+      fmt::format("*CONTACT_AUTOMATIC_NODES_TO_SURFACE\n1,2,3,3\n{0},{0},0,0,20\n\n", mu) +
+      // A free block of 2 x 2 x 2 elements needs TSSFAC <= 0.55 (docs/verification.md).
+      "*CONTROL_TIMESTEP\n0,0.5\n" + termination(t_end);
+  solver::Simulation sim(read(deck), {});
+  const PartMotion start = motion(sim.state(), 1, 99999);
+  InclineResult r;
+  while (!sim.finished()) {
+    sim.cycle();
+    r.ratio_error = std::max(r.ratio_error, std::abs(sim.energy().ratio() - 1.0));
+  }
+  const PartMotion end = motion(sim.state(), 1, 99999);
+  const Vector3d down(std::cos(angle), 0.0, -std::sin(angle));
+  const Vector3d normal(std::sin(angle), 0.0, std::cos(angle));
+  r.along = (end.centre - start.centre).dot(down);
+  r.normal = (end.centre - start.centre).dot(normal);
+  r.contact_energy = sim.energy().contact_energy;
+  r.mass = start.mass;
+  return r;
+}
+
+TEST(Contact, BlockSlidesDownInclineWithCoulombFriction) {
+  const double angle = std::numbers::pi / 6.0, mu = 0.3, g = 9.81, t = 0.15;
+  const InclineResult r = slide(angle, mu, t);
+  const double expected = 0.5 * g * (std::sin(angle) - mu * std::cos(angle)) * t * t;
+  EXPECT_NEAR(r.along, expected, 0.03 * expected);
+  EXPECT_LT(std::abs(r.normal), 1e-4);  // stays on the plane (penalty penetration is tiny)
+  // Friction dissipation mu N x (plus the damped settling and stored penalty energy, small).
+  const double dissipated = mu * r.mass * g * std::cos(angle) * expected;
+  EXPECT_NEAR(r.contact_energy, dissipated, 0.06 * dissipated);
+  EXPECT_LT(r.ratio_error, 1e-9);
+}
+
+TEST(Contact, BlockSticksOnInclineFlatterThanFrictionAngle) {
+  const double angle = 10.0 * std::numbers::pi / 180.0, mu = 0.3, t = 0.1;
+  const InclineResult r = slide(angle, mu, t);
+  // Without friction it would slide g sin a t^2 / 2 = 8.5 mm; it creeps only by the elastic
+  // tangential spring.
+  EXPECT_LT(std::abs(r.along), 1e-5);
+}
+
+}  // namespace
+}  // namespace rf::test
