@@ -141,17 +141,21 @@ void print_model_summary(const model::Model& model, std::FILE* out) {
                "card(s)\n",
                sw.at_start.size(), sw.automatic.size(), sw.inertia.size());
     for (const auto& set : sw.automatic) {
-      fmt::print(out,
-                 "  set {}: CODE {}, TIME1 {:g}, TIME2 {:g}, TIME3 {:g}{}, {} to rigid, {} to "
-                 "deformable{}{}{}\n",
-                 set.swset, set.code, set.time1, set.time2, set.time3,
-                 set.paired != 0 ? fmt::format(", paired with {} ({})", set.relsw,
-                                               set.paired > 0 ? "first" : "second")
-                                 : "",
-                 set.to_rigid.size(), set.to_deformable.size(),
-                 set.dtmax > 0.0 ? fmt::format(", DTMAX {:g}", set.dtmax) : "",
-                 set.entno > 0 ? fmt::format(", rigid wall {}", set.entno) : "",
-                 set.offset > 0.0 ? fmt::format(", OFFSET {:g}", set.offset) : "");
+      fmt::print(
+          out,
+          "  set {}: CODE {}, TIME1 {:g}, TIME2 {:g}, TIME3 {:g}{}, {} to rigid, {} to "
+          "deformable{}{}{}\n",
+          set.swset, set.code, set.time1, set.time2, set.time3,
+          set.paired != 0
+              ? fmt::format(", paired with {} ({})", set.relsw, set.paired > 0 ? "first" : "second")
+              : "",
+          set.to_rigid.size(), set.to_deformable.size(),
+          set.dtmax > 0.0 ? fmt::format(", DTMAX {:g}", set.dtmax) : "",
+          set.entno > 0
+              ? fmt::format(", {} {}", set.code == 2 || set.code == 4 ? "contact" : "rigid wall",
+                            set.entno)
+              : "",
+          set.offset > 0.0 ? fmt::format(", OFFSET {:g}", set.offset) : "");
     }
   }
   fmt::print(out, "node sets: {}, part sets: {}, segment sets: {}\n", model.node_sets.size(),

@@ -107,7 +107,16 @@ TEST(SwitchingReader, BadValuesNameFileLineKeywordAndField) {
        "a pair names each other"},
       {d2r + "5,5\n0,0,0,0,1,0\n1\n",
        "field CODE: CODE 5: switch set 5 is controlled by *SENSOR_CONTROL"},
-      {d2r + "5,2,0,0,0,3\n0,0,0,0,1,0\n1\n", "field CODE: CODE 2 switches on a contact force"},
+      {d2r + "5,2,0,0,0,0\n0,0,0,0,1,0\n1\n", "field ENTNO: CODE 2 needs the ID of the contact"},
+      {d2r + "5,4,0,0,0,3\n0,0,0,0,1,0\n1\n",
+       "field ENTNO: CODE 4 tests contact 3, and this deck defines no contact"},
+      {"*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE_ID\n4\n1,2,3,3\n0\n1\n" + d2r +
+           "5,2,0,0,0,9\n0,0,0,0,1,0\n1\n",
+       "field ENTNO: CODE 2 tests contact 9, and this deck defines no such contact (contact IDs: "
+       "4)"},
+      {"*CONTACT_AUTOMATIC_SINGLE_SURFACE_ID\n4\n1,0,3\n0\n1\n" + d2r +
+           "5,4,0,0,0,4\n0,0,0,0,1,0\n1\n",
+       "field ENTNO: contact 4 is a single-surface contact"},
       {d2r + "5,3,0,0,0,0\n0,0,0,0,1,0\n1\n",
        "field ENTNO: CODE 3 needs the number of the rigid wall"},
       {d2r + "5,1,0,0,0,1\n0,0,0,0,1,0\n1\n",

@@ -396,8 +396,31 @@ void finish_switching(const model::Model& m) {
                                       "*RIGIDWALL_PLANAR (numbered 1, 2, ... in deck order)",
                                       set.code, set.entno, m.rigid_walls.size()));
     }
-    const bool has_control = std::any_of(
-        m.sensor_controls.begin(), m.sensor_controls.end(), [&](const auto& entry) {
+    if (set.code == 2 || set.code == 4) {
+      // Manual, remark "Rigid Wall Numbering": the contact surface ID is the one of the
+      // *CONTACT_..._ID card; only surface-to-surface and node-to-surface contacts qualify.
+      const auto contact = std::find_if(m.contacts.begin(), m.contacts.end(),
+                                        [&](const auto& c) { return c.id == set.entno; });
+      if (contact == m.contacts.end()) {
+        std::string ids;
+        for (const auto& c : m.contacts) ids += (ids.empty() ? "" : ", ") + std::to_string(c.id);
+        throw located_error(
+            set.where, "ENTNO",
+            fmt::format("CODE {} tests contact {}, and this deck defines {} "
+                        "(contact IDs: {})",
+                        set.code, set.entno, m.contacts.empty() ? "no contact" : "no such contact",
+                        ids.empty() ? "none" : ids));
+      }
+      if (contact->kind == model::ContactKind::SingleSurface) {
+        throw located_error(set.where, "ENTNO",
+                            fmt::format("contact {} is a single-surface contact; part switching "
+                                        "can test only surface-to-surface and nodes-to-surface "
+                                        "contacts (*DEFORMABLE_TO_RIGID_AUTOMATIC, remarks)",
+                                        set.entno));
+      }
+    }
+    const bool has_control =
+        std::any_of(m.sensor_controls.begin(), m.sensor_controls.end(), [&](const auto& entry) {
           return entry.second.type == "DEF2RIG" && entry.second.type_id == set.swset;
         });
     if (set.code == 5 && !has_control) {
