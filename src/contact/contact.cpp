@@ -842,7 +842,15 @@ bool within_offset(const ContactSystem& system, model::Id contact_id, double off
     auto close = [&](std::int32_t s) {
       if (!node_named && !named(master.part[s])) return false;
       if (contains(master.segments[s], node)) return false;
-      return project(x, master.segments[s], p).distance2 < offset2;
+      const Projection r = project(x, master.segments[s], p);
+      if (r.distance2 < offset2) return true;
+      // A node that has already penetrated is within any offset.
+      const Vec diff = sub(p, r.point);
+      const double along = dot(diff, r.normal);
+      Vec beside{};
+      for (int d = 0; d < 3; ++d) beside[d] = diff[d] - along * r.normal[d];
+      const double size = master.size[s];
+      return along < 0.0 && along > -kDepthFraction * size && norm(beside) <= kEdgeTolerance * size;
     };
     if (!grid.built) {  // before the first evaluation: every segment
       for (std::size_t s = 0; s < master.segments.size(); ++s) {

@@ -217,6 +217,33 @@ TEST(Contact, BarDroppedOnRigidPlateReboundsAsWaveTheoryPredicts) {
   EXPECT_NEAR(best, kRho * c * area * kV0, 0.06 * kRho * c * area * kV0);
 }
 
+// The queries part switching uses (CODE 2/4): the resultant force of a contact by ID and the
+// OFFSET proximity test, before and during the impact.
+TEST(Contact, SwitchingQueriesSeeForceAndProximity) {
+  const int nz = 20;
+  const double gap = 0.1 * kLength / nz;  // the bar starts this far above the plate
+  solver::Simulation sim(read(bar_drop_deck(nz)), {});
+  const auto& contacts = sim.contacts();
+  const auto& state = sim.state();
+  EXPECT_EQ(contact::resultant_force(contacts, 7), 0.0);
+  EXPECT_EQ(contact::resultant_force(contacts, 8), -1.0);  // no contact 8
+  // Bar (part 1, slave side) and plate (part 2, master side): within 1.5 gaps, not within 0.5.
+  for (const std::vector<model::Id> parts : {std::vector<model::Id>{1}, {2}}) {
+    EXPECT_TRUE(contact::within_offset(contacts, 7, 1.5 * gap, parts, state));
+    EXPECT_FALSE(contact::within_offset(contacts, 7, 0.5 * gap, parts, state));
+  }
+  EXPECT_FALSE(contact::within_offset(contacts, 7, 1.5 * gap, {3}, state));  // not a side
+  EXPECT_FALSE(contact::within_offset(contacts, 8, 1.5 * gap, {1}, state));
+  sim.cycle();  // the search grid is built from now on
+  EXPECT_TRUE(contact::within_offset(contacts, 7, 1.5 * gap, {1}, state));
+  EXPECT_FALSE(contact::within_offset(contacts, 7, 0.5 * gap, {1}, state));
+  while (!sim.finished() && contact::resultant_force(contacts, 7) == 0.0) sim.cycle();
+  // The first contact force: the gap closed at v0.
+  EXPECT_NEAR(state.time, gap / kV0, 2.0 * state.dt);
+  EXPECT_GT(contact::resultant_force(contacts, 7), 0.0);
+  EXPECT_TRUE(contact::within_offset(contacts, 7, 1e-9, {2}, state));
+}
+
 // The same drop gives bit-identical results on 1 and 2 threads.
 TEST(Contact, ResultsDoNotDependOnThreadCount) {
   std::vector<std::vector<double>> finals;
