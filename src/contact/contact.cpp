@@ -532,6 +532,7 @@ void evaluate_pass(ContactInterface& contact, ContactPass& pass, const solver::S
   const SegmentGrid& grid = pass.grid;
   const std::int64_t n = static_cast<std::int64_t>(slave.nodes.size());
   const double soft_dt = contact.soft_dt;
+  const double reach = grid.expansion - grid.slack;
 #pragma omp parallel for schedule(dynamic, 256) if (n >= parallel_minimum)
   for (std::int64_t j = 0; j < n; ++j) {
     const std::int32_t node = slave.nodes[j];
@@ -549,8 +550,18 @@ void evaluate_pass(ContactInterface& contact, ContactPass& pass, const solver::S
       const std::int64_t c = a[0] + grid.dims[0] * (a[1] + grid.dims[1] * a[2]);
       for (auto k = grid.cell_start[c]; k < grid.cell_start[c + 1]; ++k) {
         const std::int32_t s = grid.cell_segments[k];
-        if (contains(master.segments[s], node)) continue;
-        const Projection trial = project(x, master.segments[s], p);
+        const auto& q = master.segments[s];
+        if (contains(q, node)) continue;
+        // Cheap rejection: a node in contact lies within `reach` of the segment's box.
+        bool outside = false;
+        for (int d = 0; d < 3 && !outside; ++d) {
+          const double* c = d == 0 ? x.x.data() : (d == 1 ? x.y.data() : x.z.data());
+          const double lo = std::min(std::min(c[q[0]], c[q[1]]), std::min(c[q[2]], c[q[3]]));
+          const double hi = std::max(std::max(c[q[0]], c[q[1]]), std::max(c[q[2]], c[q[3]]));
+          outside = p[d] < lo - reach || p[d] > hi + reach;
+        }
+        if (outside) continue;
+        const Projection trial = project(x, q, p);
         // Only segments that face the node's own surface (not the sides of the body it is
         // pressed against: an edge node lies in the plane of the other body's side faces).
         if (has_normal && dot(trial.normal, node_normal) > -kFacingTolerance) continue;
