@@ -24,9 +24,10 @@ constexpr double kEdgeTolerance = 0.05;
 // Nodes deeper than this fraction of the segment size are not pushed back (they came from the
 // other side, or the surface is thinner than the penetration: LS-DYNA releases them as well).
 constexpr double kDepthFraction = 0.5;
-// A segment faces a node when their outward normals make an angle above 90 degrees (cosine
-// below minus this).
-constexpr double kFacingTolerance = 1e-6;
+// A segment faces a node when their outward normals make an angle above about 101.5 degrees
+// (cosine below minus this): an edge or corner node's normal leans 45-55 degrees from each face
+// it bounds, and a node on a side face of a body is not pressed by that body's bottom face.
+constexpr double kFacingTolerance = 0.2;
 
 using Vec = std::array<double, 3>;
 
@@ -533,6 +534,7 @@ void evaluate_pass(ContactInterface& contact, ContactPass& pass, const solver::S
   const std::int64_t n = static_cast<std::int64_t>(slave.nodes.size());
   const double soft_dt = contact.soft_dt;
   const double reach = grid.expansion - grid.slack;
+  const bool self_contact = contact.kind == model::ContactKind::SingleSurface;
 #pragma omp parallel for schedule(dynamic, 256) if (n >= parallel_minimum)
   for (std::int64_t j = 0; j < n; ++j) {
     const std::int32_t node = slave.nodes[j];
@@ -546,12 +548,33 @@ void evaluate_pass(ContactInterface& contact, ContactPass& pass, const solver::S
     const Vec node_normal{slave.node_normal[3 * j], slave.node_normal[3 * j + 1],
                           slave.node_normal[3 * j + 2]};
     const bool has_normal = dot(node_normal, node_normal) > 0.0;
+    // Single surface: the node's neighbours (the nodes of its own segments) bound no segment
+    // it may contact: those segments meet the node's own at an edge or corner.
+    std::array<std::int32_t, 32> neighbours{};
+    int neighbour_count = 0;
+    if (self_contact) {
+      for (auto q = slave.node_segment_start[j]; q < slave.node_segment_start[j + 1]; ++q) {
+        for (const auto other : slave.segments[slave.node_segments[q]]) {
+          bool seen = false;
+          for (int a = 0; a < neighbour_count; ++a) seen |= neighbours[a] == other;
+          if (!seen && neighbour_count < static_cast<int>(neighbours.size())) {
+            neighbours[neighbour_count++] = other;
+          }
+        }
+      }
+    }
     if (cell_range(grid, p, 0.0, a, b)) {
       const std::int64_t c = a[0] + grid.dims[0] * (a[1] + grid.dims[1] * a[2]);
       for (auto k = grid.cell_start[c]; k < grid.cell_start[c + 1]; ++k) {
         const std::int32_t s = grid.cell_segments[k];
         const auto& q = master.segments[s];
         if (contains(q, node)) continue;
+        if (self_contact) {
+          bool adjacent = false;
+          for (int a = 0; a < neighbour_count && !adjacent; ++a)
+            adjacent = contains(q, neighbours[a]);
+          if (adjacent) continue;
+        }
         // Cheap rejection: a node in contact lies within `reach` of the segment's box.
         bool outside = false;
         for (int d = 0; d < 3 && !outside; ++d) {
@@ -744,8 +767,11 @@ ContactSystem build_contacts(const model::Model& model, const solver::NodeIndex&
       contact.passes.push_back(std::move(pass));
     };
     add_pass(0, 1);
-    if (c.kind == model::ContactKind::SurfaceToSurface) {
-      add_pass(1, 0);
+    if (c.kind == model::ContactKind::SurfaceToSurface) add_pass(1, 0);
+    // Two springs can act on one pair of nodes when both sides search each other: in the two
+    // passes of a surface-to-surface contact, and within the one pass of a single surface.
+    if (c.kind == model::ContactKind::SurfaceToSurface ||
+        c.kind == model::ContactKind::SingleSurface) {
       for (auto& pass : contact.passes) pass.stability_scale = 0.25;
     }
     for (const auto& side : contact.sides) all_nodes.insert(side.nodes.begin(), side.nodes.end());
