@@ -24,9 +24,10 @@ constexpr double kEdgeTolerance = 0.05;
 // Nodes deeper than this fraction of the segment size are not pushed back (they came from the
 // other side, or the surface is thinner than the penetration: LS-DYNA releases them as well).
 constexpr double kDepthFraction = 0.5;
-// A segment faces a node when their outward normals make an angle above 90 degrees (cosine
-// below minus this).
-constexpr double kFacingTolerance = 1e-6;
+// A segment faces a node when their outward normals make an angle above about 101.5 degrees
+// (cosine below minus this): an edge or corner node's normal leans 45-55 degrees from each face
+// it bounds, and a node on a side face of a body is not pressed by that body's bottom face.
+constexpr double kFacingTolerance = 0.2;
 
 using Vec = std::array<double, 3>;
 
@@ -532,6 +533,8 @@ void evaluate_pass(ContactInterface& contact, ContactPass& pass, const solver::S
   const SegmentGrid& grid = pass.grid;
   const std::int64_t n = static_cast<std::int64_t>(slave.nodes.size());
   const double soft_dt = contact.soft_dt;
+  const double reach = grid.expansion - grid.slack;
+  const bool self_contact = contact.kind == model::ContactKind::SingleSurface;
 #pragma omp parallel for schedule(dynamic, 256) if (n >= parallel_minimum)
   for (std::int64_t j = 0; j < n; ++j) {
     const std::int32_t node = slave.nodes[j];
@@ -545,12 +548,43 @@ void evaluate_pass(ContactInterface& contact, ContactPass& pass, const solver::S
     const Vec node_normal{slave.node_normal[3 * j], slave.node_normal[3 * j + 1],
                           slave.node_normal[3 * j + 2]};
     const bool has_normal = dot(node_normal, node_normal) > 0.0;
+    // Single surface: the node's neighbours (the nodes of its own segments) bound no segment
+    // it may contact: those segments meet the node's own at an edge or corner.
+    std::array<std::int32_t, 32> neighbours{};
+    int neighbour_count = 0;
+    if (self_contact) {
+      for (auto q = slave.node_segment_start[j]; q < slave.node_segment_start[j + 1]; ++q) {
+        for (const auto other : slave.segments[slave.node_segments[q]]) {
+          bool seen = false;
+          for (int a = 0; a < neighbour_count; ++a) seen |= neighbours[a] == other;
+          if (!seen && neighbour_count < static_cast<int>(neighbours.size())) {
+            neighbours[neighbour_count++] = other;
+          }
+        }
+      }
+    }
     if (cell_range(grid, p, 0.0, a, b)) {
       const std::int64_t c = a[0] + grid.dims[0] * (a[1] + grid.dims[1] * a[2]);
       for (auto k = grid.cell_start[c]; k < grid.cell_start[c + 1]; ++k) {
         const std::int32_t s = grid.cell_segments[k];
-        if (contains(master.segments[s], node)) continue;
-        const Projection trial = project(x, master.segments[s], p);
+        const auto& q = master.segments[s];
+        if (contains(q, node)) continue;
+        if (self_contact) {
+          bool adjacent = false;
+          for (int a = 0; a < neighbour_count && !adjacent; ++a)
+            adjacent = contains(q, neighbours[a]);
+          if (adjacent) continue;
+        }
+        // Cheap rejection: a node in contact lies within `reach` of the segment's box.
+        bool outside = false;
+        for (int d = 0; d < 3 && !outside; ++d) {
+          const double* c = d == 0 ? x.x.data() : (d == 1 ? x.y.data() : x.z.data());
+          const double lo = std::min(std::min(c[q[0]], c[q[1]]), std::min(c[q[2]], c[q[3]]));
+          const double hi = std::max(std::max(c[q[0]], c[q[1]]), std::max(c[q[2]], c[q[3]]));
+          outside = p[d] < lo - reach || p[d] > hi + reach;
+        }
+        if (outside) continue;
+        const Projection trial = project(x, q, p);
         // Only segments that face the node's own surface (not the sides of the body it is
         // pressed against: an edge node lies in the plane of the other body's side faces).
         if (has_normal && dot(trial.normal, node_normal) > -kFacingTolerance) continue;
@@ -733,8 +767,11 @@ ContactSystem build_contacts(const model::Model& model, const solver::NodeIndex&
       contact.passes.push_back(std::move(pass));
     };
     add_pass(0, 1);
-    if (c.kind == model::ContactKind::SurfaceToSurface) {
-      add_pass(1, 0);
+    if (c.kind == model::ContactKind::SurfaceToSurface) add_pass(1, 0);
+    // Two springs can act on one pair of nodes when both sides search each other: in the two
+    // passes of a surface-to-surface contact, and within the one pass of a single surface.
+    if (c.kind == model::ContactKind::SurfaceToSurface ||
+        c.kind == model::ContactKind::SingleSurface) {
       for (auto& pass : contact.passes) pass.stability_scale = 0.25;
     }
     for (const auto& side : contact.sides) all_nodes.insert(side.nodes.begin(), side.nodes.end());
@@ -842,7 +879,15 @@ bool within_offset(const ContactSystem& system, model::Id contact_id, double off
     auto close = [&](std::int32_t s) {
       if (!node_named && !named(master.part[s])) return false;
       if (contains(master.segments[s], node)) return false;
-      return project(x, master.segments[s], p).distance2 < offset2;
+      const Projection r = project(x, master.segments[s], p);
+      if (r.distance2 < offset2) return true;
+      // A node that has already penetrated is within any offset.
+      const Vec diff = sub(p, r.point);
+      const double along = dot(diff, r.normal);
+      Vec beside{};
+      for (int d = 0; d < 3; ++d) beside[d] = diff[d] - along * r.normal[d];
+      const double size = master.size[s];
+      return along < 0.0 && along > -kDepthFraction * size && norm(beside) <= kEdgeTolerance * size;
     };
     if (!grid.built) {  // before the first evaluation: every segment
       for (std::size_t s = 0; s < master.segments.size(); ++s) {

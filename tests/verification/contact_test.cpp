@@ -217,6 +217,94 @@ TEST(Contact, BarDroppedOnRigidPlateReboundsAsWaveTheoryPredicts) {
   EXPECT_NEAR(best, kRho * c * area * kV0, 0.06 * kRho * c * area * kV0);
 }
 
+// The queries part switching uses (CODE 2/4): the resultant force of a contact by ID and the
+// OFFSET proximity test, before and during the impact.
+TEST(Contact, SwitchingQueriesSeeForceAndProximity) {
+  const int nz = 20;
+  const double gap = 0.1 * kLength / nz;  // the bar starts this far above the plate
+  solver::Simulation sim(read(bar_drop_deck(nz)), {});
+  const auto& contacts = sim.contacts();
+  const auto& state = sim.state();
+  EXPECT_EQ(contact::resultant_force(contacts, 7), 0.0);
+  EXPECT_EQ(contact::resultant_force(contacts, 8), -1.0);  // no contact 8
+  // Bar (part 1, slave side) and plate (part 2, master side): within 1.5 gaps, not within 0.5.
+  for (const std::vector<model::Id> parts : {std::vector<model::Id>{1}, {2}}) {
+    EXPECT_TRUE(contact::within_offset(contacts, 7, 1.5 * gap, parts, state));
+    EXPECT_FALSE(contact::within_offset(contacts, 7, 0.5 * gap, parts, state));
+  }
+  EXPECT_FALSE(contact::within_offset(contacts, 7, 1.5 * gap, {3}, state));  // not a side
+  EXPECT_FALSE(contact::within_offset(contacts, 8, 1.5 * gap, {1}, state));
+  sim.cycle();  // the search grid is built from now on
+  EXPECT_TRUE(contact::within_offset(contacts, 7, 1.5 * gap, {1}, state));
+  EXPECT_FALSE(contact::within_offset(contacts, 7, 0.5 * gap, {1}, state));
+  while (!sim.finished() && contact::resultant_force(contacts, 7) == 0.0) sim.cycle();
+  // The first contact force: the gap closed at v0.
+  EXPECT_NEAR(state.time, gap / kV0, 2.0 * state.dt);
+  EXPECT_GT(contact::resultant_force(contacts, 7), 0.0);
+  EXPECT_TRUE(contact::within_offset(contacts, 7, 1e-9, {2}, state));
+}
+
+// The drop with one SINGLE_SURFACE contact over all parts: the bar must not contact itself
+// (its edge nodes lie next to its own faces), and the impact is the same as above.
+TEST(Contact, SingleSurfaceDropFindsOnlyTheImpact) {
+  std::string deck = bar_drop_deck(40);
+  const std::string s2s = "*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE_ID\n7,drop\n1,2,3,3\n";
+  ASSERT_NE(deck.find(s2s), std::string::npos);
+  deck.replace(deck.find(s2s), s2s.size(), "*CONTACT_AUTOMATIC_SINGLE_SURFACE_ID\n7,drop\n0,0,5\n");
+  solver::Simulation sim(read(deck), {});
+  const PartMotion start = motion(sim.state(), 1, 99999);
+  const double ke0 = 0.5 * start.mass * kV0 * kV0;
+  const double c = std::sqrt(kE / kRho);
+  double worst_ratio = 0.0;
+  std::int64_t early_contacts = 0;
+  const auto& contact = sim.contacts().interfaces[0];
+  while (!sim.finished()) {
+    sim.cycle();
+    if (sim.state().time < 0.9 * 0.1 * kLength / 40 / kV0) early_contacts += contact.active_nodes;
+    worst_ratio = std::max(worst_ratio, std::abs(sim.energy().ratio() - 1.0));
+  }
+  const PartMotion end = motion(sim.state(), 1, 99999);
+  EXPECT_EQ(early_contacts, 0);  // no self-contact while falling
+  EXPECT_GT(end.velocity().z(), 0.97 * kV0);
+  EXPECT_LT(end.velocity().z(), 1.0 * kV0);
+  EXPECT_LT(worst_ratio, 1e-9);
+  EXPECT_LT(std::abs(sim.energy().contact_energy), 2e-3 * ke0);
+  EXPECT_EQ(contact.active_nodes, 0);
+  (void)c;
+}
+
+// The drop with the bar raised to 27-node hexahedra (*CHANGE_P-ORDER 2): contact on the
+// sub-quadrilaterals of the GLL face grid gives the same wave-theory rebound.
+TEST(Contact, QuadraticHexahedraBarReboundsAsWaveTheoryPredicts) {
+  solver::Simulation sim(read(bar_drop_deck(20, "*CHANGE_P-ORDER\nP,1,2\n")), {});
+  // The bar's nodes: the deck's (below the plate's IDs) and those the elevation added (above).
+  const auto bar = [&] {
+    PartMotion m = motion(sim.state(), 1, 100000);
+    const PartMotion added = motion(sim.state(), 100051, 1 << 30);  // plate: 100001..100050
+    m.mass += added.mass;
+    m.momentum += added.momentum;
+    return m;
+  };
+  ASSERT_LT(sim.state().nodes.id.back(), 1 << 30);
+  ASSERT_GT(sim.state().generated_node_count, 0);
+  const PartMotion start = bar();
+  const double ke0 = 0.5 * start.mass * kV0 * kV0;
+  // 2 x 2 faces of 2 x 2 sub-quads on the bar's ends, the plate's faces unchanged.
+  EXPECT_EQ(sim.contacts().interfaces[0].sides[0].segments.size(),
+            std::size_t{2 * 16 + 4 * 2 * 20 * 4});
+  double worst_ratio = 0.0;
+  while (!sim.finished()) {
+    sim.cycle();
+    worst_ratio = std::max(worst_ratio, std::abs(sim.energy().ratio() - 1.0));
+  }
+  const PartMotion end = bar();
+  EXPECT_NEAR(start.mass, kRho * kWidth * kWidth * kLength, 1e-9 * start.mass);
+  EXPECT_GT(end.velocity().z(), 0.97 * kV0);
+  EXPECT_LT(end.velocity().z(), 1.0 * kV0);
+  EXPECT_LT(worst_ratio, 1e-9);
+  EXPECT_LT(std::abs(sim.energy().contact_energy), 1e-2 * ke0);
+}
+
 // The same drop gives bit-identical results on 1 and 2 threads.
 TEST(Contact, ResultsDoNotDependOnThreadCount) {
   std::vector<std::vector<double>> finals;
