@@ -68,6 +68,7 @@ TEST(OutputCsv, GlstatHeaderAndBitExactValues) {
   row.switch_energy = 1.0 / 3.0;
   row.frozen_energy = 2.5e-7;
   row.rigidwall_work = -1.0 / 7.0;
+  row.modal_energy = 2.0 / 9.0;
   GlstatRow second = row;
   second.time = 2.0 / 3.0;
   second.cycle = 7;
@@ -81,9 +82,10 @@ TEST(OutputCsv, GlstatHeaderAndBitExactValues) {
   EXPECT_EQ(lines[0],
             "time,dt,cycle,kinetic_energy,internal_energy,hourglass_energy,external_work,"
             "total_energy,energy_ratio,momentum_x,momentum_y,momentum_z,angular_momentum_x,"
-            "angular_momentum_y,angular_momentum_z,switch_energy,frozen_energy,rigidwall_work");
+            "angular_momentum_y,angular_momentum_z,switch_energy,frozen_energy,rigidwall_work,"
+            "modal_energy");
   const auto f = split_csv(lines[1]);
-  ASSERT_EQ(f.size(), 18u);
+  ASSERT_EQ(f.size(), 19u);
   expect_bits(f[0], row.time);
   expect_bits(f[1], row.dt);
   EXPECT_EQ(f[2], "123456789012");
@@ -91,10 +93,11 @@ TEST(OutputCsv, GlstatHeaderAndBitExactValues) {
                          row.external_work,       row.total_energy,        row.energy_ratio,
                          row.momentum[0],         row.momentum[1],         row.momentum[2],
                          row.angular_momentum[0], row.angular_momentum[1], row.angular_momentum[2],
-                         row.switch_energy,       row.frozen_energy,       row.rigidwall_work};
-  for (int i = 0; i < 15; ++i) expect_bits(f[3 + i], rest[i]);
+                         row.switch_energy,       row.frozen_energy,       row.rigidwall_work,
+                         row.modal_energy};
+  for (int i = 0; i < 16; ++i) expect_bits(f[3 + i], rest[i]);
   const auto g = split_csv(lines[2]);
-  ASSERT_EQ(g.size(), 18u);
+  ASSERT_EQ(g.size(), 19u);
   expect_bits(g[0], second.time);
   EXPECT_EQ(g[2], "7");
 }

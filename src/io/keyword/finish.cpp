@@ -409,6 +409,50 @@ void finish_switching(const model::Model& m) {
   }
 }
 
+// *PART_MODES: the part must be a rigid body's lead part, ANSID a node set, and the
+// damping ranges may not overlap.
+void finish_part_modes(const model::Model& m) {
+  for (const auto& [pid, modes] : m.part_modes) {
+    if (!m.parts.count(pid)) {
+      throw located_error(modes.where, "PID", fmt::format("part {} is not defined", pid));
+    }
+    check_rigid_part(m, pid, modes.where, "PID", "*PART_MODES");
+    for (const auto& merge : m.rigid_body_merges) {
+      if (merge.constrained == pid) {
+        throw located_error(modes.where, "PID",
+                            fmt::format("part {} is merged into part {} by "
+                                        "*CONSTRAINED_RIGID_BODIES: give *PART_MODES for the "
+                                        "lead part {} (the merged parts form one flexible body)",
+                                        pid, merge.lead, merge.lead));
+      }
+    }
+    if (m.parts.at(pid).inertia) {
+      throw located_error(modes.where, "PID",
+                          fmt::format("part {} has *PART_INERTIA: a flexible body takes its mass "
+                                      "and inertia from the nodal masses its modes are "
+                                      "normalised with; remove the _INERTIA card",
+                                      pid));
+    }
+    if (modes.ansid != 0 && !m.node_sets.count(modes.ansid)) {
+      throw located_error(modes.where, "ANSID",
+                          fmt::format("node set {} is not defined", modes.ansid));
+    }
+    for (std::size_t a = 0; a < modes.damping.size(); ++a) {
+      for (std::size_t b = 0; b < a; ++b) {
+        const auto& x = modes.damping[a];
+        const auto& y = modes.damping[b];
+        if (x.mstart <= y.mstop && y.mstart <= x.mstop) {
+          throw located_error(x.where, "MSTART",
+                              fmt::format("modes {}..{} already have damping from the card at "
+                                          "line {}",
+                                          std::max(x.mstart, y.mstart),
+                                          std::min(x.mstop, y.mstop), y.where.line));
+        }
+      }
+    }
+  }
+}
+
 void finish_model(ReaderContext& context) {
   model::Model& m = context.model;
   std::unordered_set<Id> nodes;
@@ -528,6 +572,7 @@ void finish_model(ReaderContext& context) {
     }
   }
   finish_rigid(m, nodes);
+  finish_part_modes(m);
   handlers::check_rigid_walls(m);
   finish_switching(m);
   handlers::finish_sensors(context, nodes);

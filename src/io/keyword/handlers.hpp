@@ -58,6 +58,7 @@ void deformable_to_rigid(const Block&, ReaderContext&);
 void deformable_to_rigid_automatic(const Block&, ReaderContext&);
 void deformable_to_rigid_inertia(const Block&, ReaderContext&);
 void control_rigid(const Block&, ReaderContext&);
+void part_modes(const Block&, ReaderContext&);  // handlers_modes.cpp
 
 // handlers_sensor.cpp
 void define_function(const Block&, ReaderContext&);

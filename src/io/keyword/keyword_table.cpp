@@ -41,6 +41,7 @@ const std::vector<KeywordEntry>& table() {
       {"*LOAD_RIGID_BODY", load_rigid_body, {}},
       {"*RIGID_BODY_UPDATE", rigid_body_update, {}},
       {"*CONTROL_RIGID", control_rigid, {}},
+      {"*PART_MODES", part_modes, {}},
       {"*RIGIDWALL_PLANAR", rigidwall_planar, {"ID", "FINITE", "MOVING"}},
       // The other *DEFINE_BOX_... keywords (adaptivity, SPH, drawbeads, local boxes) are
       // separate keywords in LS-DYNA: skipped with a warning like unknown keywords.
