@@ -549,6 +549,24 @@ struct OutputControl {
   double rwforc_dt = 0.0;  // *DATABASE_RWFORC DT; 0: about 1000 rows per run
 };
 
+// *CONTROL_IMPLICIT_GENERAL and *CONTROL_IMPLICIT_EIGENVALUE (docs/eigen.md): with IMFLAG 1 and
+// NEIG > 0 the deck asks for an eigen analysis instead of a transient run.
+struct ImplicitControl {
+  bool general = false;  // *CONTROL_IMPLICIT_GENERAL present
+  int imflag = 0;
+  double dt0 = 0.0;
+  bool eigenvalue = false;  // *CONTROL_IMPLICIT_EIGENVALUE present
+  int neig = 0;
+  double center = 0.0;  // frequency (cycles per time unit)
+  int lflag = 0;
+  double lftend = -1e29;  // frequency
+  int rflag = 0;
+  double rhtend = 1e29;  // frequency
+  int eigmth = 2;
+  double shfscl = 0.0;
+  SourceLocation where;  // the *CONTROL_IMPLICIT_EIGENVALUE card
+};
+
 struct Warning {
   SourceLocation where;
   std::string message;
@@ -605,6 +623,7 @@ struct Model {
   TimestepControl timestep;
   HourglassControl hourglass_control;
   OutputControl output;
+  ImplicitControl implicit;
 
   std::map<std::string, double> parameters;     // *PARAMETER values, final
   std::vector<Warning> warnings;                // unknown keywords and other notices

@@ -34,6 +34,9 @@ void load_body(const Block&, ReaderContext&);
 void control_termination(const Block&, ReaderContext&);
 void control_timestep(const Block&, ReaderContext&);
 void control_hourglass(const Block&, ReaderContext&);
+// handlers_implicit.cpp
+void control_implicit_general(const Block&, ReaderContext&);
+void control_implicit_eigenvalue(const Block&, ReaderContext&);
 void database_ascii(const Block&, ReaderContext&);
 void database_binary_d3plot(const Block&, ReaderContext&);
 void database_history_node(const Block&, ReaderContext&);
