@@ -31,6 +31,93 @@ double FlexibleBody::elastic_energy() const {
   return e;
 }
 
+namespace {
+
+// G_mkl = sum over the 2x2x2 Gauss points of the body's hexahedra of
+// w det J sigma(phi_m) : (grad phi_k^T grad phi_l), gradients in the reference (body) frame.
+// From the Green strain E = eps + 1/2 grad u^T grad u: U = U2 + 1/2 int sigma(u) : grad u^T
+// grad u dV + O(u^4) (docs/flexible_bodies.md section 2).
+void compute_stiffening_invariants(FlexibleBody& body, const ModeInput& input) {
+  const std::size_t n = body.mode_count;
+  body.inv_g.assign(n * n * n, 0.0);
+  static constexpr double kSign[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
+                                         {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
+  const double g = 1.0 / std::sqrt(3.0);
+  std::vector<double> grad(9 * n), stress(9 * n);  // per mode: grad phi (row-major), sigma
+  const std::size_t elements = input.hexahedra.size() / 8;
+  for (std::size_t e = 0; e < elements; ++e) {
+    const std::int32_t* nodes = &input.hexahedra[8 * e];
+    for (int p = 0; p < 8; ++p) {
+      const double xi[3] = {kSign[p][0] * g, kSign[p][1] * g, kSign[p][2] * g};
+      double dn[8][3];
+      for (int a = 0; a < 8; ++a) {
+        for (int d = 0; d < 3; ++d) {
+          double v = 0.125 * kSign[a][d];
+          for (int o = 0; o < 3; ++o) {
+            if (o != d) v *= 1.0 + kSign[a][o] * xi[o];
+          }
+          dn[a][d] = v;
+        }
+      }
+      Eigen::Matrix3d jac = Eigen::Matrix3d::Zero();  // J_ij = dX_i / dxi_j
+      for (int a = 0; a < 8; ++a) {
+        for (int i = 0; i < 3; ++i) {
+          for (int j = 0; j < 3; ++j) jac(i, j) += body.body_coords[3 * nodes[a] + i] * dn[a][j];
+        }
+      }
+      const double det = jac.determinant();
+      const Eigen::Matrix3d inv = jac.inverse();
+      double dndx[8][3];  // dN/dX_j = sum_i dN/dxi_i dxi_i/dX_j
+      for (int a = 0; a < 8; ++a) {
+        for (int j = 0; j < 3; ++j) {
+          dndx[a][j] = dn[a][0] * inv(0, j) + dn[a][1] * inv(1, j) + dn[a][2] * inv(2, j);
+        }
+      }
+      for (std::size_t k = 0; k < n; ++k) {
+        double* gk = &grad[9 * k];
+        for (int c = 0; c < 9; ++c) gk[c] = 0.0;
+        for (int a = 0; a < 8; ++a) {
+          for (int i = 0; i < 3; ++i) {
+            const double phi = body.shapes[(3 * static_cast<std::size_t>(nodes[a]) + i) * n + k];
+            for (int j = 0; j < 3; ++j) gk[3 * i + j] += phi * dndx[a][j];
+          }
+        }
+        const double trace = gk[0] + gk[4] + gk[8];
+        double* sk = &stress[9 * k];
+        for (int i = 0; i < 3; ++i) {
+          for (int j = 0; j < 3; ++j) {
+            sk[3 * i + j] = input.lame_mu * (gk[3 * i + j] + gk[3 * j + i]) +
+                            (i == j ? input.lame_lambda * trace : 0.0);
+          }
+        }
+      }
+      for (std::size_t k = 0; k < n; ++k) {
+        for (std::size_t l = k; l < n; ++l) {
+          // H = grad_k^T grad_l: H_ab = sum_c G_k,ca G_l,cb.
+          double h[9];
+          const double* gk = &grad[9 * k];
+          const double* gl = &grad[9 * l];
+          for (int a = 0; a < 3; ++a) {
+            for (int b = 0; b < 3; ++b) {
+              h[3 * a + b] = gk[a] * gl[b] + gk[3 + a] * gl[3 + b] + gk[6 + a] * gl[6 + b];
+            }
+          }
+          for (std::size_t m = 0; m < n; ++m) {
+            const double* sm = &stress[9 * m];
+            double v = 0.0;
+            for (int c = 0; c < 9; ++c) v += sm[c] * h[c];
+            v *= det;
+            body.inv_g[(m * n + k) * n + l] += v;
+            if (l != k) body.inv_g[(m * n + l) * n + k] += v;
+          }
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+
 FlexibleBody prepare_flexible_body(const ModeInput& input) {
   const std::size_t nodes = input.mass.size();
   const std::size_t n = input.eigenvalues.size();
@@ -178,6 +265,9 @@ FlexibleBody prepare_flexible_body(const ModeInput& input) {
       }
     }
   }
+  if (body.form == ModalForm::kExact && !input.hexahedra.empty()) {
+    compute_stiffening_invariants(body, input);
+  }
   body.q.assign(n, 0.0);
   body.s.assign(n, 0.0);
   body.q_previous.assign(n, 0.0);
@@ -239,14 +329,31 @@ void advance_modes(FlexibleBody& body, const Eigen::Vector3d& omega_body,
       body.inertia[k] = h;
     }
   }
+  // Geometric stiffening: f_j = -dU3/dq_j = -1/2 (G_jkl q_k q_l + 2 G_mjl q_m q_l).
+  std::vector<double>& stiffening = body.stiffening;
+  stiffening.assign(n, 0.0);
+  if (!body.inv_g.empty()) {
+    const std::vector<double>& q = body.q;
+    for (std::size_t m = 0; m < n; ++m) {
+      for (std::size_t k = 0; k < n; ++k) {
+        const double* row = &body.inv_g[(m * n + k) * n];
+        double gq = 0.0;  // sum_l G_mkl q_l
+        for (std::size_t l = 0; l < n; ++l) gq += row[l] * q[l];
+        stiffening[m] -= 0.5 * q[k] * gq;  // d/dq_m of the first index
+        stiffening[k] -= q[m] * gq;        // the two symmetric indices
+      }
+    }
+  }
   body.damping_loss = 0.0;
   body.inertia_work = 0.0;
+  body.stiffening_work = 0.0;
   body.q_previous = body.q;
   for (std::size_t k = 0; k < n; ++k) {
     const double before = body.s[k];
-    body.s[k] += dt_avg * (body.force[k] + body.inertia[k]);
+    body.s[k] += dt_avg * (body.force[k] + body.inertia[k] + stiffening[k]);
     body.s_mid[k] = 0.5 * (before + body.s[k]);
     body.inertia_work += dt_avg * body.inertia[k] * body.s_mid[k];
+    body.stiffening_work += dt_avg * stiffening[k] * body.s_mid[k];
     const double w = body.omega[k];
     const double e0 = 0.5 * (body.s[k] * body.s[k] + w * w * body.q[k] * body.q[k]);
     oscillator_flow(w, body.zeta[k], dt, body.q[k], body.s[k]);

@@ -31,6 +31,9 @@ struct FlexibleBody {
   std::vector<double> trace_a;
   std::vector<double> inv_b;
   std::vector<double> inv_s;
+  // FORM 0 with a mesh: the cubic strain-energy invariants G_mkl (index (m n + k) n + l,
+  // symmetric in k, l) that give geometric (stress) stiffening, U3 = 1/2 G_mkl q_m q_k q_l.
+  std::vector<double> inv_g;
 
   // State: q^n and s (the modal velocity after the last flow, i.e. before the next kick).
   std::vector<double> q;
@@ -39,8 +42,10 @@ struct FlexibleBody {
   std::vector<double> s_mid;       // mean of s before and after the last kick (work)
   std::vector<double> force;       // scratch: modal forces g_k of the current step
   std::vector<double> inertia;     // scratch: inertia terms h_k of the current step
+  std::vector<double> stiffening;  // scratch: geometric-stiffening forces of the current step
   double damping_loss = 0.0;       // energy removed by modal damping in the last step
   double inertia_work = 0.0;       // work of the inertia terms in the last step (FORM 0)
+  double stiffening_work = 0.0;    // work of the geometric-stiffening forces in the last step
 
   // Link to the solver (filled by solver::attach_flexible_bodies).
   int body = -1;                           // index of the rigid body
@@ -70,6 +75,11 @@ struct ModeInput {
   std::vector<double> eigenvalues;    // per selected mode
   std::vector<double> damping;        // per selected mode (fraction of critical)
   ModalForm form = ModalForm::kExact;
+  // Optional (FORM 0): the body's 8-node hexahedra as positions in its node list, and its
+  // material's Lame constants, for the geometric-stiffening invariants. Empty: none.
+  std::vector<std::int32_t> hexahedra;
+  double lame_lambda = 0.0;
+  double lame_mu = 0.0;
 };
 
 // Rotates the modes to body axes, removes their rigid content with the given masses,

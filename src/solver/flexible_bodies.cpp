@@ -172,6 +172,33 @@ void attach_flexible_bodies(const model::Model& model, const NodeIndex& node_ind
     for (const auto& d : card.damping) {
       for (int m = d.mstart; m <= d.mstop; ++m) input.damping[m - 1] = d.dampf;
     }
+    // Geometric stiffening (FORM 0): the body's 8-node hexahedra and its material. The cubic
+    // invariants cost n^3 per step and n^3 x (Gauss points) once: above kMaxStiffeningModes
+    // modes they are left out (with a notice).
+    constexpr int kMaxStiffeningModes = 40;
+    if (input.form == modal::ModalForm::kExact) {
+      if (static_cast<int>(chosen.size()) > kMaxStiffeningModes) {
+        rigid.warnings.push_back(
+            {card.where, fmt::format("flexible body {}: {} modes, geometric stiffening (FORM 0) "
+                                     "is computed for at most {} modes and is left out",
+                                     pid, chosen.size(), kMaxStiffeningModes)});
+      } else {
+        std::unordered_map<std::int32_t, std::int32_t> position;
+        for (std::size_t k = 0; k < bn; ++k) {
+          position.emplace(body.nodes[k], static_cast<std::int32_t>(k));
+        }
+        for (const auto& block : state.hex_blocks) {
+          if (std::find(body.parts.begin(), body.parts.end(), block.part_id) == body.parts.end() ||
+              block.order != 1) {
+            continue;
+          }
+          for (const std::int32_t i : block.conn) input.hexahedra.push_back(position.at(i));
+          const auto& mat = model.materials.at(model.parts.at(block.part_id).mid);
+          input.lame_mu = mat.e / (2.0 * (1.0 + mat.pr));
+          input.lame_lambda = mat.e * mat.pr / ((1.0 + mat.pr) * (1.0 - 2.0 * mat.pr));
+        }
+      }
+    }
     modal::FlexibleBody flexible;
     try {
       flexible = modal::prepare_flexible_body(input);

@@ -556,6 +556,7 @@ RigidStepSums advance_rigid_bodies(RigidSystem& rigid, const Boundary& boundary,
       set_flexible_node_velocities(body, *flexible, dt, nodes, rigid.modal_work_velocity);
       sums.modal_damping_loss += flexible->damping_loss;
       sums.modal_inertia_work += flexible->inertia_work;
+      sums.modal_stiffening_work += flexible->stiffening_work;
     } else if (body.update == NodeUpdate::kLinear || !(dt > 0.0)) {
       rigid::rigid_node_velocities(s.velocity, s.angular_velocity, c_old, body.nodes,
                                    nodes.x.x.data(), nodes.x.y.data(), nodes.x.z.data(),

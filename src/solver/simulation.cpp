@@ -561,7 +561,8 @@ void Simulation::update_velocities() {
     sums[6 + k] += rigid_sums.angular_momentum[k];
   }
   energy_.kinetic = sums[0];
-  energy_.internal_work += sums[1] + rigid_sums.modal_damping_loss;
+  energy_.internal_work +=
+      sums[1] + rigid_sums.modal_damping_loss - rigid_sums.modal_stiffening_work;
   energy_.external_work += sums[2] + reaction_work + rigid_sums.external_work +
                            rigid_sums.modal_inertia_work;
   energy_.modal_elastic = rigid_sums.modal_elastic;

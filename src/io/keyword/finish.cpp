@@ -313,6 +313,12 @@ void finish_switching(const model::Model& m) {
   auto check_to_rigid = [&](const model::PartSwitch& s) {
     for (const Id p : parts_of(s)) {
       // With LRB the part may already be rigid (the manual: it is then only merged).
+      if (m.part_modes.count(p)) {
+        throw located_error(s.where, "PID",
+                            fmt::format("part {} is a flexible body (*PART_MODES): it cannot "
+                                        "be merged into another rigid body by switching",
+                                        p));
+      }
       if (s.lrb == 0 && is_mat_rigid(p)) {
         throw located_error(s.where, "PID",
                             fmt::format("part {} is *MAT_RIGID, rigid already; give LRB to "
@@ -339,6 +345,13 @@ void finish_switching(const model::Model& m) {
   }
   auto check_lead = [&](const model::PartSwitch& s) {
     if (s.lrb == 0) return;
+    if (m.part_modes.count(s.lrb)) {
+      throw located_error(s.where, "LRB",
+                          fmt::format("part {} is a flexible body (*PART_MODES): its modes "
+                                      "describe its own nodes only, so no part can be merged "
+                                      "into it by switching",
+                                      s.lrb));
+    }
     if (!m.parts.count(s.lrb)) {
       throw located_error(s.where, "LRB", fmt::format("part {} is not defined", s.lrb));
     }
