@@ -102,4 +102,14 @@ TEST(KeywordPartModes, InconsistentCardsAreRejected) {
       std::string::npos);
 }
 
+// Switching cannot merge a part into a flexible body nor the flexible part into another body.
+TEST(KeywordPartModes, SwitchingMergesWithAFlexibleBodyAreRejected) {
+  const std::string modes = "*PART_MODES\n1,3,0,0,3\nmodes.h5\n";
+  const std::string into = error_of(modes + "*DEFORMABLE_TO_RIGID\n2,1\n");
+  EXPECT_NE(into.find("LRB"), std::string::npos) << into;
+  EXPECT_NE(into.find("flexible body"), std::string::npos) << into;
+  const std::string away = error_of(modes + "*DEFORMABLE_TO_RIGID\n1,2\n");
+  EXPECT_NE(away.find("flexible body"), std::string::npos) << away;
+}
+
 }  // namespace
