@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -64,7 +65,15 @@ void attach_flexible_bodies(const model::Model& model, const NodeIndex& node_ind
     modal::ModeSet set;
     try {
       set = loader(card.path);
-    } catch (const InputError&) {
+    } catch (const InputError& e) {
+      // Name the keyword and field: the database reader knows only the file.
+      if (!std::filesystem::exists(card.path)) {
+        throw InputError(context_of(card.where, "FILENAME"),
+                         fmt::format("mode database '{}' does not exist: compute it with an "
+                                     "eigen analysis of the part (rigidflex eigen, "
+                                     "docs/eigen.md) or correct FILENAME",
+                                     card.path));
+      }
       throw;
     } catch (const std::exception& e) {
       throw InputError(context_of(card.where, "FILENAME"),
