@@ -692,3 +692,28 @@ TEST(FlexibleBody, PassiveNodesAreReconstructedForEveryFrame) {
 
 }  // namespace
 }  // namespace rf::test
+
+namespace rf::test {
+namespace {
+
+// KMFLAG 1: the listed modes are kept in the listed order, with their own frequencies; a
+// listed rigid mode is an error naming it.
+TEST(FlexibleBody, KeptModeListSelectsTheListedModes) {
+  const auto& modes = beam_modes();
+  solver::Simulation sim(read(flexible_deck(beam_mesh(), 2, 1, "", 1e-4, 1e-5, "K9,7\n")),
+                         with_modes());
+  const auto& f = sim.rigid_bodies().flexible.at(0);
+  EXPECT_EQ(f.file_modes, (std::vector<int>{9, 7}));
+  EXPECT_NEAR(f.omega[0], std::sqrt(modes.eigenvalues[8]), 1e-9 * f.omega[0]);
+  EXPECT_NEAR(f.omega[1], std::sqrt(modes.eigenvalues[6]), 1e-9 * f.omega[1]);
+  try {
+    solver::Simulation bad(read(flexible_deck(beam_mesh(), 2, 1, "", 1e-4, 1e-5, "K3,7\n")),
+                           with_modes());
+    ADD_FAILURE() << "no error for a rigid mode in the list";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("mode 3 of"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace rf::test
