@@ -14,8 +14,10 @@
 #include <string>
 #include <vector>
 
+#include "app/eigen_command.hpp"
 #include "app/model_summary.hpp"
 #include "io/keyword/reader.hpp"
+#include "modal/eigen_analysis.hpp"
 #include "model/error.hpp"
 #include "output/writers.hpp"
 #include "restart/dumper.hpp"
@@ -196,6 +198,21 @@ int command_run(const std::string& deck, std::string output_dir, int threads, bo
     throw;
   }
   for (const auto& w : model.warnings) report_warning(summary, w, quiet);
+  // *CONTROL_IMPLICIT_EIGENVALUE with IMFLAG 1: an eigen analysis instead of a transient run.
+  if (rf::modal::deck_requests_eigen_analysis(model)) {
+    rf::model::Model quiet_model = model;
+    quiet_model.warnings.clear();  // reported above
+    rf::app::EigenCommandOptions eigen;
+    eigen.output = out;
+    eigen.quiet = quiet;
+    return rf::app::run_eigen_command(quiet_model, eigen);
+  }
+  if (model.implicit.imflag == 1) {
+    throw rf::InputError({model.files.empty() ? deck : model.files.front(), 0,
+                          "*CONTROL_IMPLICIT_GENERAL", 1, "IMFLAG"},
+                         "IMFLAG 1 (implicit) is supported only for an eigen analysis: add "
+                         "*CONTROL_IMPLICIT_EIGENVALUE with NEIG > 0");
+  }
 
   std::unique_ptr<rf::solver::Simulation> sim;
   try {
@@ -293,6 +310,32 @@ int main(int argc, char** argv) {
   check->add_option("--dialect", dialect, "Input dialect")
       ->check(CLI::IsMember({"auto", "lsdyna", "impetus"}));
 
+  std::optional<int> eigen_modes;
+  std::string eigen_parts, eigen_solver = "cholmod";
+  std::optional<double> eigen_shift, eigen_remove_rigid;
+  auto* eigen = app.add_subcommand(
+      "eigen", "Eigen analysis (modes of free-free or constrained parts) of any deck");
+  eigen->add_option("deck", deck, "Keyword deck")->required();
+  eigen->add_option("-o,--output", output_dir, "Output directory (default: <deck stem>_eigen)");
+  eigen
+      ->add_option("--modes", eigen_modes,
+                   "Number of modes (default: NEIG of *CONTROL_IMPLICIT_EIGENVALUE, else 20)")
+      ->check(CLI::PositiveNumber);
+  eigen->add_option("--parts", eigen_parts, "Analyse only these parts, e.g. 1,2 (default: all)");
+  eigen->add_option("--shift", eigen_shift,
+                    "Negative shift sigma of the shift-invert operator, eigenvalue units "
+                    "(default: automatic)");
+  eigen->add_option("--remove-rigid", eigen_remove_rigid,
+                    "Drop modes at or below this frequency (LFLAG 1, LFTEND)");
+  eigen->add_option("--solver", eigen_solver, "Sparse Cholesky: cholmod or simplicial (Eigen)")
+      ->check(CLI::IsMember({"cholmod", "simplicial"}));
+  eigen->add_option("--threads", threads, "OpenMP threads (default: all cores)")
+      ->check(CLI::NonNegativeNumber);
+  eigen->add_flag("--quiet", quiet, "Print nothing but errors");
+  eigen->add_option("--set", assignments, "Override a *PARAMETER: name=value (repeatable)");
+  eigen->add_option("--dialect", dialect, "Input dialect")
+      ->check(CLI::IsMember({"auto", "lsdyna", "impetus"}));
+
   CLI11_PARSE(app, argc, argv);
 
   try {
@@ -300,6 +343,23 @@ int main(int argc, char** argv) {
     read_options.dialect = parse_dialect(dialect);
     read_options.parameter_overrides = parse_overrides(assignments);
     if (*check) return command_check(deck, read_options);
+    if (*eigen) {
+      if (threads > 0) omp_set_num_threads(threads);
+      if (eigen_shift && !(*eigen_shift < 0.0)) {
+        throw std::invalid_argument(
+            "--shift must be negative (K - sigma M must be positive "
+            "definite)");
+      }
+      rf::app::EigenCommandOptions options;
+      options.output = output_dir.empty() ? fs::path(deck).stem().string() + "_eigen" : output_dir;
+      options.modes = eigen_modes;
+      options.parts = rf::app::parse_part_list(eigen_parts);
+      options.shift = eigen_shift;
+      options.remove_rigid_below = eigen_remove_rigid;
+      options.solver = eigen_solver;
+      options.quiet = quiet;
+      return rf::app::run_eigen_command(rf::io::read_deck(deck, read_options), options);
+    }
     if (*restart) {
       std::optional<double> interval;
       if (restart_dump_every->count() > 0) interval = dump_every;

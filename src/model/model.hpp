@@ -316,6 +316,29 @@ struct NodalRigidBody {
 };
 
 // *BOUNDARY_PRESCRIBED_MOTION_RIGID: motion of a rigid body (rigid part or nodal rigid body).
+// *PART_MODES: a rigid part that deforms in the modes of a mode database, superimposed on its
+// rigid motion (docs/flexible_bodies.md).
+struct PartModesDamping {
+  int mstart = 0;  // first and last mode (1-based, among the kept modes) with this damping
+  int mstop = 0;
+  double dampf = 0.0;  // fraction of critical damping
+  SourceLocation where;
+};
+
+struct PartModes {
+  Id pid = 0;
+  int nmfb = 0;
+  int form = 0;   // 0 exact (inertia coupling kept), 1 fast
+  Id ansid = 0;   // attachment node set: nodes reconstructed every cycle (optional)
+  int format = 3;
+  int kmflag = 0;
+  std::string filename;      // as given on card 2
+  std::string path;          // resolved against the directory of the file that gave it
+  std::vector<int> modes;    // KMFLAG 1: kept modes, 1-based numbers in the file
+  std::vector<PartModesDamping> damping;
+  SourceLocation where;
+};
+
 struct RigidPrescribedMotion {
   Id pid = 0;
   // 1,2,3: translation x,y,z; 4: translation along vector vid; 5,6,7: rotation about the
@@ -557,6 +580,24 @@ struct OutputControl {
   double rcforc_dt = 0.0;  // *DATABASE_RCFORC DT; 0: about 1000 rows per run
 };
 
+// *CONTROL_IMPLICIT_GENERAL and *CONTROL_IMPLICIT_EIGENVALUE (docs/eigen.md): with IMFLAG 1 and
+// NEIG > 0 the deck asks for an eigen analysis instead of a transient run.
+struct ImplicitControl {
+  bool general = false;  // *CONTROL_IMPLICIT_GENERAL present
+  int imflag = 0;
+  double dt0 = 0.0;
+  bool eigenvalue = false;  // *CONTROL_IMPLICIT_EIGENVALUE present
+  int neig = 0;
+  double center = 0.0;  // frequency (cycles per time unit)
+  int lflag = 0;
+  double lftend = -1e29;  // frequency
+  int rflag = 0;
+  double rhtend = 1e29;  // frequency
+  int eigmth = 2;
+  double shfscl = 0.0;
+  SourceLocation where;  // the *CONTROL_IMPLICIT_EIGENVALUE card
+};
+
 struct Warning {
   SourceLocation where;
   std::string message;
@@ -596,6 +637,7 @@ struct Model {
   std::vector<RigidBodyMerge> rigid_body_merges;
   std::vector<ExtraNodes> extra_nodes;
   std::map<Id, NodalRigidBody> nodal_rigid_bodies;  // by PID
+  std::map<Id, PartModes> part_modes;  // by PID
   std::vector<RigidPrescribedMotion> rigid_prescribed_motions;
   std::vector<RigidLoad> rigid_loads;
   int rigid_body_update = 0;  // *RIGID_BODY_UPDATE type (0, 1, 2)
@@ -613,6 +655,7 @@ struct Model {
   TimestepControl timestep;
   HourglassControl hourglass_control;
   OutputControl output;
+  ImplicitControl implicit;
 
   std::map<std::string, double> parameters;     // *PARAMETER values, final
   std::vector<Warning> warnings;                // unknown keywords and other notices

@@ -33,6 +33,7 @@ struct GlstatRow {
   double rigidwall_work = 0.0;
   // Minus the work of the contact forces (stored penalty energy + dissipation).
   double contact_energy = 0.0;
+  double modal_energy = 0.0;  // elastic energy of flexible bodies' modes (in internal_energy)
 };
 
 // Plain CSV file with a fixed header; rows are flushed at close. Numbers use %.9g or
@@ -76,13 +77,14 @@ struct CsvContinuation {
   std::int64_t sensor = -1;    // sensor.csv
   std::int64_t rwforc = -1;    // rwforc.csv
   std::int64_t rcforc = -1;    // rcforc.csv
+  std::int64_t modal = -1;     // modal.csv
 };
 
 // Column headers, exactly as written (docs/output.md).
 inline constexpr std::string_view kGlstatHeader =
     "time,dt,cycle,kinetic_energy,internal_energy,hourglass_energy,external_work,total_energy,"
     "energy_ratio,momentum_x,momentum_y,momentum_z,angular_momentum_x,angular_momentum_y,"
-    "angular_momentum_z,switch_energy,frozen_energy,rigidwall_work,contact_energy";
+    "angular_momentum_z,switch_energy,frozen_energy,rigidwall_work,contact_energy,modal_energy";
 inline constexpr std::string_view kNodoutHeader = "time,node,x,y,z,vx,vy,vz,ax,ay,az";
 inline constexpr std::string_view kRbdoutHeader =
     "time,body,mass,x,y,z,vx,vy,vz,ax,ay,az,wx,wy,wz,r11,r12,r13,r21,r22,r23,r31,r32,r33";

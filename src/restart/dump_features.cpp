@@ -314,6 +314,45 @@ void read_sensors(sensor::SensorSystem& s, const Group& g) {
   s.changed = g.get_int("changed") != 0;
 }
 
+// Flexible bodies (*PART_MODES): the modal state; the modes themselves come from the mode
+// database again when the deck is rebuilt.
+void write_flexible(const solver::RigidSystem& rigid, const Group& g) {
+  g.set("count", static_cast<std::int64_t>(rigid.flexible.size()));
+  for (std::size_t k = 0; k < rigid.flexible.size(); ++k) {
+    const auto& f = rigid.flexible[k];
+    const Group b = g.create_group(fmt::format("body_{}", k));
+    b.set("body", static_cast<std::int64_t>(f.body));
+    b.set("part", static_cast<std::int64_t>(f.part));
+    b.write("q", span_of(f.q));
+    b.write("s", span_of(f.s));
+    b.write("q_previous", span_of(f.q_previous));
+    b.write("s_mid", span_of(f.s_mid));
+  }
+}
+
+void read_flexible(solver::RigidSystem& rigid, const Group& g) {
+  expect_count(g, "count", static_cast<std::size_t>(g.get_int("count")), rigid.flexible.size());
+  for (auto& body : rigid.bodies) body.flexible = -1;
+  for (std::size_t k = 0; k < rigid.flexible.size(); ++k) {
+    auto& f = rigid.flexible[k];
+    const Group b = g.group(fmt::format("body_{}", k));
+    const auto index = b.get_int("body");
+    if (index < 0 || static_cast<std::size_t>(index) >= rigid.bodies.size() ||
+        b.get_int("part") != f.part) {
+      b.fail("body", "does not match the flexible bodies of the rebuilt model");
+    }
+    f.body = static_cast<int>(index);
+    rigid.bodies[f.body].flexible = static_cast<int>(k);
+    for (auto [name, array] :
+         {std::pair{"q", &f.q}, std::pair{"s", &f.s}, std::pair{"q_previous", &f.q_previous},
+          std::pair{"s_mid", &f.s_mid}}) {
+      const auto values = b.read_doubles(name);
+      expect_count(b, name, values.size(), f.mode_count);
+      *array = values;
+    }
+  }
+}
+
 }  // namespace
 
 void SimulationAccess::write_features(Simulation& s, const Group& g) {
@@ -321,6 +360,7 @@ void SimulationAccess::write_features(Simulation& s, const Group& g) {
   write_walls(s.walls_, g.create_group("walls"));
   if (!s.contacts_.empty()) write_contacts(s.contacts_, g.create_group("contacts"));
   if (s.sensors_) write_sensors(*s.sensors_, g.create_group("sensors"));
+  if (!s.rigid_.flexible.empty()) write_flexible(s.rigid_, g.create_group("flexible"));
 }
 
 void SimulationAccess::read_features(Simulation& s, const Group& g) {
@@ -339,6 +379,11 @@ void SimulationAccess::read_features(Simulation& s, const Group& g) {
     read_contacts(s.contacts_, g.group("contacts"));
   }
   if (s.sensors_ && g.has("sensors")) read_sensors(*s.sensors_, g.group("sensors"));
+  if (!s.rigid_.flexible.empty()) {
+    if (!g.has("flexible")) g.fail("flexible", "is missing: the dump has no flexible bodies");
+    read_flexible(s.rigid_, g.group("flexible"));
+    s.energy_.modal_elastic = solver::rigid_body_sums(s.rigid_).modal_elastic;
+  }
 }
 
 }  // namespace rf::restart

@@ -141,6 +141,11 @@ Restarted restart_from_dump(const RestartOptions& options) {
           ? continue_csv(dump_dir, result.output_directory, same, "rcforc.csv",
                          output.get_int("rcforc_bytes"), result.warnings)
           : -1;
+  if (output.has_attribute("modal_bytes")) {
+    sim_options.continuation.modal =
+        continue_csv(dump_dir, result.output_directory, same, "modal.csv",
+                     output.get_int("modal_bytes"), result.warnings);
+  }
   if (!same && options.write_fields) {
     // Earlier frames, so that the new directory's d3plot.pvd is complete.
     for (const std::string& name : SimulationAccess::read_frames(output).files) {

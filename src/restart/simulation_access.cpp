@@ -106,6 +106,7 @@ void SimulationAccess::write_output(Simulation& s, const Group& g) {
   g.set("switch_bytes", s.switch_csv_ ? s.switch_csv_->flushed_size() : std::int64_t{-1});
   g.set("sensor_bytes", s.sensor_csv_ ? s.sensor_csv_->flushed_size() : std::int64_t{-1});
   g.set("rwforc_bytes", s.rwforc_ ? s.rwforc_->flushed_size() : std::int64_t{-1});
+  g.set("modal_bytes", s.modal_csv_ ? s.modal_csv_->flushed_size() : std::int64_t{-1});
   write_schedule(g, "rwforc", s.rwforc_schedule_.interval, s.rwforc_schedule_.next,
                  s.rwforc_schedule_.last_cycle);
   g.set("rcforc_bytes", s.rcforc_ ? s.rcforc_->flushed_size() : std::int64_t{-1});

@@ -10,6 +10,7 @@
 
 #include "model/error.hpp"
 #include "model/error_context.hpp"
+#include "solver/flexible_bodies.hpp"
 
 namespace rf::solver {
 
@@ -434,9 +435,21 @@ void initialize_rigid_velocities(const model::Model& model, const NodeIndex& nod
     rigid::set_velocity(s, v, w);
     body.velocity_before = v;
     body.angular_velocity_before = w;
+    std::vector<double> given;  // flexible bodies: the nodes' velocities before the rigid fit
+    if (body.flexible >= 0) {
+      given.resize(3 * body.nodes.size());
+      for (std::size_t k = 0; k < body.nodes.size(); ++k) {
+        given[3 * k] = nodes.v.x[body.nodes[k]];
+        given[3 * k + 1] = nodes.v.y[body.nodes[k]];
+        given[3 * k + 2] = nodes.v.z[body.nodes[k]];
+      }
+    }
     rigid::rigid_node_velocities(v, w, s.centre, body.nodes, nodes.x.x.data(), nodes.x.y.data(),
                                  nodes.x.z.data(), nodes.v.x.data(), nodes.v.y.data(),
                                  nodes.v.z.data());
+    if (body.flexible >= 0) {
+      initialize_modal_velocities(body, rigid.flexible[body.flexible], given, nodes);
+    }
   }
 }
 
@@ -457,11 +470,15 @@ RigidStepSums advance_rigid_bodies(RigidSystem& rigid, const Boundary& boundary,
     body.angular_velocity_before = s.angular_velocity;
 
     // Force and torque about x_c^n: nodal forces f_ext - f_int (f_int only from deformable
-    // neighbours; rigid elements have no kernel), body-level loads and body forces.
+    // neighbours; rigid elements have no kernel), body-level loads and body forces. A flexible
+    // body's passive nodes carry no force (docs/flexible_bodies.md).
+    modal::FlexibleBody* flexible = body.flexible >= 0 ? &rigid.flexible[body.flexible] : nullptr;
+    const std::vector<std::int32_t>& loaded = flexible ? flexible->active_nodes : body.nodes;
     rigid::ForceAndTorque ft = rigid::gather_force_and_torque(
-        s.centre, body.nodes, nodes.f_ext.x.data(), nodes.f_ext.y.data(), nodes.f_ext.z.data(),
+        s.centre, loaded, nodes.f_ext.x.data(), nodes.f_ext.y.data(), nodes.f_ext.z.data(),
         nodes.x.x.data(), nodes.x.y.data(), nodes.x.z.data());
-    ft -= rigid::gather_force_and_torque(s.centre, body.nodes, nodes.f_int.x.data(),
+    if (flexible) gather_modal_forces(body, *flexible, nodes);
+    ft -= rigid::gather_force_and_torque(s.centre, loaded, nodes.f_int.x.data(),
                                          nodes.f_int.y.data(), nodes.f_int.z.data(),
                                          nodes.x.x.data(), nodes.x.y.data(), nodes.x.z.data());
     Eigen::Vector3d load_force = Eigen::Vector3d::Zero(), load_moment = Eigen::Vector3d::Zero();
@@ -525,7 +542,22 @@ RigidStepSums advance_rigid_bodies(RigidSystem& rigid, const Boundary& boundary,
     // velocity onto x_c^{n+1} + R^{n+1} X_i (curvilinear), so that deformable neighbours see
     // exactly the displacement the node makes.
     const Eigen::Vector3d& c_old = s.previous_centre;
-    if (body.update == NodeUpdate::kLinear || !(dt > 0.0)) {
+    if (flexible) {
+      // Modes from t^n to t^{n+1} with the frame's angular velocity and acceleration at t^n
+      // (body axes), then the secant velocities onto the reconstructed positions.
+      const Eigen::Matrix3d rt = s.previous_rotation.transpose();
+      const Eigen::Vector3d omega_body =
+          rt * (0.5 * (body.angular_velocity_before + s.angular_velocity));
+      const Eigen::Vector3d alpha_body =
+          dt_avg > 0.0 ? Eigen::Vector3d(rt * (s.angular_velocity - body.angular_velocity_before) /
+                                         dt_avg)
+                       : Eigen::Vector3d::Zero();
+      modal::advance_modes(*flexible, omega_body, alpha_body, dt_avg, dt);
+      set_flexible_node_velocities(body, *flexible, dt, nodes, rigid.modal_work_velocity);
+      sums.modal_damping_loss += flexible->damping_loss;
+      sums.modal_inertia_work += flexible->inertia_work;
+      sums.modal_stiffening_work += flexible->stiffening_work;
+    } else if (body.update == NodeUpdate::kLinear || !(dt > 0.0)) {
       rigid::rigid_node_velocities(s.velocity, s.angular_velocity, c_old, body.nodes,
                                    nodes.x.x.data(), nodes.x.y.data(), nodes.x.z.data(),
                                    nodes.v.x.data(), nodes.v.y.data(), nodes.v.z.data());
@@ -552,6 +584,7 @@ RigidStepSums advance_rigid_bodies(RigidSystem& rigid, const Boundary& boundary,
   }
   const RigidStepSums totals = rigid_body_sums(rigid);
   sums.kinetic = totals.kinetic;
+  sums.modal_elastic = totals.modal_elastic;
   for (int k = 0; k < 3; ++k) {
     sums.momentum[k] = totals.momentum[k];
     sums.angular_momentum[k] = totals.angular_momentum[k];
@@ -563,6 +596,10 @@ void place_curvilinear_nodes(const RigidSystem& rigid, State& state) {
   NodalState& nodes = state.nodes;
   for (const RigidBody& body : rigid.bodies) {
     if (body.update != NodeUpdate::kCurvilinear) continue;
+    if (body.flexible >= 0) {
+      place_flexible_nodes(body, rigid.flexible[body.flexible], nodes);
+      continue;
+    }
     rigid::place_nodes_curvilinear(body.state, body.nodes, body.body_coordinates, nodes.x.x.data(),
                                    nodes.x.y.data(), nodes.x.z.data());
   }
@@ -584,6 +621,12 @@ RigidStepSums rigid_body_sums(const RigidSystem& rigid) {
       sums.momentum[k] += p[k];
       sums.angular_momentum[k] += h[k];
     }
+  }
+  // The modes carry no momentum and no angular momentum about the centre (mean-axis
+  // conditions, docs/flexible_bodies.md), only energy.
+  for (const auto& f : rigid.flexible) {
+    sums.kinetic += f.kinetic_energy();
+    sums.modal_elastic += f.elastic_energy();
   }
   return sums;
 }

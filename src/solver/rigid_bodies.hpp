@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "modal/flexible_body.hpp"
 #include "model/model.hpp"
 #include "rigid/rigid_body.hpp"
 #include "solver/boundary.hpp"
@@ -71,6 +72,7 @@ struct RigidBody {
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
   Eigen::Vector3d torque = Eigen::Vector3d::Zero();
   rigid::VelocityConstraints step_constraints;  // scratch, reused every step
+  int flexible = -1;  // index into RigidSystem::flexible (*PART_MODES), -1: rigid
 };
 
 struct RigidSystem {
@@ -79,6 +81,11 @@ struct RigidSystem {
   std::vector<RigidMotion> motions;        // grouped by body (ascending body index)
   std::vector<RigidLoadTerm> loads;
   std::vector<model::Warning> warnings;  // notices found while building (shown by the CLI)
+  // Flexible bodies (*PART_MODES, solver/flexible_bodies.hpp) and, per node (3 each, global
+  // axes), the modal velocity R^n Phi_i s_mid of the last step: its share of the displacement
+  // with which the work of the nodal forces is summed (empty without flexible bodies).
+  std::vector<modal::FlexibleBody> flexible;
+  std::vector<double> modal_work_velocity;
 
   bool empty() const { return bodies.empty(); }
   bool is_rigid(std::int32_t node) const {
@@ -104,6 +111,12 @@ struct RigidStepSums {
   double external_work = 0.0;  // body loads, body forces and constraint reactions
   double momentum[3] = {0, 0, 0};
   double angular_momentum[3] = {0, 0, 0};  // about the global origin
+  // Flexible bodies: elastic energy of the modes (their kinetic energy is in `kinetic`), the
+  // energy modal damping removed this step and the work of FORM 0 inertia terms this step.
+  double modal_elastic = 0.0;
+  double modal_damping_loss = 0.0;
+  double modal_inertia_work = 0.0;
+  double modal_stiffening_work = 0.0;  // work of the geometric-stiffening forces (internal)
 };
 
 // One rigid step from t^n (after the nodal velocity update): force and torque from the

@@ -86,6 +86,11 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
   boundary_.constrained_nodes.erase(
       std::unique(boundary_.constrained_nodes.begin(), boundary_.constrained_nodes.end()),
       boundary_.constrained_nodes.end());
+  attach_flexible_bodies(model_, node_index_, state_, boundary_, rigid_,
+                         options_.mode_loader ? options_.mode_loader : ModeLoader(
+                                                    [](const std::filesystem::path& file) {
+                                                      return modal::read_mode_database(file);
+                                                    }));
   walls_ = contact::build_rigid_walls(model_, node_index_, state_, boundary_, warnings_);
   // CODE 1/3 of automatic switching ask the walls (ENTNO is the wall's deck number).
   switch_queries_.wall_force = [this](model::Id number) {
@@ -132,6 +137,10 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
       rbdout_schedule_.interval = default_interval(model.output.rbdout_dt, span, 1000.0);
       rbdout_ = std::make_unique<output::RbdoutWriter>(options_.output_directory / "rbdout.csv",
                                                        options_.continuation.rbdout);
+      if (!rigid_.flexible.empty()) {
+        modal_csv_ = std::make_unique<output::ModalWriter>(
+            options_.output_directory / "modal.csv", options_.continuation.modal);
+      }
     }
     if (!sensors_->empty()) {
       sensor_csv_ = std::make_unique<sensor::SensorCsv>(options_.output_directory / "sensor.csv",
@@ -202,7 +211,8 @@ void Simulation::initialize() {
     sums[4 + k] += rigid_sums.angular_momentum[k];
   }
   energy_.kinetic = sums[0];
-  energy_.initial_total = sums[0];
+  energy_.modal_elastic = rigid_sums.modal_elastic;
+  energy_.initial_total = sums[0] + rigid_sums.modal_elastic;
   for (int k = 0; k < 3; ++k) {
     energy_.momentum[k] = sums[1 + k];
     energy_.angular_momentum[k] = sums[4 + k];
@@ -304,6 +314,7 @@ void Simulation::run(const std::function<void(const Simulation&)>& on_progress) 
     if (glstat_) glstat_->flush();
     if (nodout_) nodout_->flush();
     if (rbdout_) rbdout_->flush();
+    if (modal_csv_) modal_csv_->flush();
     if (sensor_csv_) sensor_csv_->flush();
     if (rwforc_) rwforc_->flush();
     if (rcforc_) rcforc_->flush();
@@ -313,6 +324,7 @@ void Simulation::run(const std::function<void(const Simulation&)>& on_progress) 
   if (glstat_) glstat_->flush();
   if (nodout_) nodout_->flush();
   if (rbdout_) rbdout_->flush();
+  if (modal_csv_) modal_csv_->flush();
   if (sensor_csv_) sensor_csv_->flush();
   if (rwforc_) rwforc_->flush();
   if (rcforc_) rcforc_->flush();
@@ -502,6 +514,8 @@ void Simulation::update_velocities() {
   // and momenta of rigid-body nodes are those of their bodies.
   const std::int32_t* body_of = rigid_.empty() ? nullptr : rigid_.body_of_node.data();
   const Vec3Array* contact_force = contacts_.empty() ? nullptr : &contacts_.force;
+  const double* modal_velocity =
+      rigid_.modal_work_velocity.empty() ? nullptr : rigid_.modal_work_velocity.data();
   auto sums =
       deterministic_sum<10>(n, reduction_scratch_, [&](std::int64_t i, std::array<double, 10>& acc) {
         const double m = nodes.mass[i];
@@ -524,6 +538,11 @@ void Simulation::update_velocities() {
           dx = d.x();
           dy = d.y();
           dz = d.z();
+          if (modal_velocity) {  // flexible body: the modes' share (docs/flexible_bodies.md)
+            dx += dt_avg * modal_velocity[3 * i];
+            dy += dt_avg * modal_velocity[3 * i + 1];
+            dz += dt_avg * modal_velocity[3 * i + 2];
+          }
         }
         acc[1] += nodes.f_int.x[i] * dx + nodes.f_int.y[i] * dy + nodes.f_int.z[i] * dz;
         acc[2] += nodes.f_ext.x[i] * dx + nodes.f_ext.y[i] * dy + nodes.f_ext.z[i] * dz;
@@ -565,9 +584,12 @@ void Simulation::update_velocities() {
     sums[6 + k] += rigid_sums.angular_momentum[k];
   }
   energy_.kinetic = sums[0];
-  energy_.internal_work += sums[1];
-  energy_.external_work += sums[2] - sums[9] + reaction_work + rigid_sums.external_work;
+  energy_.internal_work +=
+      sums[1] + rigid_sums.modal_damping_loss - rigid_sums.modal_stiffening_work;
+  energy_.external_work += sums[2] - sums[9] + reaction_work + rigid_sums.external_work +
+                           rigid_sums.modal_inertia_work;
   energy_.contact_energy -= sums[9];
+  energy_.modal_elastic = rigid_sums.modal_elastic;
   if (!walls_.empty()) {  // already in sums[2] (the wall forces are in f_ext): its share
     energy_.rigidwall_work += contact::rigid_wall_work(walls_, rigid_, vp, state_, dt_avg);
   }
@@ -640,8 +662,14 @@ void Simulation::write_output_if_due(bool force) {
     row.switch_energy = energy_.switch_energy;
     row.frozen_energy = energy_.frozen_energy;
     row.contact_energy = energy_.contact_energy;
+    row.modal_energy = energy_.modal_elastic;
     glstat_->write(row);
     glstat_schedule_.mark_written(t, cycle);
+  }
+  // Flexible bodies: nodes not reconstructed every cycle get their place before nodal output.
+  if (!rigid_.flexible.empty() && ((nodout_ && wanted(nodout_schedule_)) ||
+                                   (fields_ && wanted(d3plot_schedule_)))) {
+    reconstruct_passive_nodes(rigid_, state_);
   }
   if (nodout_ && wanted(nodout_schedule_)) {
     nodout_->write(state_, v_previous_);
@@ -667,6 +695,7 @@ void Simulation::write_output_if_due(bool force) {
       rbdout_rows_.push_back(row);
     }
     rbdout_->write(rbdout_rows_);
+    if (modal_csv_) modal_csv_->write(t, rigid_);
     rbdout_schedule_.mark_written(t, cycle);
   }
   if (rwforc_ && wanted(rwforc_schedule_)) {

@@ -14,9 +14,11 @@
 #include "contact/rigid_wall.hpp"
 #include "model/model.hpp"
 #include "model/restart_switch.hpp"
+#include "output/modal_writer.hpp"
 #include "output/writers.hpp"
 #include "solver/boundary.hpp"
 #include "solver/build_state.hpp"
+#include "solver/flexible_bodies.hpp"
 #include "solver/rigid_bodies.hpp"
 #include "solver/state.hpp"
 #include "switching/part_switching.hpp"
@@ -54,11 +56,16 @@ struct EnergyAccount {
   // dissipation); kept out of external_work and counted in the total (docs/contact.md).
   double contact_energy = 0.0;
   double initial_total = 0.0;
+  // Elastic energy 1/2 w^2 q^2 of the modes of flexible bodies now (their kinetic energy is in
+  // `kinetic`, modal damping losses in internal_work).
+  double modal_elastic = 0.0;
   double momentum[3] = {0, 0, 0};
   double angular_momentum[3] = {0, 0, 0};
 
-  double internal() const { return internal_work - hourglass; }
-  double total() const { return kinetic + internal_work + switch_energy + contact_energy; }
+  double internal() const { return internal_work - hourglass + modal_elastic; }
+  double total() const {
+    return kinetic + internal_work + modal_elastic + switch_energy + contact_energy;
+  }
   double ratio() const {
     const double reference = initial_total + external_work;
     return reference != 0.0 ? total() / reference : 1.0;
@@ -73,6 +80,8 @@ struct SimulationOptions {
   // (negative: start the file anew).
   bool from_dump = false;
   output::CsvContinuation continuation;
+  // Reads the mode databases of *PART_MODES (empty: modal::read_mode_database).
+  ModeLoader mode_loader;
 };
 
 class Simulation {
@@ -183,6 +192,7 @@ class Simulation {
   std::unique_ptr<output::RbdoutWriter> rbdout_;
   OutputSchedule rbdout_schedule_;
   std::vector<output::RbdoutRow> rbdout_rows_;
+  std::unique_ptr<output::ModalWriter> modal_csv_;  // flexible bodies, at the rbdout times
   std::unique_ptr<output::RwforcWriter> rwforc_;
   OutputSchedule rwforc_schedule_;
   std::vector<output::RwforcRow> rwforc_rows_;

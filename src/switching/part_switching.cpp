@@ -127,6 +127,7 @@ void remove_bodies(RigidSystem& rigid, const std::set<int>& gone,
   }
   for (auto& m : rigid.motions) m.body = remap(m.body);
   for (auto& l : rigid.loads) l.body = remap(l.body);
+  for (auto& f : rigid.flexible) f.body = remap(f.body);  // never removed (see to_rigid)
   std::stable_sort(rigid.motions.begin(), rigid.motions.end(),
                    [](const auto& a, const auto& b) { return a.body < b.body; });
   std::vector<RigidBody> kept;
@@ -296,6 +297,15 @@ SwitchEvent PartSwitcher::to_rigid(const std::vector<model::PartSwitch>& cards, 
       if (rigid.body_of_node[i] >= 0) bodies.insert(rigid.body_of_node[i]);
     }
     for (const int b : removed) bodies.erase(b);
+    for (const int b : bodies) {  // docs/flexible_bodies.md: their modes cover their own nodes
+      if (rigid.bodies[b].flexible >= 0) {
+        throw SolverError(fmt::format(
+            "at time {:.6g}: part {} switched to rigid would merge with flexible body {} "
+            "(*PART_MODES), whose modes describe its own nodes only; keep the switched part "
+            "apart from the flexible body (no shared nodes, no LRB)",
+            time, group.parts.front(), rigid.bodies[b].id));
+      }
+    }
 
     Momenta m;
     std::vector<rigid::MassProperties> props;

@@ -313,6 +313,12 @@ void finish_switching(const model::Model& m) {
   auto check_to_rigid = [&](const model::PartSwitch& s) {
     for (const Id p : parts_of(s)) {
       // With LRB the part may already be rigid (the manual: it is then only merged).
+      if (m.part_modes.count(p)) {
+        throw located_error(s.where, "PID",
+                            fmt::format("part {} is a flexible body (*PART_MODES): it cannot "
+                                        "be merged into another rigid body by switching",
+                                        p));
+      }
       if (s.lrb == 0 && is_mat_rigid(p)) {
         throw located_error(s.where, "PID",
                             fmt::format("part {} is *MAT_RIGID, rigid already; give LRB to "
@@ -339,6 +345,13 @@ void finish_switching(const model::Model& m) {
   }
   auto check_lead = [&](const model::PartSwitch& s) {
     if (s.lrb == 0) return;
+    if (m.part_modes.count(s.lrb)) {
+      throw located_error(s.where, "LRB",
+                          fmt::format("part {} is a flexible body (*PART_MODES): its modes "
+                                      "describe its own nodes only, so no part can be merged "
+                                      "into it by switching",
+                                      s.lrb));
+    }
     if (!m.parts.count(s.lrb)) {
       throw located_error(s.where, "LRB", fmt::format("part {} is not defined", s.lrb));
     }
@@ -428,6 +441,50 @@ void finish_switching(const model::Model& m) {
                           fmt::format("CODE 5: switch set {} is controlled by *SENSOR_CONTROL "
                                       "TYPE = DEF2RIG, TYPEID = {}, and this deck defines none",
                                       set.swset, set.swset));
+    }
+  }
+}
+
+// *PART_MODES: the part must be a rigid body's lead part, ANSID a node set, and the
+// damping ranges may not overlap.
+void finish_part_modes(const model::Model& m) {
+  for (const auto& [pid, modes] : m.part_modes) {
+    if (!m.parts.count(pid)) {
+      throw located_error(modes.where, "PID", fmt::format("part {} is not defined", pid));
+    }
+    check_rigid_part(m, pid, modes.where, "PID", "*PART_MODES");
+    for (const auto& merge : m.rigid_body_merges) {
+      if (merge.constrained == pid) {
+        throw located_error(modes.where, "PID",
+                            fmt::format("part {} is merged into part {} by "
+                                        "*CONSTRAINED_RIGID_BODIES: give *PART_MODES for the "
+                                        "lead part {} (the merged parts form one flexible body)",
+                                        pid, merge.lead, merge.lead));
+      }
+    }
+    if (m.parts.at(pid).inertia) {
+      throw located_error(modes.where, "PID",
+                          fmt::format("part {} has *PART_INERTIA: a flexible body takes its mass "
+                                      "and inertia from the nodal masses its modes are "
+                                      "normalised with; remove the _INERTIA card",
+                                      pid));
+    }
+    if (modes.ansid != 0 && !m.node_sets.count(modes.ansid)) {
+      throw located_error(modes.where, "ANSID",
+                          fmt::format("node set {} is not defined", modes.ansid));
+    }
+    for (std::size_t a = 0; a < modes.damping.size(); ++a) {
+      for (std::size_t b = 0; b < a; ++b) {
+        const auto& x = modes.damping[a];
+        const auto& y = modes.damping[b];
+        if (x.mstart <= y.mstop && y.mstart <= x.mstop) {
+          throw located_error(x.where, "MSTART",
+                              fmt::format("modes {}..{} already have damping from the card at "
+                                          "line {}",
+                                          std::max(x.mstart, y.mstart),
+                                          std::min(x.mstop, y.mstop), y.where.line));
+        }
+      }
     }
   }
 }
@@ -551,6 +608,7 @@ void finish_model(ReaderContext& context) {
     }
   }
   finish_rigid(m, nodes);
+  finish_part_modes(m);
   handlers::check_rigid_walls(m);
   handlers::check_contacts(m);
   finish_switching(m);

@@ -34,6 +34,9 @@ void load_body(const Block&, ReaderContext&);
 void control_termination(const Block&, ReaderContext&);
 void control_timestep(const Block&, ReaderContext&);
 void control_hourglass(const Block&, ReaderContext&);
+// handlers_implicit.cpp
+void control_implicit_general(const Block&, ReaderContext&);
+void control_implicit_eigenvalue(const Block&, ReaderContext&);
 void database_ascii(const Block&, ReaderContext&);
 void database_binary_d3plot(const Block&, ReaderContext&);
 void database_history_node(const Block&, ReaderContext&);
@@ -58,6 +61,7 @@ void deformable_to_rigid(const Block&, ReaderContext&);
 void deformable_to_rigid_automatic(const Block&, ReaderContext&);
 void deformable_to_rigid_inertia(const Block&, ReaderContext&);
 void control_rigid(const Block&, ReaderContext&);
+void part_modes(const Block&, ReaderContext&);  // handlers_modes.cpp
 
 // handlers_sensor.cpp
 void define_function(const Block&, ReaderContext&);

@@ -1,0 +1,50 @@
+// Flexible rigid bodies (*PART_MODES) in the explicit cycle: building the modal state of each
+// body from the mode database, the modal forces from the nodal forces, the nodes' secant
+// velocities and positions reconstructed from rigid motion plus modes, and the initial modal
+// velocities. The modal dynamics live in modal/flexible_body.hpp. docs/flexible_bodies.md.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+
+#include "modal/mode_set.hpp"
+#include "solver/boundary.hpp"
+#include "solver/rigid_bodies.hpp"
+
+namespace rf::solver {
+
+// Reads a mode database (default: modal::read_mode_database). Tests may hand in modes made in
+// code.
+using ModeLoader = std::function<modal::ModeSet(const std::filesystem::path&)>;
+
+// Makes the bodies named on *PART_MODES flexible: matches database nodes to the body's nodes by
+// node ID, selects and prepares the modes, chooses the nodes reconstructed every cycle. Throws
+// rf::InputError (at the *PART_MODES card) for missing nodes, geometry mismatches, too few or
+// rigid modes.
+void attach_flexible_bodies(const model::Model& model, const NodeIndex& node_index,
+                            const State& state, const Boundary& boundary, RigidSystem& rigid,
+                            const ModeLoader& loader);
+
+// g = Phi^T R^T (f_ext - f_int) over the active nodes, R = the body's rotation at t^n.
+void gather_modal_forces(const RigidBody& body, modal::FlexibleBody& flexible,
+                         const NodalState& nodes);
+
+// After the body and its modes advanced: v_i^{n+1/2} = (x_c^{n+1} + R^{n+1} (X_i + Phi_i
+// q^{n+1}) - x_i^n) / dt for the active nodes, and their modal work velocity R^n Phi_i s_mid.
+void set_flexible_node_velocities(const RigidBody& body, const modal::FlexibleBody& flexible,
+                                  double dt, NodalState& nodes, std::vector<double>& work_velocity);
+
+// x_i = x_c + R (X_i + Phi_i q) for the active nodes (after the position update).
+void place_flexible_nodes(const RigidBody& body, const modal::FlexibleBody& flexible,
+                          NodalState& nodes);
+
+// Before output between the velocity and the position update: the passive nodes get x^n
+// (previous centre, rotation and q) and the secant velocity to their place at t^{n+1}.
+void reconstruct_passive_nodes(const RigidSystem& rigid, State& state);
+
+// Initial modal velocities: s_k = sum_i m_i phi_ik . R^T (v_i - v_c - w x (x_i - x_c)) from the
+// nodes' initial velocities (before they are overwritten), then v_i += R Phi_i s.
+void initialize_modal_velocities(const RigidBody& body, modal::FlexibleBody& flexible,
+                                 const std::vector<double>& initial_velocities, NodalState& nodes);
+
+}  // namespace rf::solver
