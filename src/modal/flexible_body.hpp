@@ -18,7 +18,7 @@ struct FlexibleBody {
   ModalForm form = ModalForm::kExact;
   std::size_t node_count = 0;  // N, nodes in the order of the body's node list
   std::size_t mode_count = 0;  // n
-  std::vector<double> omega;   // w_k (rad/s), ascending
+  std::vector<double> omega;   // w_k (rad/s), in the kept order (ascending if re-orthonormalised)
   std::vector<double> zeta;    // fraction of critical damping per mode
   // Body-axes mode shapes, node-major: phi[(3 i + d) n + k]. Mass-orthonormal with `mass`,
   // free of rigid content (docs/flexible_bodies.md section 1).
