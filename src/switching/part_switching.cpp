@@ -588,6 +588,19 @@ void AutomaticSwitching::due(double t, const SwitchQueries& queries, std::vector
                  (set.offset > 0.0 && queries.wall_within_offset &&
                   queries.wall_within_offset(set.entno, set.offset, released_parts_[k]));
         }
+      } else if (set.code == 2 || set.code == 4) {
+        const double force = queries.contact_force ? queries.contact_force(set.entno) : -1.0;
+        if (force < 0.0) {
+          throw SolverError(
+              fmt::format("switch set {}: contact {} does not exist", set.swset, set.entno));
+        }
+        if (set.code == 2) {
+          fire = force == 0.0;
+        } else {  // OFFSET: the released parts come within OFFSET of the other side
+          fire = force > 0.0 ||
+                 (set.offset > 0.0 && queries.contact_within_offset &&
+                  queries.contact_within_offset(set.entno, set.offset, released_parts_[k]));
+        }
       }
     }
     if (fire) out.push_back(static_cast<int>(k));

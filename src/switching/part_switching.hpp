@@ -100,7 +100,7 @@ struct SwitchQueries {
       wall_within_offset;
   // CODE 2 and 4: |resultant contact force| of the contact with ID `id` at the last evaluation
   // (negative: no such contact), and whether a node of the given parts lies within `offset` of
-  // the other side of that contact (contact/contact.hpp). Not yet used by AutomaticSwitching.
+  // the other side of that contact (contact/contact.hpp).
   std::function<double(model::Id id)> contact_force;
   std::function<bool(model::Id id, double offset, const std::vector<model::Id>& parts)>
       contact_within_offset;

@@ -370,6 +370,7 @@ void finish_switching(const model::Model& m) {
                                       related->relsw, related->paired));
     }
     if ((set.code == 1 || set.code == 3) != (related->code == 1 || related->code == 3) ||
+        (set.code == 2 || set.code == 4) != (related->code == 2 || related->code == 4) ||
         (set.code == 0) != (related->code == 0) || (set.code == 5) != (related->code == 5)) {
       throw located_error(set.where, "CODE",
                           fmt::format("paired sets {} and {} have CODE {} and {}: a pair uses "
@@ -396,8 +397,18 @@ void finish_switching(const model::Model& m) {
                                       "*RIGIDWALL_PLANAR (numbered 1, 2, ... in deck order)",
                                       set.code, set.entno, m.rigid_walls.size()));
     }
-    const bool has_control = std::any_of(
-        m.sensor_controls.begin(), m.sensor_controls.end(), [&](const auto& entry) {
+    const bool contact_exists =
+        std::any_of(m.contacts.begin(), m.contacts.end(),
+                    [&](const model::Contact& c) { return c.id == set.entno; });
+    if ((set.code == 2 || set.code == 4) && !contact_exists) {
+      throw located_error(set.where, "ENTNO",
+                          fmt::format("CODE {} tests contact {}, and this deck defines no contact "
+                                      "with that ID (*CONTACT_..._ID CID, else the contacts are "
+                                      "numbered 1, 2, ... in deck order)",
+                                      set.code, set.entno));
+    }
+    const bool has_control =
+        std::any_of(m.sensor_controls.begin(), m.sensor_controls.end(), [&](const auto& entry) {
           return entry.second.type == "DEF2RIG" && entry.second.type_id == set.swset;
         });
     if (set.code == 5 && !has_control) {

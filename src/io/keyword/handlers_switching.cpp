@@ -103,12 +103,6 @@ void deformable_to_rigid_automatic(const Block& block, ReaderContext& context) {
   set.code = flag_of(first, 1, "CODE", 0, 5,
                      "0 time, 1/3 rigid wall force zero/nonzero, 2/4 contact force "
                      "zero/nonzero, 5 sensor");
-  if (set.code == 2 || set.code == 4) {
-    throw first.error("CODE", fmt::format("CODE {} switches on a contact force; contact is not "
-                                          "available in this version (use a rigid wall, CODE "
-                                          "1 or 3, or CODE 0 / 5)",
-                                          set.code));
-  }
   // CODE 5: "inputs of column 3 to column 8, TIME1 to PAIRED, are ignored" (manual).
   if (set.code != 5) {
     set.time1 = first.real(2, "TIME1", 0.0);
@@ -127,6 +121,12 @@ void deformable_to_rigid_automatic(const Block& block, ReaderContext& context) {
     if ((set.code == 1 || set.code == 3) && set.entno == 0) {
       throw first.error("ENTNO", fmt::format("CODE {} needs the number of the rigid wall whose "
                                              "force is tested (1 = first in the deck)",
+                                             set.code));
+    }
+    if ((set.code == 2 || set.code == 4) && set.entno == 0) {
+      throw first.error("ENTNO", fmt::format("CODE {} needs the ID of the contact whose force is "
+                                             "tested (the _ID card's CID, else 1 = first "
+                                             "contact in the deck)",
                                              set.code));
     }
     set.relsw = non_negative(first, 6, "RELSW");
