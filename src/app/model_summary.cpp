@@ -134,6 +134,22 @@ void print_model_summary(const model::Model& model, std::FILE* out) {
                    ? fmt::format(", birth {:g}, death {:g}", wall.birth, wall.death)
                    : "");
   }
+  const auto& contacts = sim.contacts().interfaces;
+  if (!contacts.empty()) fmt::print(out, "contacts: {}\n", contacts.size());
+  for (const auto& c : contacts) {
+    static const char* const kKind[] = {"surface to surface", "nodes to surface",
+                                        "one way surface to surface", "single surface"};
+    fmt::print(
+        out, "  contact {}{}: {}, {} slave nodes / {} segments, {} master segments, {}, {}{}{}\n",
+        c.id, c.heading.empty() ? "" : fmt::format(" ({})", c.heading),
+        kKind[static_cast<int>(c.kind)], c.sides[0].nodes.size(), c.sides[0].segments.size(),
+        c.sides[1].segments.size(), c.soft == 1 ? "SOFT 1" : "SOFT 0",
+        c.fs > 0.0 || c.fd > 0.0 ? fmt::format("friction FS {:g} FD {:g}", c.fs, c.fd)
+                                 : "frictionless",
+        c.vdc > 0.0 ? fmt::format(", VDC {:g}", c.vdc) : "",
+        c.birth > 0.0 || c.death < 1e20 ? fmt::format(", birth {:g}, death {:g}", c.birth, c.death)
+                                        : "");
+  }
   if (model.switching.flagged) {
     const auto& sw = model.switching;
     fmt::print(out,

@@ -606,7 +606,7 @@ void AutomaticSwitching::due(double t, const SwitchQueries& queries, std::vector
         }
         if (set.code == 2) {
           fire = force == 0.0;
-        } else {
+        } else {  // OFFSET: the released parts come within OFFSET of the other side
           fire = force > 0.0 ||
                  (set.offset > 0.0 && queries.contact_within_offset &&
                   queries.contact_within_offset(set.entno, set.offset, released_parts_[k]));

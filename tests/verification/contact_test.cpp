@@ -119,13 +119,17 @@ std::filesystem::path fresh_directory(const std::string& name) {
 
 constexpr double kRho = 1000.0, kE = 1e7, kLength = 0.1, kWidth = 0.02, kV0 = 1.0;
 
-std::string bar_drop_deck(int nz, const std::string& extra = "") {
+// `gap`: the bar starts this far above the plate (default a tenth of an element); `t_end`:
+// termination (default the fall plus 1.5 contact times).
+std::string bar_drop_deck(int nz, const std::string& extra = "", double gap = -1.0,
+                          double t_end = -1.0) {
+  if (gap < 0.0) gap = 0.1 * kLength / nz;
   Block bar;
   bar.nx = bar.ny = 2;
   bar.nz = nz;
   bar.lx = bar.ly = kWidth;
   bar.lz = kLength;
-  bar.local = Vector3d(0, 0, 0.1 * kLength / nz);  // starts a tenth of an element above
+  bar.local = Vector3d(0, 0, gap);
   Block plate;
   plate.nx = plate.ny = 4;
   plate.nz = 1;
@@ -139,7 +143,7 @@ std::string bar_drop_deck(int nz, const std::string& extra = "") {
   return "*KEYWORD\n" + bar.text() + plate.text() + elastic(1, kRho, kE, 0.0) +
          fixed_rigid(2, kRho, kE, 0.0) + velocity(1, Vector3d(0, 0, -kV0)) +
          "*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE_ID\n7,drop\n1,2,3,3\n0,0,0,0,0\n10,10\n" + extra +
-         termination(0.1 * kLength / nz / kV0 + 3.0 * kLength / c);
+         termination(t_end > 0.0 ? t_end : gap / kV0 + 3.0 * kLength / c);
 }
 
 TEST(Contact, BarDroppedOnRigidPlateReboundsAsWaveTheoryPredicts) {
@@ -303,6 +307,59 @@ TEST(Contact, QuadraticHexahedraBarReboundsAsWaveTheoryPredicts) {
   EXPECT_LT(end.velocity().z(), 1.0 * kV0);
   EXPECT_LT(worst_ratio, 1e-9);
   EXPECT_LT(std::abs(sim.energy().contact_energy), 1e-2 * ke0);
+}
+
+// Part switching on contact (*DEFORMABLE_TO_RIGID_AUTOMATIC CODE 4 / CODE 2, paired): the bar
+// flies rigid, turns deformable when it comes within OFFSET of the plate (before any contact
+// force), rebounds elastically, and turns rigid again once the contact force is zero after the
+// delay TIME3. References: the switch times from the kinematics (gap - OFFSET) / v0 and the
+// wave-theory contact (2 L / c); the rebound at v0 less the vibration energy the rigid switch
+// removes; the energy balance with the switch energy.
+TEST(Contact, SwitchingPairTurnsBarDeformableBeforeImpactAndRigidAfter) {
+  const double c = std::sqrt(kE / kRho);
+  const double gap = 0.004, offset = 0.001;
+  const double delay = 4e-3;  // covers the last 1 mm of flight and the 2 ms contact
+  const std::string switching =
+      "*DEFORMABLE_TO_RIGID\n1\n*CONTROL_TIMESTEP\n2e-5\n" +
+      fmt::format(
+          "*DEFORMABLE_TO_RIGID_AUTOMATIC\n10,4,0,0,{:.17g},7,20,1\n0,0,0,0,0,1,{:.17g}\n1\n",
+          delay, offset) +
+      // Rigid again: the bar is still within OFFSET of the plate as it leaves, so set 10 must
+      // wait (TIME3 of set 20) until it is farther away, as with rigid walls.
+      "*DEFORMABLE_TO_RIGID_AUTOMATIC\n20,2,0,0,2e-3,7,10,-1\n0,0,0,2e-5,1,0\n1\n";
+  const double t_end = gap / kV0 + 2.0 * kLength / c + 4e-3;
+  solver::Simulation sim(read(bar_drop_deck(40, switching, gap, t_end)), {});
+  const PartMotion start = motion(sim.state(), 1, 99999);
+  const double ke0 = 0.5 * start.mass * kV0 * kV0;
+  double first_force = -1.0, last_force = -1.0, worst_ratio = 0.0;
+  while (!sim.finished()) {
+    sim.cycle();
+    if (contact::resultant_force(sim.contacts(), 7) > 0.0) {
+      if (first_force < 0.0) first_force = sim.state().time;
+      last_force = sim.state().time;
+    }
+    worst_ratio = std::max(worst_ratio, std::abs(sim.energy().ratio() - 1.0));
+  }
+  const auto& events = sim.switch_events();
+  ASSERT_EQ(events.size(), 3u);  // rigid at the start, deformable, rigid
+  EXPECT_TRUE(events[0].to_rigid);
+  EXPECT_FALSE(events[1].to_rigid);
+  EXPECT_EQ(events[1].swset, 10);
+  EXPECT_TRUE(events[2].to_rigid);
+  EXPECT_EQ(events[2].swset, 20);
+  // Deformable when the gap has closed to OFFSET, before the first contact force.
+  EXPECT_NEAR(events[1].time, (gap - offset) / kV0, 2.5e-5);
+  EXPECT_LT(events[1].time, first_force);
+  EXPECT_NEAR(first_force, gap / kV0, 5e-5);
+  // The contact lasts about 2 L / c; rigid again after the delay, with the force zero.
+  EXPECT_NEAR(last_force - first_force, 2.0 * kLength / c, 0.1 * 2.0 * kLength / c);
+  EXPECT_GE(events[2].time, events[1].time + delay);
+  EXPECT_GT(events[2].time, last_force);
+  const PartMotion end = motion(sim.state(), 1, 99999);
+  EXPECT_GT(end.velocity().z(), 0.95 * kV0);
+  EXPECT_LT(end.velocity().z(), 1.0 * kV0);
+  EXPECT_LT(worst_ratio, 1e-9);
+  EXPECT_LT(sim.energy().switch_energy, 0.05 * ke0);
 }
 
 // The same drop gives bit-identical results on 1 and 2 threads.

@@ -383,6 +383,7 @@ void finish_switching(const model::Model& m) {
                                       related->relsw, related->paired));
     }
     if ((set.code == 1 || set.code == 3) != (related->code == 1 || related->code == 3) ||
+        (set.code == 2 || set.code == 4) != (related->code == 2 || related->code == 4) ||
         (set.code == 0) != (related->code == 0) || (set.code == 5) != (related->code == 5)) {
       throw located_error(set.where, "CODE",
                           fmt::format("paired sets {} and {} have CODE {} and {}: a pair uses "
@@ -478,11 +479,11 @@ void finish_part_modes(const model::Model& m) {
         const auto& x = modes.damping[a];
         const auto& y = modes.damping[b];
         if (x.mstart <= y.mstop && y.mstart <= x.mstop) {
-          throw located_error(x.where, "MSTART",
-                              fmt::format("modes {}..{} already have damping from the card at "
-                                          "line {}",
-                                          std::max(x.mstart, y.mstart),
-                                          std::min(x.mstop, y.mstop), y.where.line));
+          throw located_error(
+              x.where, "MSTART",
+              fmt::format("modes {}..{} already have damping from the card at "
+                          "line {}",
+                          std::max(x.mstart, y.mstart), std::min(x.mstop, y.mstop), y.where.line));
         }
       }
     }
