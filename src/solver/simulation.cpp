@@ -502,8 +502,8 @@ void Simulation::update_velocities() {
   // and momenta of rigid-body nodes are those of their bodies.
   const std::int32_t* body_of = rigid_.empty() ? nullptr : rigid_.body_of_node.data();
   const Vec3Array* contact_force = contacts_.empty() ? nullptr : &contacts_.force;
-  auto sums =
-      deterministic_sum<10>(n, reduction_scratch_, [&](std::int64_t i, std::array<double, 10>& acc) {
+  auto sums = deterministic_sum<10>(
+      n, reduction_scratch_, [&](std::int64_t i, std::array<double, 10>& acc) {
         const double m = nodes.mass[i];
         const double vx = nodes.v.x[i], vy = nodes.v.y[i], vz = nodes.v.z[i];
         double dx = 0.5 * dt_avg * (vp.x[i] + vx);
