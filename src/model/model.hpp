@@ -412,23 +412,23 @@ struct Contact {
   Id id = 0;       // CID of the _ID card, else equal to `number`
   std::string heading;
   ContactKind kind = ContactKind::SurfaceToSurface;
-  Id ssid = 0;     // slave (SURFA) side: set or part ID per sstyp
-  Id msid = 0;     // master (SURFB) side
-  int sstyp = 0;   // 0 segment set, 2 part set, 3 part, 4 node set, 5 all parts
-  int mstyp = 0;   // 0 segment set, 2 part set, 3 part, 5 all parts
-  double fs = 0.0;    // static friction coefficient
-  double fd = 0.0;    // dynamic friction coefficient
-  double dc = 0.0;    // exponential decay coefficient: mu = FD + (FS - FD) exp(-DC |v_rel|)
-  double vdc = 0.0;   // viscous damping, percent of critical, normal direction
+  Id ssid = 0;       // slave (SURFA) side: set or part ID per sstyp
+  Id msid = 0;       // master (SURFB) side
+  int sstyp = 0;     // 0 segment set, 2 part set, 3 part, 4 node set, 5 all parts
+  int mstyp = 0;     // 0 segment set, 2 part set, 3 part, 5 all parts
+  double fs = 0.0;   // static friction coefficient
+  double fd = 0.0;   // dynamic friction coefficient
+  double dc = 0.0;   // exponential decay coefficient: mu = FD + (FS - FD) exp(-DC |v_rel|)
+  double vdc = 0.0;  // viscous damping, percent of critical, normal direction
   double birth = 0.0;
   double death = 1e20;
-  double sfs = 1.0;   // penalty scale, slave side
-  double sfm = 1.0;   // penalty scale, master side
-  double sst = 0.0;   // contact thickness of the slave surface (solids: 0)
-  double mst = 0.0;   // contact thickness of the master surface
-  double fsf = 1.0;   // friction coefficient scale
-  int soft = 0;           // 0 segment-based (bulk modulus) stiffness, 1 mass/time-step based
-  double sofscl = 0.1;    // SOFT = 1 scale
+  double sfs = 1.0;     // penalty scale, slave side
+  double sfm = 1.0;     // penalty scale, master side
+  double sst = 0.0;     // contact thickness of the slave surface (solids: 0)
+  double mst = 0.0;     // contact thickness of the master surface
+  double fsf = 1.0;     // friction coefficient scale
+  int soft = 0;         // 0 segment-based (bulk modulus) stiffness, 1 mass/time-step based
+  double sofscl = 0.1;  // SOFT = 1 scale
   SourceLocation where;
 };
 

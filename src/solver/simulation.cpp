@@ -87,10 +87,10 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
       std::unique(boundary_.constrained_nodes.begin(), boundary_.constrained_nodes.end()),
       boundary_.constrained_nodes.end());
   attach_flexible_bodies(model_, node_index_, state_, boundary_, rigid_,
-                         options_.mode_loader ? options_.mode_loader : ModeLoader(
-                                                    [](const std::filesystem::path& file) {
-                                                      return modal::read_mode_database(file);
-                                                    }));
+                         options_.mode_loader ? options_.mode_loader
+                                              : ModeLoader([](const std::filesystem::path& file) {
+                                                  return modal::read_mode_database(file);
+                                                }));
   walls_ = contact::build_rigid_walls(model_, node_index_, state_, boundary_, warnings_);
   // CODE 1/3 of automatic switching ask the walls (ENTNO is the wall's deck number).
   switch_queries_.wall_force = [this](model::Id number) {
@@ -138,8 +138,8 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
       rbdout_ = std::make_unique<output::RbdoutWriter>(options_.output_directory / "rbdout.csv",
                                                        options_.continuation.rbdout);
       if (!rigid_.flexible.empty()) {
-        modal_csv_ = std::make_unique<output::ModalWriter>(
-            options_.output_directory / "modal.csv", options_.continuation.modal);
+        modal_csv_ = std::make_unique<output::ModalWriter>(options_.output_directory / "modal.csv",
+                                                           options_.continuation.modal);
       }
     }
     if (!sensors_->empty()) {
@@ -516,8 +516,8 @@ void Simulation::update_velocities() {
   const Vec3Array* contact_force = contacts_.empty() ? nullptr : &contacts_.force;
   const double* modal_velocity =
       rigid_.modal_work_velocity.empty() ? nullptr : rigid_.modal_work_velocity.data();
-  auto sums =
-      deterministic_sum<10>(n, reduction_scratch_, [&](std::int64_t i, std::array<double, 10>& acc) {
+  auto sums = deterministic_sum<10>(
+      n, reduction_scratch_, [&](std::int64_t i, std::array<double, 10>& acc) {
         const double m = nodes.mass[i];
         const double vx = nodes.v.x[i], vy = nodes.v.y[i], vz = nodes.v.z[i];
         double dx = 0.5 * dt_avg * (vp.x[i] + vx);
@@ -586,8 +586,8 @@ void Simulation::update_velocities() {
   energy_.kinetic = sums[0];
   energy_.internal_work +=
       sums[1] + rigid_sums.modal_damping_loss - rigid_sums.modal_stiffening_work;
-  energy_.external_work += sums[2] - sums[9] + reaction_work + rigid_sums.external_work +
-                           rigid_sums.modal_inertia_work;
+  energy_.external_work +=
+      sums[2] - sums[9] + reaction_work + rigid_sums.external_work + rigid_sums.modal_inertia_work;
   energy_.contact_energy -= sums[9];
   energy_.modal_elastic = rigid_sums.modal_elastic;
   if (!walls_.empty()) {  // already in sums[2] (the wall forces are in f_ext): its share
@@ -667,8 +667,8 @@ void Simulation::write_output_if_due(bool force) {
     glstat_schedule_.mark_written(t, cycle);
   }
   // Flexible bodies: nodes not reconstructed every cycle get their place before nodal output.
-  if (!rigid_.flexible.empty() && ((nodout_ && wanted(nodout_schedule_)) ||
-                                   (fields_ && wanted(d3plot_schedule_)))) {
+  if (!rigid_.flexible.empty() &&
+      ((nodout_ && wanted(nodout_schedule_)) || (fields_ && wanted(d3plot_schedule_)))) {
     reconstruct_passive_nodes(rigid_, state_);
   }
   if (nodout_ && wanted(nodout_schedule_)) {
