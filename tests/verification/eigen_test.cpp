@@ -136,6 +136,63 @@ TEST(EigenFreeFreeBeam, Elform2ConvergesUnderRefinement) {
   EXPECT_LT(previous_error, 0.05);
 }
 
+TEST(EigenFreeFreeBeam, BackendsAgreeAndCenterFindsTheNearestModes) {
+  const model::Model model = test::read(beam_deck(500.0, 10.0, 50, 2, 1, ""));
+  modal::EigenRequest request;
+  request.mode_count = 12;
+  modal::EigenReport cholmod, simplicial;
+  const modal::ModeSet a = modal::compute_modes(model, request, cholmod);
+  request.backend = modal::FactorizationBackend::EigenSimplicial;
+  const modal::ModeSet b = modal::compute_modes(model, request, simplicial);
+  EXPECT_EQ(simplicial.backend, "eigen-simplicial");
+  ASSERT_EQ(a.mode_count(), b.mode_count());
+  for (std::size_t k = 6; k < a.mode_count(); ++k) {
+    EXPECT_NEAR(b.eigenvalues[k] / a.eigenvalues[k], 1.0, 1e-9) << k;
+  }
+  // CENTER just above the tenth mode's frequency: that mode (or its equal-frequency partner)
+  // is the nearest; LDL^T of the indefinite K - sigma M.
+  const double f9 = std::sqrt(a.eigenvalues[9]) / (2.0 * M_PI);
+  modal::EigenRequest centred;
+  centred.mode_count = 1;
+  centred.center_frequency = f9 * (1.0 + 1e-3);
+  const modal::ModeSet c = modal::compute_modes(model, centred);
+  ASSERT_EQ(c.mode_count(), 1u);
+  EXPECT_NEAR(c.eigenvalues[0] / a.eigenvalues[9], 1.0, 1e-8);
+}
+
+TEST(EigenFreeFreeBeam, SecondOrderElementsOnACoarseMesh) {
+  // 25 x 1 x 1 hexahedra raised to p = 2 (27 nodes each): the first bending frequency against
+  // the same Timoshenko-corrected reference.
+  const BeamResult r = [] {
+    const model::Model model =
+        test::read(beam_deck(500.0, 10.0, 25, 1, 1, "*CHANGE_P-ORDER\nALL,0,2\n"));
+    BeamResult out;
+    modal::EigenRequest request;
+    request.mode_count = 12;
+    // The total-Lagrangian p = 2 kernel forms x - X, so its probed stiffness carries more
+    // round-off: its rigid eigenvalues measure up to ~1e-10 lambda_scale (docs/eigen.md).
+    request.rigid_tolerance = 1e-8;
+    out.modes = modal::compute_modes(model, request, out.report);
+    std::vector<double> elastic;
+    for (std::size_t k = 0; k < out.modes.mode_count(); ++k) {
+      if (!out.modes.rigid[k]) elastic.push_back(std::sqrt(out.modes.eigenvalues[k]) / (2 * M_PI));
+    }
+    for (std::size_t k = 0; k + 1 < elastic.size(); ++k) {
+      if (std::abs(elastic[k + 1] - elastic[k]) < 1e-6 * elastic[k]) {
+        out.bending.push_back(elastic[k]);
+        ++k;
+      }
+    }
+    return out;
+  }();
+  EXPECT_EQ(r.report.rigid_found, 6);
+  ASSERT_GE(r.bending.size(), 1u);
+  const double reference = bending_frequency(kFreeFree[0], 500.0, 10.0);
+  std::printf("p = 2, 25x1x1: first bending %.4f Hz, reference %.4f Hz, error %+.3f%%\n",
+              r.bending[0], reference, 100.0 * (r.bending[0] / reference - 1.0));
+  EXPECT_NEAR(r.bending[0] / reference, 1.0, 0.02);
+}
+
 TEST(EigenCantilever, ClampedFreeFrequenciesAndMassOrthonormality) {
   const double l = 500.0, h = 10.0;
   test::BoxMesh mesh;
