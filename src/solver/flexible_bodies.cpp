@@ -26,7 +26,8 @@ Eigen::Vector3d body_position(const modal::FlexibleBody& f, std::size_t k,
 }  // namespace
 
 void attach_flexible_bodies(const model::Model& model, const NodeIndex& node_index,
-                            const State& state, const Boundary& boundary, RigidSystem& rigid,
+                            const State& state, const Boundary& boundary,
+                            const std::vector<std::int32_t>& contact_nodes, RigidSystem& rigid,
                             const ModeLoader& loader) {
   if (model.part_modes.empty()) return;
   const NodalState& nodes = state.nodes;
@@ -42,6 +43,7 @@ void attach_flexible_bodies(const model::Model& model, const NodeIndex& node_ind
   for (const auto& p : boundary.prescribed) needed[p.node] = 1;
   for (const auto& f : boundary.nodal_forces) needed[f.node] = 1;
   for (const auto id : model.output.history_nodes) needed[node_index.at(id, {}, "NID")] = 1;
+  for (const std::int32_t i : contact_nodes) needed[i] = 1;
   // Searches that read every node's position each cycle.
   const bool all_needed = !model.rigid_walls.empty() || !model.sensors.empty() ||
                           !model.switching.at_start.empty() || !model.switching.automatic.empty();

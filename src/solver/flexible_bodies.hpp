@@ -18,11 +18,14 @@ namespace rf::solver {
 using ModeLoader = std::function<modal::ModeSet(const std::filesystem::path&)>;
 
 // Makes the bodies named on *PART_MODES flexible: matches database nodes to the body's nodes by
-// node ID, selects and prepares the modes, chooses the nodes reconstructed every cycle. Throws
+// node ID, selects and prepares the modes, chooses the nodes reconstructed every cycle (those
+// shared with deformable elements, constrained, loaded or recorded, and `contact_nodes`, the
+// nodes of every contact surface, whose positions the contact search reads). Throws
 // rf::InputError (at the *PART_MODES card) for missing nodes, geometry mismatches, too few or
 // rigid modes.
 void attach_flexible_bodies(const model::Model& model, const NodeIndex& node_index,
-                            const State& state, const Boundary& boundary, RigidSystem& rigid,
+                            const State& state, const Boundary& boundary,
+                            const std::vector<std::int32_t>& contact_nodes, RigidSystem& rigid,
                             const ModeLoader& loader);
 
 // g = Phi^T R^T (f_ext - f_int) over the active nodes, R = the body's rotation at t^n.

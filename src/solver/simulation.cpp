@@ -86,7 +86,10 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
   boundary_.constrained_nodes.erase(
       std::unique(boundary_.constrained_nodes.begin(), boundary_.constrained_nodes.end()),
       boundary_.constrained_nodes.end());
-  attach_flexible_bodies(model_, node_index_, state_, boundary_, rigid_,
+  contacts_ = contact::build_contacts(model_, node_index_, state_);
+  // Contact surfaces are known before flexible bodies are attached: a flexible body reconstructs
+  // its contact nodes every cycle because the search reads their positions.
+  attach_flexible_bodies(model_, node_index_, state_, boundary_, contacts_.nodes, rigid_,
                          options_.mode_loader ? options_.mode_loader
                                               : ModeLoader([](const std::filesystem::path& file) {
                                                   return modal::read_mode_database(file);
@@ -100,7 +103,6 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
                                               const std::vector<model::Id>& parts) {
     return contact::wall_within_offset(walls_, static_cast<int>(number), offset, parts, state_);
   };
-  contacts_ = contact::build_contacts(model_, node_index_, state_);
   // CODE 2/4 of automatic switching ask the contacts (ENTNO is the contact ID).
   switch_queries_.contact_force = [this](model::Id id) {
     return contact::resultant_force(contacts_, id);
