@@ -8,6 +8,7 @@
 #include <map>
 #include <set>
 
+#include "mesh/vec3_ops.hpp"
 #include "model/error.hpp"
 #include "model/error_context.hpp"
 
@@ -29,20 +30,11 @@ constexpr double kDepthFraction = 0.5;
 // it bounds, and a node on a side face of a body is not pressed by that body's bottom face.
 constexpr double kFacingTolerance = 0.2;
 
-using Vec = std::array<double, 3>;
-
-Vec sub(const Vec& a, const Vec& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-Vec cross(const Vec& a, const Vec& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vec& a, const Vec& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-double norm(const Vec& a) {
-  return std::sqrt(dot(a, a));
-}
+using mesh::cross;
+using mesh::dot;
+using mesh::norm;
+using mesh::sub;
+using mesh::Vec;
 
 Vec position(const solver::Vec3Array& x, std::int32_t i) {
   return {x.x[i], x.y[i], x.z[i]};

@@ -6,21 +6,11 @@
 #include <map>
 #include <numbers>
 
+#include "mesh/vec3_ops.hpp"
+
 namespace rf::mesh {
 
 namespace {
-
-using Vec = std::array<double, 3>;
-
-Vec sub(const Vec& a, const Vec& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-Vec cross(const Vec& a, const Vec& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double dot(const Vec& a, const Vec& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
 
 // Distance from p to triangle abc (Ericson, Real-Time Collision Detection, 5.1.5).
 double point_triangle_distance(const Vec& p, const Vec& a, const Vec& b, const Vec& c) {

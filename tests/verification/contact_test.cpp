@@ -22,52 +22,6 @@ namespace {
 
 using Eigen::Vector3d;
 
-// A block of nx x ny x nz hexahedra of part `pid` over [0, lx] x [0, ly] x [0, lz] + `local`,
-// rotated by `tilt` (radians) about the y axis. Node IDs first_node.., element IDs
-// first_element...
-struct Block {
-  int nx = 1, ny = 1, nz = 1;
-  double lx = 1.0, ly = 1.0, lz = 1.0;
-  Vector3d local = Vector3d::Zero();
-  double tilt = 0.0;
-  int first_node = 1, first_element = 1, pid = 1;
-
-  int node(int i, int j, int k) const { return first_node + i + (nx + 1) * (j + (ny + 1) * k); }
-  int last_node() const { return node(nx, ny, nz); }
-  Vector3d position(int i, int j, int k) const {
-    const Vector3d p = Vector3d(lx * i / nx, ly * j / ny, lz * k / nz) + local;
-    const double c = std::cos(tilt), s = std::sin(tilt);
-    return Vector3d(c * p.x() + s * p.z(), p.y(), -s * p.x() + c * p.z());
-  }
-  std::string text() const {
-    std::string out = "*NODE\n";
-    for (int k = 0; k <= nz; ++k)
-      for (int j = 0; j <= ny; ++j)
-        for (int i = 0; i <= nx; ++i) {
-          const Vector3d p = position(i, j, k);
-          out += fmt::format("{},{:.17g},{:.17g},{:.17g}\n", node(i, j, k), p.x(), p.y(), p.z());
-        }
-    out += "*ELEMENT_SOLID\n";
-    int eid = first_element;
-    for (int k = 0; k < nz; ++k)
-      for (int j = 0; j < ny; ++j)
-        for (int i = 0; i < nx; ++i) {
-          out += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", eid++, pid, node(i, j, k),
-                             node(i + 1, j, k), node(i + 1, j + 1, k), node(i, j + 1, k),
-                             node(i, j, k + 1), node(i + 1, j, k + 1), node(i + 1, j + 1, k + 1),
-                             node(i, j + 1, k + 1));
-        }
-    return out;
-  }
-};
-
-std::string elastic(int pid, double rho, double e, double nu) {
-  return fmt::format(
-      "*PART\npart {0}\n{0},{0},{0},0,{0}\n*SECTION_SOLID\n{0},1\n*MAT_ELASTIC\n{0},{1:.17g},"
-      "{2:.17g},{3:.17g}\n*HOURGLASS\n{0},1,0.1\n",
-      pid, rho, e, nu);
-}
-
 // A rigid part held fixed (CMO 1, CON1 = CON2 = 7). Its E and PR give the contact stiffness.
 std::string fixed_rigid(int pid, double rho, double e, double nu) {
   return fmt::format(
