@@ -2,10 +2,13 @@
 // of the nodal state that do not come from the solver's own sums.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <string>
@@ -13,6 +16,7 @@
 #include <vector>
 
 #include "deck_builder.hpp"
+#include "switching/part_switching.hpp"
 
 namespace rf::test {
 
@@ -184,6 +188,27 @@ inline double lowest_z(const solver::State& s) {
 inline double half_step_time(const solver::Simulation& sim) {
   return sim.finished() ? sim.state().time + 0.5 * sim.state().dt
                         : sim.state().time - 0.5 * sim.state().dt_prev;
+}
+
+// The paired-set sequence of the drop tests (set 10 rigid, set 20 deformable): rigid at the
+// start, deformable before the first push (OFFSET), rigid again only after the last push.
+inline void expect_rigid_deformable_rigid(const std::vector<switching::SwitchEvent>& events,
+                                          double first_push, double last_push) {
+  for (const auto& e : events) {
+    std::printf("switch set %lld at t = %.6f to %s, kinetic energy %.6f -> %.6f\n",
+                static_cast<long long>(e.swset), e.time, e.to_rigid ? "rigid" : "deformable",
+                e.kinetic_energy_before, e.kinetic_energy_after);
+  }
+  ASSERT_EQ(events.size(), 3u);
+  EXPECT_EQ(events[0].swset, 10);
+  EXPECT_TRUE(events[0].to_rigid);
+  EXPECT_EQ(events[0].time, 0.0);
+  EXPECT_EQ(events[1].swset, 20);
+  EXPECT_FALSE(events[1].to_rigid);
+  EXPECT_EQ(events[2].swset, 10);
+  EXPECT_TRUE(events[2].to_rigid);
+  EXPECT_LT(events[1].time, first_push);  // OFFSET: switched before the first push
+  EXPECT_GT(events[2].time, last_push);   // and rigid only after the last
 }
 
 }  // namespace rf::test

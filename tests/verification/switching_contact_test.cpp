@@ -126,21 +126,7 @@ TEST(SwitchingContact, BallDeformableBeforeImpactOnTheRigidPlateRigidAfterReboun
     max_ratio_error = std::max(max_ratio_error, std::abs(sim.energy().ratio() - 1.0));
     contact_energy_peak = std::max(contact_energy_peak, sim.energy().contact_energy);
   }
-  const auto& events = sim.switch_events();
-  for (const auto& e : events) {
-    std::printf("switch set %lld at t = %.6f to %s\n", static_cast<long long>(e.swset), e.time,
-                e.to_rigid ? "rigid" : "deformable");
-  }
-  ASSERT_EQ(events.size(), 3u);
-  EXPECT_EQ(events[0].swset, 10);
-  EXPECT_TRUE(events[0].to_rigid);
-  EXPECT_EQ(events[0].time, 0.0);
-  EXPECT_EQ(events[1].swset, 20);
-  EXPECT_FALSE(events[1].to_rigid);
-  EXPECT_EQ(events[2].swset, 10);
-  EXPECT_TRUE(events[2].to_rigid);
-  EXPECT_LT(events[1].time, first_contact);  // OFFSET: deformable before the first push
-  EXPECT_GT(events[2].time, last_contact);   // rigid only after separation
+  expect_rigid_deformable_rigid(sim.switch_events(), first_contact, last_contact);
   EXPECT_FALSE(pushed_while_rigid);
   // Momentum of the ball = contact impulse - weight impulse, every cycle (measured 6.5e-15).
   EXPECT_LT(max_momentum_error, 1e-12 * mass * p.v0);

@@ -171,24 +171,11 @@ TEST(SwitchingWall, BallDropRigidInFlightDeformableOnTheWallRigidAfterRebound) {
     }
   }
 
-  const auto& events = sim.switch_events();
-  for (const auto& e : events) {
-    std::printf("switch set %lld at t = %.6f to %s, kinetic energy %.6f -> %.6f\n",
-                static_cast<long long>(e.swset), e.time, e.to_rigid ? "rigid" : "deformable",
-                e.kinetic_energy_before, e.kinetic_energy_after);
-  }
   // Sequence: rigid at the start (force zero), deformable before it touches (OFFSET), rigid
   // once the wall lets go; then it flies off and nothing else fires.
+  const auto& events = sim.switch_events();
+  expect_rigid_deformable_rigid(events, first_contact, last_contact);
   ASSERT_EQ(events.size(), 3u);
-  EXPECT_EQ(events[0].swset, 10);
-  EXPECT_TRUE(events[0].to_rigid);
-  EXPECT_EQ(events[0].time, 0.0);
-  EXPECT_EQ(events[1].swset, 20);
-  EXPECT_FALSE(events[1].to_rigid);
-  EXPECT_EQ(events[2].swset, 10);
-  EXPECT_TRUE(events[2].to_rigid);
-  EXPECT_LT(events[1].time, first_contact);  // switched before the first push
-  EXPECT_GT(events[2].time, last_contact);   // and rigid only after the last
   EXPECT_FALSE(pushed_while_rigid);
   // TIME3: set 10 waited out set 20's delay although the force was zero inside it (the
   // approach through the OFFSET zone), and fired at the first zero-force cycle after contact.
