@@ -176,6 +176,10 @@ std::vector<ErrorCase> cases() {
        "*DEFINE_BOX\n1,0,1,0,1,0,1\n*DEFINE_BOX\n1,0,1,0,1,0,1\n",
        {"wall.k:4: *DEFINE_BOX card 1 field BOXID", "box 1 is already defined at wall.k:2"}},
       {"NegativeRwforcInterval", "*DATABASE_RWFORC\n-1\n", {"*DATABASE_RWFORC card 1 field DT"}},
+      // A fixed-format DT longer than its 10 columns spills into BINARY: an error, not DT = 3.
+      {"IntervalOverrunsItsColumns",
+       "*DATABASE_RWFORC\n3.0000000000000004e-06\n",
+       {"wall.k:2: *DATABASE_RWFORC card 1 field BINARY", "'00000004e-' is not an integer"}},
   };
 }
 

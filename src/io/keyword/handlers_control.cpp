@@ -87,6 +87,10 @@ void database_ascii(const Block& block, ReaderContext& context) {
   double dt = 0.0;
   if (const auto card = single_card(block, cursor)) {
     dt = non_negative(*card, 0, "DT", 0.0);
+    // BINARY and IOOPT are ignored, but read: a fixed-format DT too long for its 10 columns
+    // spills into BINARY, and that must be an error, not a silently truncated interval.
+    card->integer(1, "BINARY", 0);
+    card->integer(3, "IOOPT", 0);
     if (card->id(2, "LCUR") != 0) {
       context.warn(card->location(), "LCUR ignored: output intervals come from DT");
     }
