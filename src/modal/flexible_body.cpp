@@ -323,7 +323,6 @@ void advance_modes(FlexibleBody& body, const Eigen::Vector3d& omega_body,
             &body.inv_b[9 * (k * n + l)]);
         const Eigen::Map<const Eigen::Vector3d> slk(&body.inv_s[3 * (l * n + k)]);
         h -= body.q[l] * (w.dot(b * w) - (k == l ? w2 : 0.0));
-        h -= 2.0 * body.s[l] * w.dot(slk);
         h -= body.q[l] * alpha_body.dot(slk);
       }
       body.inertia[k] = h;
@@ -348,6 +347,44 @@ void advance_modes(FlexibleBody& body, const Eigen::Vector3d& omega_body,
   body.inertia_work = 0.0;
   body.stiffening_work = 0.0;
   body.q_previous = body.q;
+  // The Coriolis force -2 sum_l s_l Omega . s_lk is gyroscopic (C_kl = 2 Omega . s_lk is
+  // antisymmetric: it does no work). Taken with the velocities before the kick (explicit) it
+  // is an explicit-Euler rotation of (s_k, s_l) that gains energy by (C dt)^2 per step: with an
+  // in-plane mode and the axial stretch modes of a body spinning near or above the mode's
+  // frequency this made the chordwise motion grow without bound (tests/verification/
+  // flexible_spin_test.cpp, spin-up). It is therefore taken at the kick's midpoint, s_mid =
+  // s + dt_avg / 2 (f - C s_mid) (implicit midpoint, the Cayley map: |s| is kept by the
+  // Coriolis part exactly, and its work dt_avg h . s_mid is zero), solved by Gauss-Seidel
+  // sweeps in place: they contract by about dt |Omega| per sweep.
+  if (body.form == ModalForm::kExact) {
+    const Eigen::Vector3d& w = omega_body;
+    for (std::size_t k = 0; k < n; ++k) {
+      body.s_mid[k] = body.s[k] + 0.5 * dt_avg * (body.force[k] + body.inertia[k] + stiffening[k]);
+    }
+    const auto coriolis = [&](std::size_t k) {
+      double c = 0.0;
+      for (std::size_t l = 0; l < n; ++l) {
+        c -= 2.0 * body.s_mid[l] *
+             w.dot(Eigen::Map<const Eigen::Vector3d>(&body.inv_s[3 * (l * n + k)]));
+      }
+      return c;
+    };
+    if (w.squaredNorm() > 0.0) {
+      for (int sweep = 0; sweep < 100; ++sweep) {
+        double change = 0.0, size = 0.0;
+        for (std::size_t k = 0; k < n; ++k) {
+          const double next =
+              body.s[k] +
+              0.5 * dt_avg * (body.force[k] + body.inertia[k] + stiffening[k] + coriolis(k));
+          change = std::max(change, std::abs(next - body.s_mid[k]));
+          size = std::max(size, std::abs(next));
+          body.s_mid[k] = next;
+        }
+        if (change <= 1e-15 * size) break;
+      }
+      for (std::size_t k = 0; k < n; ++k) body.inertia[k] += coriolis(k);
+    }
+  }
   for (std::size_t k = 0; k < n; ++k) {
     const double before = body.s[k];
     body.s[k] += dt_avg * (body.force[k] + body.inertia[k] + stiffening[k]);
