@@ -37,9 +37,25 @@ namespace {
 // w det J sigma(phi_m) : (grad phi_k^T grad phi_l), gradients in the reference (body) frame.
 // From the Green strain E = eps + 1/2 grad u^T grad u: U = U2 + 1/2 int sigma(u) : grad u^T
 // grad u dV + O(u^4) (docs/flexible_bodies.md section 2).
+//
+// Cost n^3 per Gauss point: the contraction over m is done as one matrix product per batch of
+// Gauss points, G_sym (n x pairs) += S (n x 9B) H (9B x pairs), S = det * sigma(phi_m) and H the
+// grad_k^T grad_l of the pairs k <= l, so that it runs at dense-BLAS speed (it was a scalar
+// loop with n^2-strided writes: 1.8 s for 40 modes on 2048 hexahedra).
 void compute_stiffening_invariants(FlexibleBody& body, const ModeInput& input) {
   const std::size_t n = body.mode_count;
   body.inv_g.assign(n * n * n, 0.0);
+  const Eigen::Index pairs = static_cast<Eigen::Index>(n * (n + 1) / 2);
+  constexpr Eigen::Index kBatch = 64;  // Gauss points per product
+  Eigen::MatrixXd stress_batch(static_cast<Eigen::Index>(n), 9 * kBatch);
+  Eigen::MatrixXd product_batch(9 * kBatch, pairs);
+  Eigen::MatrixXd g_sym = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), pairs);
+  Eigen::Index filled = 0;
+  const auto flush = [&] {
+    if (filled == 0) return;
+    g_sym.noalias() += stress_batch.leftCols(9 * filled) * product_batch.topRows(9 * filled);
+    filled = 0;
+  };
   static constexpr double kSign[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
                                          {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
   const double g = 1.0 / std::sqrt(3.0);
@@ -91,26 +107,37 @@ void compute_stiffening_invariants(FlexibleBody& body, const ModeInput& input) {
           }
         }
       }
+      const Eigen::Index column = 9 * filled;
+      for (std::size_t m = 0; m < n; ++m) {
+        for (int c = 0; c < 9; ++c) {
+          stress_batch(static_cast<Eigen::Index>(m), column + c) = det * stress[9 * m + c];
+        }
+      }
+      Eigen::Index pair = 0;
       for (std::size_t k = 0; k < n; ++k) {
-        for (std::size_t l = k; l < n; ++l) {
+        for (std::size_t l = k; l < n; ++l, ++pair) {
           // H = grad_k^T grad_l: H_ab = sum_c G_k,ca G_l,cb.
-          double h[9];
           const double* gk = &grad[9 * k];
           const double* gl = &grad[9 * l];
           for (int a = 0; a < 3; ++a) {
             for (int b = 0; b < 3; ++b) {
-              h[3 * a + b] = gk[a] * gl[b] + gk[3 + a] * gl[3 + b] + gk[6 + a] * gl[6 + b];
+              product_batch(column + 3 * a + b, pair) =
+                  gk[a] * gl[b] + gk[3 + a] * gl[3 + b] + gk[6 + a] * gl[6 + b];
             }
           }
-          for (std::size_t m = 0; m < n; ++m) {
-            const double* sm = &stress[9 * m];
-            double v = 0.0;
-            for (int c = 0; c < 9; ++c) v += sm[c] * h[c];
-            v *= det;
-            body.inv_g[(m * n + k) * n + l] += v;
-            if (l != k) body.inv_g[(m * n + l) * n + k] += v;
-          }
         }
+      }
+      if (++filled == kBatch) flush();
+    }
+  }
+  flush();
+  for (std::size_t m = 0; m < n; ++m) {
+    Eigen::Index pair = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      for (std::size_t l = k; l < n; ++l, ++pair) {
+        const double v = g_sym(static_cast<Eigen::Index>(m), pair);
+        body.inv_g[(m * n + k) * n + l] = v;
+        body.inv_g[(m * n + l) * n + k] = v;
       }
     }
   }
