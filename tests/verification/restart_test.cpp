@@ -210,9 +210,10 @@ TEST(Restart, FlexibleBodyBitwise) {
     s += "*ELEMENT_SOLID\n";
     for (int i = 0; i < mesh.nx; ++i) {
       s += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", i + 1, i < 2 ? 1 : 2,
-                       mesh.node_id(i, 0, 0), mesh.node_id(i + 1, 0, 0), mesh.node_id(i + 1, 1, 0),
-                       mesh.node_id(i, 1, 0), mesh.node_id(i, 0, 1), mesh.node_id(i + 1, 0, 1),
-                       mesh.node_id(i + 1, 1, 1), mesh.node_id(i, 1, 1));
+                       mesh.node_id(i, 0, 0), mesh.node_id(i + 1, 0, 0),
+                       mesh.node_id(i + 1, 1, 0), mesh.node_id(i, 1, 0), mesh.node_id(i, 0, 1),
+                       mesh.node_id(i + 1, 0, 1), mesh.node_id(i + 1, 1, 1),
+                       mesh.node_id(i, 1, 1));
     }
     s += "*PART\nblock\n1,1,1\n*PART\nflexible\n2,2,2\n*SECTION_SOLID\n1,2\n"
          "*SECTION_SOLID\n2,2\n*MAT_ELASTIC\n1,7.85e-9,210000.0,0.3\n";
