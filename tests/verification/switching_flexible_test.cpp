@@ -398,6 +398,16 @@ TEST(SwitchingFlexible, RefusalsNameTheCardAndField) {
                          "1001,2,1001,1002,1003,1004,1005,1006,1007,1008\n"
                          "*DEFORMABLE_TO_RIGID_AUTOMATIC\n10,0,0\n0,0,0,0,1,0\n1,2\n*END\n",
                      "*DEFORMABLE_TO_RIGID_AUTOMATIC", "LRB", "cannot be merged");
+  // Switched together with a part it shares nodes with (they would form one body).
+  const BoxMesh mesh = beam();
+  expect_input_error(
+      body + fmt::format("*PART\nend\n2,1,2\n*MAT_ELASTIC\n2,7850,2e11,0.3\n*NODE\n"
+                         "2001,1.1,0,0\n2002,1.1,0.05,0\n2003,1.1,0.05,0.075\n2004,1.1,0,0.075\n"
+                         "*ELEMENT_SOLID\n2001,2,{},2001,2002,{},{},2004,2003,{}\n"
+                         "*DEFORMABLE_TO_RIGID\n1\n2\n*END\n",
+                         mesh.node_id(10, 0, 0), mesh.node_id(10, 1, 0), mesh.node_id(10, 0, 1),
+                         mesh.node_id(10, 1, 1)),
+      "*DEFORMABLE_TO_RIGID", "PID", "shares node");
   // Its mass from an inertia card.
   expect_input_error(body +
                          "*DEFORMABLE_TO_RIGID\n1\n*DEFORMABLE_TO_RIGID_INERTIA\n1\n"

@@ -2,6 +2,7 @@
 // reference points at something defined. Errors name the referring definition.
 #include <fmt/format.h>
 
+#include <map>
 #include <set>
 
 #include <algorithm>
@@ -462,6 +463,50 @@ void finish_switching(const model::Model& m) {
                                       "TYPE = DEF2RIG, TYPEID = {}, and this deck defines none",
                                       set.swset, set.swset));
     }
+  }
+  // A part switched to rigid that shares a node with a flexible body would be merged into it
+  // (docs/flexible_bodies.md section 6): certain for a *MAT_RIGID flexible part, and for a
+  // deformable one switched by the same keyword or set. Other cases depend on the switching
+  // history and are checked when the switch happens.
+  if (!m.part_modes.empty()) {
+    std::map<Id, std::set<Id>> nodes_of;  // parts with *PART_MODES -> their node IDs
+    for (const auto& e : m.solids) {
+      if (m.part_modes.count(e.pid)) nodes_of[e.pid].insert(e.nodes.begin(), e.nodes.end());
+    }
+    auto shared_node = [&](Id part, Id flexible) -> Id {
+      const auto& theirs = nodes_of[flexible];
+      for (const auto& e : m.solids) {
+        if (e.pid != part) continue;
+        for (const Id n : e.nodes) {
+          if (theirs.count(n)) return n;
+        }
+      }
+      return 0;
+    };
+    auto check_group = [&](const std::vector<model::PartSwitch>& cards) {
+      std::set<Id> together;
+      for (const auto& c : cards) {
+        for (const Id p : parts_of(c)) together.insert(p);
+      }
+      for (const auto& c : cards) {
+        for (const Id p : parts_of(c)) {
+          if (m.part_modes.count(p)) continue;
+          for (const auto& [flexible, modes] : m.part_modes) {
+            if (!is_mat_rigid(flexible) && !together.count(flexible)) continue;
+            if (const Id n = shared_node(p, flexible); n != 0) {
+              throw located_error(
+                  c.where, "PID",
+                  fmt::format("part {} shares node {} with part {}, a flexible body "
+                              "(*PART_MODES at {}:{}): switched to rigid it would be merged into "
+                              "it, but the modes describe part {} alone",
+                              p, n, flexible, modes.where.file, modes.where.line, flexible));
+            }
+          }
+        }
+      }
+    };
+    check_group(sw.at_start);
+    for (const auto& set : sw.automatic) check_group(set.to_rigid);
   }
 }
 
