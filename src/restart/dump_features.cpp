@@ -6,6 +6,8 @@
 // DEF2RIG events the next cycle reads). Layout: docs/restart.md.
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "restart/dump.hpp"
 #include "restart/simulation_access.hpp"
 #include "sensor/sensor.hpp"
@@ -48,6 +50,19 @@ void write_switching(solver::Simulation& s, const Group& g, switching::PartSwitc
     g.write("switched_rotation_offsets", span_of(offsets));
     g.write("switched_frozen_energy", span_of(frozen));
     write_bodies(g.create_group("deleted_nodal_bodies"), switcher->deleted_nodal_bodies());
+    // Parts that are flexible bodies by switching: the mode frame of their switch
+    // (switching/flexible_switching.hpp); the bodies are made again from it on restart.
+    if (switching::FlexibleSwitching* flexible = switcher->flexible_bodies()) {
+      std::vector<std::int64_t> flexible_parts;
+      std::vector<double> frames;
+      for (const auto& [pid, frame] : flexible->frames()) {
+        flexible_parts.push_back(pid);
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c) frames.push_back(frame(r, c));
+      }
+      g.write("flexible_parts", span_of(flexible_parts));
+      g.write("flexible_frames", span_of(frames));
+    }
   }
   g.set("has_automatic", std::int64_t{automatic != nullptr});
   if (automatic) {
@@ -87,6 +102,23 @@ void read_switching(const Group& g, switching::PartSwitcher* switcher,
       parts[pids[k]] = p;
     }
     switcher->deleted_nodal_bodies() = read_bodies(g.group("deleted_nodal_bodies"), node_count);
+    if (g.has("flexible_parts")) {
+      const auto flexible_parts = g.read_int64("flexible_parts");
+      const auto frames = g.read_doubles("flexible_frames");
+      expect_count(g, "flexible_frames", frames.size(), 9 * flexible_parts.size());
+      if (!flexible_parts.empty() && !switcher->flexible_bodies()) {
+        g.fail("flexible_parts", "the rebuilt model has no *PART_MODES on a switched part");
+      }
+      if (switching::FlexibleSwitching* flexible = switcher->flexible_bodies()) {
+        flexible->frames().clear();
+        for (std::size_t k = 0; k < flexible_parts.size(); ++k) {
+          Eigen::Matrix3d frame;
+          for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) frame(r, c) = frames[9 * k + 3 * r + c];
+          flexible->frames()[flexible_parts[k]] = frame;
+        }
+      }
+    }
   }
   if (g.get_int("has_automatic") != 0 && automatic) {
     const auto armed = g.read_bytes("armed");
@@ -333,14 +365,25 @@ void write_flexible(const solver::RigidSystem& rigid, const Group& g) {
 void read_flexible(solver::RigidSystem& rigid, const Group& g) {
   expect_count(g, "count", static_cast<std::size_t>(g.get_int("count")), rigid.flexible.size());
   for (auto& body : rigid.bodies) body.flexible = -1;
+  // Matched by part: bodies made flexible by switching are rebuilt after those of the deck.
+  std::vector<modal::FlexibleBody> dumped_order;
+  for (std::size_t k = 0; k < rigid.flexible.size(); ++k) {
+    const Group b = g.group(fmt::format("body_{}", k));
+    const auto index = b.get_int("body");
+    const auto it = std::find_if(rigid.flexible.begin(), rigid.flexible.end(),
+                                 [&](const auto& f) { return f.part == b.get_int("part"); });
+    if (index < 0 || static_cast<std::size_t>(index) >= rigid.bodies.size() ||
+        it == rigid.flexible.end()) {
+      b.fail("body", "does not match the flexible bodies of the rebuilt model");
+    }
+    dumped_order.push_back(std::move(*it));
+    it->part = -1;  // taken
+  }
+  rigid.flexible = std::move(dumped_order);
   for (std::size_t k = 0; k < rigid.flexible.size(); ++k) {
     auto& f = rigid.flexible[k];
     const Group b = g.group(fmt::format("body_{}", k));
     const auto index = b.get_int("body");
-    if (index < 0 || static_cast<std::size_t>(index) >= rigid.bodies.size() ||
-        b.get_int("part") != f.part) {
-      b.fail("body", "does not match the flexible bodies of the rebuilt model");
-    }
     f.body = static_cast<int>(index);
     rigid.bodies[f.body].flexible = static_cast<int>(k);
     for (auto [name, array] :
@@ -368,6 +411,7 @@ void SimulationAccess::read_features(Simulation& s, const Group& g) {
   if (sw.get_int("has_switcher") != 0 && !s.switcher_) {
     // The dumped run switched parts on a restart deck without flagging switching.
     s.switcher_ = std::make_unique<switching::PartSwitcher>(s.model_, s.state_);
+    s.switcher_->enable_flexible_bodies(s.mode_loader(), s.state_);
   }
   read_switching(sw, s.switcher_.get(), s.automatic_switching_.get(), s.state_.nodes.size());
   if (s.switcher_) s.energy_.frozen_energy = s.switcher_->frozen_energy();
@@ -379,6 +423,20 @@ void SimulationAccess::read_features(Simulation& s, const Group& g) {
     read_contacts(s.contacts_, g.group("contacts"));
   }
   if (s.sensors_ && g.has("sensors")) read_sensors(*s.sensors_, g.group("sensors"));
+  // Flexible bodies made by switching: again from their mode frames and restored bodies.
+  if (s.switcher_ && s.switcher_->flexible_bodies()) {
+    auto* flexible = s.switcher_->flexible_bodies();
+    const auto frames = flexible->frames();
+    for (const auto& [pid, frame] : frames) {
+      int index = -1;
+      for (std::size_t b = 0; b < s.rigid_.bodies.size(); ++b) {
+        const auto& parts = s.rigid_.bodies[b].parts;
+        if (std::find(parts.begin(), parts.end(), pid) != parts.end()) index = static_cast<int>(b);
+      }
+      if (index < 0) sw.fail("flexible_parts", fmt::format("part {} has no rigid body", pid));
+      flexible->rebuild(pid, index, frame, s.state_, s.rigid_);
+    }
+  }
   if (!s.rigid_.flexible.empty()) {
     if (!g.has("flexible")) g.fail("flexible", "is missing: the dump has no flexible bodies");
     read_flexible(s.rigid_, g.group("flexible"));

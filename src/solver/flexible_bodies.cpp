@@ -49,6 +49,9 @@ void attach_flexible_bodies(const model::Model& model, const NodeIndex& node_ind
                           !model.switching.at_start.empty() || !model.switching.automatic.empty();
 
   for (const auto& [pid, card] : model.part_modes) {
+    // A deformable part becomes a flexible body when it is switched to rigid
+    // (switching/flexible_switching.hpp).
+    if (model.materials.at(model.parts.at(pid).mid).kind != model::MaterialKind::Rigid) continue;
     int index = -1;
     for (std::size_t b = 0; b < rigid.bodies.size(); ++b) {
       if (!rigid.bodies[b].nodal && rigid.bodies[b].id == pid) index = static_cast<int>(b);

@@ -90,10 +90,7 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
   // Contact surfaces are known before flexible bodies are attached: a flexible body reconstructs
   // its contact nodes every cycle because the search reads their positions.
   attach_flexible_bodies(model_, node_index_, state_, boundary_, contacts_.nodes, rigid_,
-                         options_.mode_loader ? options_.mode_loader
-                                              : ModeLoader([](const std::filesystem::path& file) {
-                                                  return modal::read_mode_database(file);
-                                                }));
+                         mode_loader());
   walls_ = contact::build_rigid_walls(model_, node_index_, state_, boundary_, warnings_);
   // CODE 1/3 of automatic switching ask the walls (ENTNO is the wall's deck number).
   switch_queries_.wall_force = [this](model::Id number) {
@@ -139,7 +136,7 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
       rbdout_schedule_.interval = default_interval(model.output.rbdout_dt, span, 1000.0);
       rbdout_ = std::make_unique<output::RbdoutWriter>(options_.output_directory / "rbdout.csv",
                                                        options_.continuation.rbdout);
-      if (!rigid_.flexible.empty()) {
+      if (!rigid_.flexible.empty() || !model.part_modes.empty()) {
         modal_csv_ = std::make_unique<output::ModalWriter>(options_.output_directory / "modal.csv",
                                                            options_.continuation.modal);
       }
@@ -168,6 +165,7 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
   }
   if (model.switching.flagged) {
     switcher_ = std::make_unique<switching::PartSwitcher>(model_, state_);
+    switcher_->enable_flexible_bodies(mode_loader(), state_);
     automatic_switching_ =
         std::make_unique<switching::AutomaticSwitching>(model_.switching.automatic);
     switch_due_.reserve(model_.switching.automatic.size());
@@ -176,6 +174,11 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
 }
 
 Simulation::~Simulation() = default;
+
+ModeLoader Simulation::mode_loader() const {
+  if (options_.mode_loader) return options_.mode_loader;
+  return [](const std::filesystem::path& file) { return modal::read_mode_database(file); };
+}
 
 void Simulation::initialize() {
   apply_initial_velocities(model_, node_index_, state_);
@@ -262,7 +265,10 @@ void Simulation::enable_restart_dumps(std::unique_ptr<restart::Dumper> dumper) {
 // first run need not have flagged switching: the switcher is made here if it is missing.
 void Simulation::apply_restart_switches(const std::vector<model::RestartSwitch>& switches) {
   if (switches.empty()) return;
-  if (!switcher_) switcher_ = std::make_unique<switching::PartSwitcher>(model_, state_);
+  if (!switcher_) {
+    switcher_ = std::make_unique<switching::PartSwitcher>(model_, state_);
+    switcher_->enable_flexible_bodies(mode_loader(), state_);
+  }
   if (!switch_csv_ && !options_.output_directory.empty()) {
     switch_csv_ = std::make_unique<output::SwitchWriter>(options_.output_directory / "switch.csv",
                                                          options_.continuation.switches);
@@ -453,6 +459,11 @@ void Simulation::apply_switch(model::Id swset, const std::vector<model::PartSwit
     if (event.parts.empty()) continue;
     event.swset = swset;
     energy_.switch_energy += event.kinetic_energy_before - event.kinetic_energy_after;
+    // A flexible body released: its modal elastic energy became element strain energy (as far
+    // as the restored stress increment holds it; the rest is switch energy).
+    energy_.internal_work += event.strain_energy_restored;
+    energy_.switch_energy += event.modal_elastic_released - event.strain_energy_restored;
+    energy_.modal_elastic -= event.modal_elastic_released;
     energy_.kinetic -= event.kinetic_energy_before - event.kinetic_energy_after;
     if (switch_csv_) {
       output::SwitchRow row;

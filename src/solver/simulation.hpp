@@ -145,6 +145,8 @@ class Simulation {
   void apply_switch(model::Id swset, const std::vector<model::PartSwitch>& to_rigid,
                     const std::vector<model::PartSwitch>& to_deformable, double dtmax);
   void check_breakdown();
+  // options_.mode_loader, else the modes.h5 reader (*PART_MODES).
+  ModeLoader mode_loader() const;
   void write_output_now();
   bool end_reached() const;
   // Dumps read and write every member below (restart/simulation_access.hpp).

@@ -207,6 +207,11 @@ std::vector<Id> PartSwitcher::expand(const std::vector<model::PartSwitch>& cards
   return parts;
 }
 
+void PartSwitcher::enable_flexible_bodies(const solver::ModeLoader& loader, const State& state) {
+  auto flexible = std::make_unique<FlexibleSwitching>(model_, state, loader);
+  if (!flexible->empty()) flexible_ = std::move(flexible);
+}
+
 double PartSwitcher::frozen_energy() const {
   double sum = 0.0;
   for (const auto& [pid, p] : switched_) sum += p.frozen_energy;
@@ -307,6 +312,38 @@ SwitchEvent PartSwitcher::to_rigid(const std::vector<model::PartSwitch>& cards, 
       }
     }
 
+    // A part named by *PART_MODES becomes a flexible body of its own nodes only
+    // (docs/flexible_bodies.md section 6).
+    Id modes_part = 0;
+    for (const Id pid : group.parts) {
+      if (model_.part_modes.count(pid)) modes_part = pid;
+    }
+    if (modes_part != 0 && !flexible_) {
+      throw SolverError(
+          fmt::format("at time {:.6g}: part {} has *PART_MODES but no mode data "
+                      "was prepared for switching it",
+                      time, modes_part));
+    }
+    if (modes_part != 0 && (group.parts.size() > 1 || !bodies.empty())) {
+      throw SolverError(fmt::format(
+          "at time {:.6g}: part {} (*PART_MODES) switched to rigid would merge with {}; its "
+          "modes describe its own nodes only: keep it apart from other switched parts and "
+          "rigid bodies (no shared nodes, no LRB, no part set with other parts)",
+          time, modes_part,
+          bodies.empty()
+              ? fmt::format("part {}", group.parts.front() == modes_part ? group.parts.back()
+                                                                         : group.parts.front())
+              : fmt::format("rigid body {}", rigid.bodies[*bodies.begin()].id)));
+    }
+    std::vector<double> given;  // the nodes' velocities before the switch (modal projection)
+    if (modes_part != 0) {
+      for (const auto i : nodes) {
+        given.push_back(state.nodes.v.x[i]);
+        given.push_back(state.nodes.v.y[i]);
+        given.push_back(state.nodes.v.z[i]);
+      }
+    }
+
     Momenta m;
     std::vector<rigid::MassProperties> props;
     std::vector<std::int32_t> lumped;
@@ -393,6 +430,7 @@ SwitchEvent PartSwitcher::to_rigid(const std::vector<model::PartSwitch>& cards, 
       }
     }
     define_body(*body, combined, m, physical, model_.rigid_body_update, state);
+    if (modes_part != 0) flexible_->attach(modes_part, keep, given, state, rigid);
     total.p += m.p;
     total.h += m.h;
     total.kinetic += m.kinetic;
@@ -406,6 +444,7 @@ SwitchEvent PartSwitcher::to_rigid(const std::vector<model::PartSwitch>& cards, 
       if (std::find(body.parts.begin(), body.parts.end(), pid) != body.parts.end() &&
           counted.insert(&body).second) {
         after += rigid::kinetic_energy(body.state);
+        if (body.flexible >= 0) after += rigid.flexible[body.flexible].kinetic_energy();
       }
     }
   }
@@ -443,6 +482,11 @@ SwitchEvent PartSwitcher::to_deformable(const std::vector<model::PartSwitch>& ca
     auto& block = state.hex_blocks[block_of_part_.at(pid)];
     const Eigen::Matrix3d q = body_rotation(body) * sp->second.rotation_offset;
     rotate_block_state(block, q);
+    if (body.flexible >= 0) {  // + the modal displacement's stress (docs/flexible_bodies.md)
+      const auto& f = rigid.flexible[body.flexible];
+      event.modal_elastic_released += f.elastic_energy();
+      event.strain_energy_restored += flexible_->restore_modal_stresses(body, f, block, state);
+    }
     block.rigid = false;
     std::erase(body.parts, pid);
     switched_.erase(sp);
@@ -452,6 +496,18 @@ SwitchEvent PartSwitcher::to_deformable(const std::vector<model::PartSwitch>& ca
   for (const int b : touched) {
     RigidBody& body = rigid.bodies[b];
     before.add_body(body.state);
+    if (body.flexible >= 0) {
+      // A flexible body is one part (to_rigid): all its nodes are released with the rigid and
+      // modal velocity field, its angular momentum exact.
+      before.kinetic += rigid.flexible[body.flexible].kinetic_energy();
+      flexible_->release_velocities(b, state.dt_prev, state, rigid);
+      for (const auto i : body.nodes) {
+        rigid.body_of_node[i] = -1;
+        after_nodes.add_node(state, i);
+      }
+      emptied.insert(b);
+      continue;
+    }
     // Nodes still held by a part of the body stay; the rest are released with the body's
     // velocity field (v_c + w x r at x^n, the field the nodes already carry).
     std::set<std::int32_t> keep;

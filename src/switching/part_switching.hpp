@@ -11,12 +11,14 @@
 #include <Eigen/Dense>
 #include <functional>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "model/model.hpp"
 #include "solver/rigid_bodies.hpp"
 #include "solver/state.hpp"
+#include "switching/flexible_switching.hpp"
 
 namespace rf::switching {
 
@@ -32,6 +34,11 @@ struct SwitchEvent {
   double kinetic_energy_after = 0.0;
   Eigen::Vector3d momentum = Eigen::Vector3d::Zero();
   Eigen::Vector3d angular_momentum = Eigen::Vector3d::Zero();  // about the global origin
+  // Flexible bodies released to deformable (docs/flexible_bodies.md section 6): their modal
+  // elastic energy 1/2 w^2 q^2 before, and the strain energy the restored stress increment
+  // stores in the elements (booked as internal work; the difference goes to switch_energy).
+  double modal_elastic_released = 0.0;
+  double strain_energy_restored = 0.0;
 };
 
 // Runtime part switching on the solver's state and rigid system.
@@ -72,12 +79,19 @@ class PartSwitcher {
   std::map<model::Id, SwitchedPart>& switched_parts() { return switched_; }
   std::vector<solver::RigidBody>& deleted_nodal_bodies() { return deleted_nodal_; }
 
+  // Parts that are deformable in the input and named by *PART_MODES become flexible bodies when
+  // switched to rigid (switching/flexible_switching.hpp). Without this call such a switch is an
+  // error.
+  void enable_flexible_bodies(const solver::ModeLoader& loader, const solver::State& state);
+  FlexibleSwitching* flexible_bodies() { return flexible_.get(); }  // null: none
+
  private:
   std::vector<model::Id> expand(const std::vector<model::PartSwitch>& cards) const;
   const model::Model& model_;
   std::map<model::Id, int> block_of_part_;
   std::map<model::Id, SwitchedPart> switched_;
   std::vector<solver::RigidBody> deleted_nodal_;  // NRBF = 1, for NRBF = 2
+  std::unique_ptr<FlexibleSwitching> flexible_;
 };
 
 // Physical rotation of a body since its reference (R R0^T): continuous across re-definitions

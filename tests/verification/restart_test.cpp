@@ -247,6 +247,74 @@ TEST(Restart, FlexibleBodyBitwise) {
   if (!HasFailure()) fs::remove_all(base);
 }
 
+// The deck of FlexibleBodyBitwise with part 2 elastic: *PART_MODES on it, switched rigid at
+// 10 us (a flexible body, docs/flexible_bodies.md section 6) and back to deformable at 30 us.
+// Restarted from a dump in the flexible phase, the run equals the uninterrupted one byte for
+// byte (the flexible body is made again from the dumped mode frame).
+TEST(Restart, SwitchedFlexibleBodyBitwise) {
+  const fs::path base = scratch("switched_flexible");
+  BoxMesh mesh;
+  mesh.nx = 6;
+  mesh.lx = 6.0;
+  auto deck = [&](bool modes) {
+    std::string s = "*KEYWORD\n*NODE\n";
+    for (int k = 0; k <= mesh.nz; ++k)
+      for (int j = 0; j <= mesh.ny; ++j)
+        for (int i = 0; i <= mesh.nx; ++i) {
+          double x, y, z;
+          mesh.coordinates(i, j, k, x, y, z);
+          s += fmt::format("{},{},{},{}\n", mesh.node_id(i, j, k), x, y, z);
+        }
+    s += "*ELEMENT_SOLID\n";
+    for (int i = 0; i < mesh.nx; ++i) {
+      s += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", i + 1, i < 2 ? 1 : 2,
+                       mesh.node_id(i, 0, 0), mesh.node_id(i + 1, 0, 0), mesh.node_id(i + 1, 1, 0),
+                       mesh.node_id(i, 1, 0), mesh.node_id(i, 0, 1), mesh.node_id(i + 1, 0, 1),
+                       mesh.node_id(i + 1, 1, 1), mesh.node_id(i, 1, 1));
+    }
+    s += "*PART\nblock\n1,1,1\n*PART\nflexible\n2,2,2\n*SECTION_SOLID\n1,2\n"
+         "*SECTION_SOLID\n2,2\n*MAT_ELASTIC\n1,7.85e-9,210000.0,0.3\n"
+         "*MAT_ELASTIC\n2,7.85e-9,210000.0,0.3\n";
+    if (modes) {
+      s += "*PART_MODES\n2,8,0,0,3\nmodes.h5\n1,8,0.01\n"
+           "*DEFORMABLE_TO_RIGID_AUTOMATIC\n10,0,1e-5\n0,0,0,0,1,0\n2\n"
+           "*DEFORMABLE_TO_RIGID_AUTOMATIC\n20,0,3e-5\n0,0,0,0,0,1\n2\n";
+    }
+    s += "*INITIAL_VELOCITY_GENERATION\n0,2,300,0,0,1000\n0.5,0.5,0.5,0,1,0\n"
+         "*CONTROL_TERMINATION\n4e-5,0\n*CONTROL_TIMESTEP\n0,0.5\n";
+    s += restart_decks::output_cards(2e-7, 2e-6) + "*END\n";
+    return s;
+  };
+  modal::EigenRequest request;
+  request.mode_count = 8;
+  request.parts = {2};
+  request.remove_rigid_below = true;
+  request.left_frequency = 1.0;
+  const modal::ModeSet modes =
+      modal::compute_modes(io::read_deck_text(deck(false), "eigen.k"), request);
+  modal::write_mode_database(base / "modes.h5", modes);
+  write_file(base / "deck.k", deck(true));
+  const double interval = 6e-6;
+  const fs::path reference = base / "reference";
+  const fs::path interrupted = base / "interrupted";
+  run_with_dumps(base / "deck.k", reference, interval, std::nullopt, {});
+  ASSERT_TRUE(fs::exists(reference / "d3dump_0004.h5"));
+  // Rigid (a flexible body) at 10 us, before the dump restarted from (12 us), deformable at 30 us.
+  std::ifstream switches(reference / "switch.csv");
+  std::string line;
+  std::vector<std::string> rows;
+  while (std::getline(switches, line)) rows.push_back(line);
+  ASSERT_EQ(rows.size(), 3u);
+  std::ifstream modal_csv(reference / "modal.csv");
+  int modal_rows = 0;
+  while (std::getline(modal_csv, line)) ++modal_rows;
+  EXPECT_GT(modal_rows, 8 * 10);  // 8 modes, every rbdout row of the flexible phase
+  run_with_dumps(base / "deck.k", interrupted, interval, 3.5 * interval, {});
+  (void)restart_and_run(interrupted / "d3dump_0002.h5");
+  EXPECT_GE(expect_same_files(reference, interrupted), 10);
+  if (!HasFailure()) fs::remove_all(base);
+}
+
 // Restarting into another directory (-o): the new directory receives the earlier rows and
 // frames and ends up with the same results as the uninterrupted run.
 TEST(Restart, IntoAnotherDirectoryGivesTheSameResults) {

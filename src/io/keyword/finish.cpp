@@ -2,6 +2,7 @@
 // reference points at something defined. Errors name the referring definition.
 #include <fmt/format.h>
 
+#include <map>
 #include <set>
 
 #include <algorithm>
@@ -311,13 +312,23 @@ void finish_switching(const model::Model& m) {
     return mat != m.materials.end() && mat->second.kind == model::MaterialKind::Rigid;
   };
   auto check_to_rigid = [&](const model::PartSwitch& s) {
-    for (const Id p : parts_of(s)) {
-      // With LRB the part may already be rigid (the manual: it is then only merged).
-      if (m.part_modes.count(p)) {
-        throw located_error(s.where, "PID",
+    const std::vector<Id> parts = parts_of(s);
+    for (const Id p : parts) {
+      // A deformable part with *PART_MODES becomes a flexible body of its own nodes when
+      // switched (docs/flexible_bodies.md section 6); a *MAT_RIGID one is rigid already.
+      if (m.part_modes.count(p) && (s.lrb != 0 || is_mat_rigid(p))) {
+        throw located_error(s.where, s.lrb != 0 ? "LRB" : "PID",
                             fmt::format("part {} is a flexible body (*PART_MODES): it cannot "
                                         "be merged into another rigid body by switching",
                                         p));
+      }
+      if (m.part_modes.count(p) && parts.size() > 1) {
+        throw located_error(s.where, "PID",
+                            fmt::format("part set {} holds part {}, which has *PART_MODES, and "
+                                        "other parts: switched together they would form one "
+                                        "body, but the modes describe part {} alone; give the "
+                                        "flexible part its own card",
+                                        s.pid, p, p));
       }
       if (s.lrb == 0 && is_mat_rigid(p)) {
         throw located_error(s.where, "PID",
@@ -329,6 +340,15 @@ void finish_switching(const model::Model& m) {
     }
   };
   for (const auto& s : sw.at_start) check_to_rigid(s);
+  for (const auto& [pid, card] : sw.inertia) {
+    if (m.part_modes.count(pid)) {
+      throw located_error(card.where, "PID",
+                          fmt::format("part {} has *PART_MODES: a flexible body takes its mass "
+                                      "and inertia from the nodal masses its modes are "
+                                      "normalised with; remove *DEFORMABLE_TO_RIGID_INERTIA",
+                                      pid));
+    }
+  }
   for (const auto& set : sw.automatic) {
     for (const auto& s : set.to_rigid) check_to_rigid(s);
     for (const auto& s : set.to_deformable) {
@@ -444,6 +464,50 @@ void finish_switching(const model::Model& m) {
                                       set.swset, set.swset));
     }
   }
+  // A part switched to rigid that shares a node with a flexible body would be merged into it
+  // (docs/flexible_bodies.md section 6): certain for a *MAT_RIGID flexible part, and for a
+  // deformable one switched by the same keyword or set. Other cases depend on the switching
+  // history and are checked when the switch happens.
+  if (!m.part_modes.empty()) {
+    std::map<Id, std::set<Id>> nodes_of;  // parts with *PART_MODES -> their node IDs
+    for (const auto& e : m.solids) {
+      if (m.part_modes.count(e.pid)) nodes_of[e.pid].insert(e.nodes.begin(), e.nodes.end());
+    }
+    auto shared_node = [&](Id part, Id flexible) -> Id {
+      const auto& theirs = nodes_of[flexible];
+      for (const auto& e : m.solids) {
+        if (e.pid != part) continue;
+        for (const Id n : e.nodes) {
+          if (theirs.count(n)) return n;
+        }
+      }
+      return 0;
+    };
+    auto check_group = [&](const std::vector<model::PartSwitch>& cards) {
+      std::set<Id> together;
+      for (const auto& c : cards) {
+        for (const Id p : parts_of(c)) together.insert(p);
+      }
+      for (const auto& c : cards) {
+        for (const Id p : parts_of(c)) {
+          if (m.part_modes.count(p)) continue;
+          for (const auto& [flexible, modes] : m.part_modes) {
+            if (!is_mat_rigid(flexible) && !together.count(flexible)) continue;
+            if (const Id n = shared_node(p, flexible); n != 0) {
+              throw located_error(
+                  c.where, "PID",
+                  fmt::format("part {} shares node {} with part {}, a flexible body "
+                              "(*PART_MODES at {}:{}): switched to rigid it would be merged into "
+                              "it, but the modes describe part {} alone",
+                              p, n, flexible, modes.where.file, modes.where.line, flexible));
+            }
+          }
+        }
+      }
+    };
+    check_group(sw.at_start);
+    for (const auto& set : sw.automatic) check_group(set.to_rigid);
+  }
 }
 
 // *PART_MODES: the part must be a rigid body's lead part, ANSID a node set, and the
@@ -453,7 +517,32 @@ void finish_part_modes(const model::Model& m) {
     if (!m.parts.count(pid)) {
       throw located_error(modes.where, "PID", fmt::format("part {} is not defined", pid));
     }
-    check_rigid_part(m, pid, modes.where, "PID", "*PART_MODES");
+    // A deformable part may carry *PART_MODES when a card switches it to rigid (it is then a
+    // flexible body while rigid, docs/flexible_bodies.md section 6).
+    const auto& material = m.materials.at(m.parts.at(pid).mid);
+    if (material.kind != model::MaterialKind::Rigid) {
+      bool switched = false;
+      auto names = [&](const model::PartSwitch& s) {
+        if (!s.part_set) return s.pid == pid;
+        const auto set = m.part_sets.find(s.pid);
+        return set != m.part_sets.end() &&
+               std::find(set->second.parts.begin(), set->second.parts.end(), pid) !=
+                   set->second.parts.end();
+      };
+      for (const auto& s : m.switching.at_start) switched |= names(s);
+      for (const auto& set : m.switching.automatic) {
+        for (const auto& s : set.to_rigid) switched |= names(s);
+        for (const auto& s : set.to_deformable) switched |= names(s) && set.code == 5;
+      }
+      if (!switched) {
+        throw located_error(modes.where, "PID",
+                            fmt::format("part {} is not rigid (material {} is {}) and no "
+                                        "*DEFORMABLE_TO_RIGID or *DEFORMABLE_TO_RIGID_AUTOMATIC "
+                                        "card switches it to rigid; *PART_MODES needs a "
+                                        "*MAT_RIGID part or a part switched to rigid",
+                                        pid, material.id, material.keyword));
+      }
+    }
     for (const auto& merge : m.rigid_body_merges) {
       if (merge.constrained == pid) {
         throw located_error(modes.where, "PID",
