@@ -25,6 +25,120 @@ Eigen::Vector3d body_position(const modal::FlexibleBody& f, std::size_t k,
 
 }  // namespace
 
+SelectedModes select_part_modes(const model::PartModes& card, const std::string& owner,
+                                const std::vector<std::int32_t>& body_nodes,
+                                const NodalState& nodes, const ModeLoader& loader) {
+  modal::ModeSet set;
+  try {
+    set = loader(card.path);
+  } catch (const InputError&) {
+    // Name the keyword and field: the database reader knows only the file.
+    if (!std::filesystem::exists(card.path)) {
+      throw InputError(context_of(card.where, "FILENAME"),
+                       fmt::format("mode database '{}' does not exist: compute it with an "
+                                   "eigen analysis of the part (rigidflex eigen, "
+                                   "docs/eigen.md) or correct FILENAME",
+                                   card.path));
+    }
+    throw;
+  } catch (const std::exception& e) {
+    throw InputError(context_of(card.where, "FILENAME"),
+                     fmt::format("cannot read mode database '{}': {}", card.path, e.what()));
+  }
+  const std::size_t dn = set.node_count();
+  if (set.shapes.size() != set.mode_count() * 3 * dn || set.coordinates.size() != 3 * dn) {
+    throw InputError(context_of(card.where, "FILENAME"),
+                     fmt::format("mode database '{}' is inconsistent (shape and node array "
+                                 "sizes do not match)",
+                                 card.path));
+  }
+  // Node matching by ID.
+  std::unordered_map<model::Id, std::size_t> row_of;
+  for (std::size_t r = 0; r < dn; ++r) row_of.emplace(set.node_ids[r], r);
+  std::vector<std::size_t> rows;
+  std::vector<model::Id> missing;
+  double size = 0.0;
+  for (const auto i : body_nodes) {
+    const auto it = row_of.find(nodes.id[i]);
+    if (it == row_of.end()) {
+      missing.push_back(nodes.id[i]);
+    } else {
+      rows.push_back(it->second);
+    }
+    size =
+        std::max(size, std::abs(nodes.x0.x[i]) + std::abs(nodes.x0.y[i]) + std::abs(nodes.x0.z[i]));
+  }
+  if (!missing.empty()) {
+    std::string list;
+    for (std::size_t k = 0; k < std::min<std::size_t>(missing.size(), 10); ++k) {
+      list += fmt::format("{}{}", k ? ", " : "", missing[k]);
+    }
+    throw InputError(
+        context_of(card.where, "FILENAME"),
+        fmt::format("mode database '{}' has no data for {} node(s) of {}: {}{}", card.path,
+                    missing.size(), owner, list, missing.size() > 10 ? ", ..." : ""));
+  }
+  for (std::size_t k = 0; k < body_nodes.size(); ++k) {
+    const auto i = body_nodes[k];
+    const double* c = &set.coordinates[3 * rows[k]];
+    const double gap = std::abs(c[0] - nodes.x0.x[i]) + std::abs(c[1] - nodes.x0.y[i]) +
+                       std::abs(c[2] - nodes.x0.z[i]);
+    if (gap > 1e-6 * std::max(size, 1e-30)) {
+      throw InputError(context_of(card.where, "FILENAME"),
+                       fmt::format("node {} is at ({:.6g}, {:.6g}, {:.6g}) in mode database "
+                                   "'{}' but at ({:.6g}, {:.6g}, {:.6g}) in the model: the "
+                                   "modes belong to another geometry",
+                                   nodes.id[i], c[0], c[1], c[2], card.path, nodes.x0.x[i],
+                                   nodes.x0.y[i], nodes.x0.z[i]));
+    }
+  }
+  // Mode selection: KMFLAG 0 the first NMFB elastic modes, KMFLAG 1 the listed ones.
+  SelectedModes selected;
+  std::vector<int>& chosen = selected.file_modes;
+  if (card.kmflag == 0) {
+    for (std::size_t m = 0; m < set.mode_count() && static_cast<int>(chosen.size()) < card.nmfb;
+         ++m) {
+      const bool rigid_mode = m < set.rigid.size() && set.rigid[m] != 0;
+      if (!rigid_mode) chosen.push_back(static_cast<int>(m) + 1);
+    }
+    if (static_cast<int>(chosen.size()) < card.nmfb) {
+      throw InputError(context_of(card.where, "NMFB"),
+                       fmt::format("NMFB {}: mode database '{}' has only {} elastic modes",
+                                   card.nmfb, card.path, chosen.size()));
+    }
+  } else {
+    for (const int m : card.modes) {
+      if (m > static_cast<int>(set.mode_count())) {
+        throw InputError(context_of(card.where, "MODE1"),
+                         fmt::format("mode {} is listed but mode database '{}' has {} modes", m,
+                                     card.path, set.mode_count()));
+      }
+      if (static_cast<std::size_t>(m - 1) < set.rigid.size() && set.rigid[m - 1] != 0) {
+        throw InputError(context_of(card.where, "MODE1"),
+                         fmt::format("mode {} of '{}' is a rigid-body mode; the body's rigid "
+                                     "motion is its own: list elastic modes only",
+                                     m, card.path));
+      }
+      chosen.push_back(m);
+    }
+  }
+  const std::size_t bn = body_nodes.size();
+  selected.shapes.resize(chosen.size() * 3 * bn);
+  selected.damping.assign(chosen.size(), 0.0);
+  for (std::size_t c = 0; c < chosen.size(); ++c) {
+    const std::size_t m = static_cast<std::size_t>(chosen[c] - 1);
+    const double* shape = set.shape(m);
+    for (std::size_t k = 0; k < bn; ++k) {
+      for (int d = 0; d < 3; ++d) selected.shapes[c * 3 * bn + 3 * k + d] = shape[3 * rows[k] + d];
+    }
+    selected.eigenvalues.push_back(set.eigenvalues[m]);
+  }
+  for (const auto& d : card.damping) {
+    for (int m = d.mstart; m <= d.mstop; ++m) selected.damping[m - 1] = d.dampf;
+  }
+  return selected;
+}
+
 void attach_flexible_bodies(const model::Model& model, const NodeIndex& node_index,
                             const State& state, const Boundary& boundary,
                             const std::vector<std::int32_t>& contact_nodes, RigidSystem& rigid,
@@ -67,99 +181,8 @@ void attach_flexible_bodies(const model::Model& model, const NodeIndex& node_ind
                                    "needs the nodal masses its modes are normalised with",
                                    pid));
     }
-    modal::ModeSet set;
-    try {
-      set = loader(card.path);
-    } catch (const InputError& e) {
-      // Name the keyword and field: the database reader knows only the file.
-      if (!std::filesystem::exists(card.path)) {
-        throw InputError(context_of(card.where, "FILENAME"),
-                         fmt::format("mode database '{}' does not exist: compute it with an "
-                                     "eigen analysis of the part (rigidflex eigen, "
-                                     "docs/eigen.md) or correct FILENAME",
-                                     card.path));
-      }
-      throw;
-    } catch (const std::exception& e) {
-      throw InputError(context_of(card.where, "FILENAME"),
-                       fmt::format("cannot read mode database '{}': {}", card.path, e.what()));
-    }
-    const std::size_t dn = set.node_count();
-    if (set.shapes.size() != set.mode_count() * 3 * dn || set.coordinates.size() != 3 * dn) {
-      throw InputError(context_of(card.where, "FILENAME"),
-                       fmt::format("mode database '{}' is inconsistent (shape and node array "
-                                   "sizes do not match)",
-                                   card.path));
-    }
-    // Node matching by ID.
-    std::unordered_map<model::Id, std::size_t> row_of;
-    for (std::size_t r = 0; r < dn; ++r) row_of.emplace(set.node_ids[r], r);
-    std::vector<std::size_t> rows;
-    std::vector<model::Id> missing;
-    double size = 0.0;
-    for (const auto i : body.nodes) {
-      const auto it = row_of.find(nodes.id[i]);
-      if (it == row_of.end()) {
-        missing.push_back(nodes.id[i]);
-      } else {
-        rows.push_back(it->second);
-      }
-      size = std::max(size,
-                      std::abs(nodes.x0.x[i]) + std::abs(nodes.x0.y[i]) + std::abs(nodes.x0.z[i]));
-    }
-    if (!missing.empty()) {
-      std::string list;
-      for (std::size_t k = 0; k < std::min<std::size_t>(missing.size(), 10); ++k) {
-        list += fmt::format("{}{}", k ? ", " : "", missing[k]);
-      }
-      throw InputError(
-          context_of(card.where, "FILENAME"),
-          fmt::format("mode database '{}' has no data for {} node(s) of flexible body {}: {}{}",
-                      card.path, missing.size(), pid, list, missing.size() > 10 ? ", ..." : ""));
-    }
-    for (std::size_t k = 0; k < body.nodes.size(); ++k) {
-      const auto i = body.nodes[k];
-      const double* c = &set.coordinates[3 * rows[k]];
-      const double gap = std::abs(c[0] - nodes.x0.x[i]) + std::abs(c[1] - nodes.x0.y[i]) +
-                         std::abs(c[2] - nodes.x0.z[i]);
-      if (gap > 1e-6 * std::max(size, 1e-30)) {
-        throw InputError(context_of(card.where, "FILENAME"),
-                         fmt::format("node {} is at ({:.6g}, {:.6g}, {:.6g}) in mode database "
-                                     "'{}' but at ({:.6g}, {:.6g}, {:.6g}) in the model: the "
-                                     "modes belong to another geometry",
-                                     nodes.id[i], c[0], c[1], c[2], card.path, nodes.x0.x[i],
-                                     nodes.x0.y[i], nodes.x0.z[i]));
-      }
-    }
-    // Mode selection: KMFLAG 0 the first NMFB elastic modes, KMFLAG 1 the listed ones.
-    std::vector<int> chosen;
-    if (card.kmflag == 0) {
-      for (std::size_t m = 0; m < set.mode_count() && static_cast<int>(chosen.size()) < card.nmfb;
-           ++m) {
-        const bool rigid_mode = m < set.rigid.size() && set.rigid[m] != 0;
-        if (!rigid_mode) chosen.push_back(static_cast<int>(m) + 1);
-      }
-      if (static_cast<int>(chosen.size()) < card.nmfb) {
-        throw InputError(context_of(card.where, "NMFB"),
-                         fmt::format("NMFB {}: mode database '{}' has only {} elastic modes",
-                                     card.nmfb, card.path, chosen.size()));
-      }
-    } else {
-      for (const int m : card.modes) {
-        if (m > static_cast<int>(set.mode_count())) {
-          throw InputError(context_of(card.where, "MODE1"),
-                           fmt::format("mode {} is listed but mode database '{}' has {} modes", m,
-                                       card.path, set.mode_count()));
-        }
-        if (static_cast<std::size_t>(m - 1) < set.rigid.size() && set.rigid[m - 1] != 0) {
-          throw InputError(context_of(card.where, "MODE1"),
-                           fmt::format("mode {} of '{}' is a rigid-body mode; the body's rigid "
-                                       "motion is its own: list elastic modes only",
-                                       m, card.path));
-        }
-        chosen.push_back(m);
-      }
-    }
+    const SelectedModes selected =
+        select_part_modes(card, fmt::format("flexible body {}", pid), body.nodes, nodes, loader);
     modal::ModeInput input;
     input.form = card.form == 1 ? modal::ModalForm::kFast : modal::ModalForm::kExact;
     input.initial_rotation = body.initial_rotation;
@@ -172,30 +195,19 @@ void attach_flexible_bodies(const model::Model& model, const NodeIndex& node_ind
       input.body_coords[3 * k + 1] = body.body_coordinates.y[k];
       input.body_coords[3 * k + 2] = body.body_coordinates.z[k];
     }
-    input.shapes_global.resize(chosen.size() * 3 * bn);
-    input.damping.assign(chosen.size(), 0.0);
-    for (std::size_t c = 0; c < chosen.size(); ++c) {
-      const double* shape = set.shape(static_cast<std::size_t>(chosen[c] - 1));
-      for (std::size_t k = 0; k < bn; ++k) {
-        for (int d = 0; d < 3; ++d) {
-          input.shapes_global[c * 3 * bn + 3 * k + d] = shape[3 * rows[k] + d];
-        }
-      }
-      input.eigenvalues.push_back(set.eigenvalues[static_cast<std::size_t>(chosen[c] - 1)]);
-    }
-    for (const auto& d : card.damping) {
-      for (int m = d.mstart; m <= d.mstop; ++m) input.damping[m - 1] = d.dampf;
-    }
+    input.shapes_global = selected.shapes;
+    input.eigenvalues = selected.eigenvalues;
+    input.damping = selected.damping;
     // Geometric stiffening (FORM 0): the body's 8-node hexahedra and its material. The cubic
     // invariants cost n^3 per step and n^3 x (Gauss points) once: above kMaxStiffeningModes
     // modes they are left out (with a notice).
     constexpr int kMaxStiffeningModes = 40;
     if (input.form == modal::ModalForm::kExact) {
-      if (static_cast<int>(chosen.size()) > kMaxStiffeningModes) {
+      if (static_cast<int>(selected.file_modes.size()) > kMaxStiffeningModes) {
         rigid.warnings.push_back(
             {card.where, fmt::format("flexible body {}: {} modes, geometric stiffening (FORM 0) "
                                      "is computed for at most {} modes and is left out",
-                                     pid, chosen.size(), kMaxStiffeningModes)});
+                                     pid, selected.file_modes.size(), kMaxStiffeningModes)});
       } else {
         std::unordered_map<std::int32_t, std::int32_t> position;
         for (std::size_t k = 0; k < bn; ++k) {
@@ -222,7 +234,7 @@ void attach_flexible_bodies(const model::Model& model, const NodeIndex& node_ind
     }
     flexible.body = index;
     flexible.part = pid;
-    flexible.file_modes = chosen;
+    flexible.file_modes = selected.file_modes;
     std::vector<std::uint8_t> in_ansid(nodes.size(), 0);
     if (card.ansid != 0) {
       for (const auto i : resolve_nodes(model, node_index, state, model::Target::NodeSet,

@@ -6,6 +6,8 @@
 
 #include <filesystem>
 #include <functional>
+#include <string>
+#include <vector>
 
 #include "modal/mode_set.hpp"
 #include "solver/boundary.hpp"
@@ -16,6 +18,21 @@ namespace rf::solver {
 // Reads a mode database (default: modal::read_mode_database). Tests may hand in modes made in
 // code.
 using ModeLoader = std::function<modal::ModeSet(const std::filesystem::path&)>;
+
+// The modes a *PART_MODES card selects for the nodes `body_nodes` (dense, ascending): the
+// database read by `loader`, its nodes matched by ID and checked against the model's reference
+// coordinates, modes chosen by NMFB (the first elastic ones) or the KMFLAG list, damping from
+// the card. Throws rf::InputError at the card's FILENAME/NMFB/MODE1 field; `owner` names the
+// body or part in the messages.
+struct SelectedModes {
+  std::vector<int> file_modes;  // 1-based mode numbers in the database
+  std::vector<double> shapes;   // mode-major: 3 global components per body node
+  std::vector<double> eigenvalues;
+  std::vector<double> damping;  // fraction of critical damping per selected mode
+};
+SelectedModes select_part_modes(const model::PartModes& card, const std::string& owner,
+                                const std::vector<std::int32_t>& body_nodes,
+                                const NodalState& nodes, const ModeLoader& loader);
 
 // Makes the bodies named on *PART_MODES flexible: matches database nodes to the body's nodes by
 // node ID, selects and prepares the modes, chooses the nodes reconstructed every cycle (those

@@ -88,110 +88,13 @@ FlexibleSwitching::FlexibleSwitching(const model::Model& model, const solver::St
     pm.nodes.erase(std::unique(pm.nodes.begin(), pm.nodes.end()), pm.nodes.end());
     for (const auto i : pm.nodes) pm.mass.push_back(nodes.mass[i]);
 
-    modal::ModeSet set;
-    try {
-      set = loader(card.path);
-    } catch (const InputError&) {
-      if (!std::filesystem::exists(card.path)) {
-        throw InputError(context_of(card.where, "FILENAME"),
-                         fmt::format("mode database '{}' does not exist: compute it with an "
-                                     "eigen analysis of the part (rigidflex eigen, "
-                                     "docs/eigen.md) or correct FILENAME",
-                                     card.path));
-      }
-      throw;
-    } catch (const std::exception& e) {
-      throw InputError(context_of(card.where, "FILENAME"),
-                       fmt::format("cannot read mode database '{}': {}", card.path, e.what()));
-    }
-    const std::size_t dn = set.node_count();
-    if (set.shapes.size() != set.mode_count() * 3 * dn || set.coordinates.size() != 3 * dn) {
-      throw InputError(context_of(card.where, "FILENAME"),
-                       fmt::format("mode database '{}' is inconsistent (shape and node array "
-                                   "sizes do not match)",
-                                   card.path));
-    }
-    std::unordered_map<Id, std::size_t> row_of;
-    for (std::size_t r = 0; r < dn; ++r) row_of.emplace(set.node_ids[r], r);
-    std::vector<std::size_t> rows;
-    std::vector<Id> missing;
-    double size = 0.0;
-    for (const auto i : pm.nodes) {
-      const auto it = row_of.find(nodes.id[i]);
-      if (it == row_of.end()) {
-        missing.push_back(nodes.id[i]);
-      } else {
-        rows.push_back(it->second);
-      }
-      size = std::max(size,
-                      std::abs(nodes.x0.x[i]) + std::abs(nodes.x0.y[i]) + std::abs(nodes.x0.z[i]));
-    }
-    if (!missing.empty()) {
-      std::string list;
-      for (std::size_t k = 0; k < std::min<std::size_t>(missing.size(), 10); ++k) {
-        list += fmt::format("{}{}", k ? ", " : "", missing[k]);
-      }
-      throw InputError(
-          context_of(card.where, "FILENAME"),
-          fmt::format("mode database '{}' has no data for {} node(s) of part {}: {}{}", card.path,
-                      missing.size(), pid, list, missing.size() > 10 ? ", ..." : ""));
-    }
-    for (std::size_t k = 0; k < pm.nodes.size(); ++k) {
-      const auto i = pm.nodes[k];
-      const double* c = &set.coordinates[3 * rows[k]];
-      const double gap = std::abs(c[0] - nodes.x0.x[i]) + std::abs(c[1] - nodes.x0.y[i]) +
-                         std::abs(c[2] - nodes.x0.z[i]);
-      if (gap > 1e-6 * std::max(size, 1e-30)) {
-        throw InputError(context_of(card.where, "FILENAME"),
-                         fmt::format("node {} is at ({:.6g}, {:.6g}, {:.6g}) in mode database "
-                                     "'{}' but at ({:.6g}, {:.6g}, {:.6g}) in the model: the "
-                                     "modes belong to another geometry",
-                                     nodes.id[i], c[0], c[1], c[2], card.path, nodes.x0.x[i],
-                                     nodes.x0.y[i], nodes.x0.z[i]));
-      }
-    }
-    if (card.kmflag == 0) {
-      for (std::size_t m = 0;
-           m < set.mode_count() && static_cast<int>(pm.file_modes.size()) < card.nmfb; ++m) {
-        if (!(m < set.rigid.size() && set.rigid[m] != 0)) {
-          pm.file_modes.push_back(static_cast<int>(m) + 1);
-        }
-      }
-      if (static_cast<int>(pm.file_modes.size()) < card.nmfb) {
-        throw InputError(context_of(card.where, "NMFB"),
-                         fmt::format("NMFB {}: mode database '{}' has only {} elastic modes",
-                                     card.nmfb, card.path, pm.file_modes.size()));
-      }
-    } else {
-      for (const int m : card.modes) {
-        if (m > static_cast<int>(set.mode_count())) {
-          throw InputError(context_of(card.where, "MODE1"),
-                           fmt::format("mode {} is listed but mode database '{}' has {} modes", m,
-                                       card.path, set.mode_count()));
-        }
-        if (static_cast<std::size_t>(m - 1) < set.rigid.size() && set.rigid[m - 1] != 0) {
-          throw InputError(context_of(card.where, "MODE1"),
-                           fmt::format("mode {} of '{}' is a rigid-body mode; the body's rigid "
-                                       "motion is its own: list elastic modes only",
-                                       m, card.path));
-        }
-        pm.file_modes.push_back(m);
-      }
-    }
+    solver::SelectedModes selected =
+        solver::select_part_modes(card, fmt::format("part {}", pid), pm.nodes, nodes, loader);
+    pm.file_modes = std::move(selected.file_modes);
+    pm.shapes = std::move(selected.shapes);
+    pm.eigenvalues = std::move(selected.eigenvalues);
+    pm.damping = std::move(selected.damping);
     const std::size_t bn = pm.nodes.size();
-    pm.shapes.resize(pm.file_modes.size() * 3 * bn);
-    pm.damping.assign(pm.file_modes.size(), 0.0);
-    for (std::size_t c = 0; c < pm.file_modes.size(); ++c) {
-      const std::size_t m = static_cast<std::size_t>(pm.file_modes[c] - 1);
-      const double* shape = set.shape(m);
-      for (std::size_t k = 0; k < bn; ++k) {
-        for (int d = 0; d < 3; ++d) pm.shapes[c * 3 * bn + 3 * k + d] = shape[3 * rows[k] + d];
-      }
-      pm.eigenvalues.push_back(set.eigenvalues[m]);
-    }
-    for (const auto& d : card.damping) {
-      for (int m = d.mstart; m <= d.mstop; ++m) pm.damping[m - 1] = d.dampf;
-    }
     if (card.form != 1 && static_cast<int>(pm.file_modes.size()) <= kMaxStiffeningModes &&
         block->order == 1) {
       std::unordered_map<std::int32_t, std::int32_t> at;
