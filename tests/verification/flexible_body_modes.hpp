@@ -9,11 +9,26 @@
 #include <cmath>
 #include <vector>
 
+#include "deck_builder.hpp"
 #include "element/kernels.hpp"
 #include "modal/mode_set.hpp"
 #include "solver/simulation.hpp"
 
 namespace rf::test {
+
+// The steel test beam of the flexible-body tests: 1 x 0.1 x 0.15 m, 10 x 2 x 2 hexahedra,
+// part 1 (its modes are computed densely per test).
+constexpr double kSteelDensity = 7850.0, kSteelYoung = 2.0e11, kSteelPoisson = 0.3;
+inline BoxMesh steel_beam_mesh() {
+  BoxMesh mesh;
+  mesh.nx = 10;
+  mesh.ny = 2;
+  mesh.nz = 2;
+  mesh.lx = 1.0;
+  mesh.ly = 0.1;
+  mesh.lz = 0.15;
+  return mesh;
+}
 
 struct DenseModel {
   Eigen::MatrixXd stiffness;  // 3N x 3N

@@ -22,18 +22,10 @@ namespace rf::test {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kRho = 7850.0, kYoung = 2.0e11, kNu = 0.3;
+constexpr double kRho = kSteelDensity, kYoung = kSteelYoung, kNu = kSteelPoisson;
 
-// Beam 1 x 0.1 x 0.15 (10 x 2 x 2 hexahedra), part 1.
 BoxMesh beam_mesh() {
-  BoxMesh mesh;
-  mesh.nx = 10;
-  mesh.ny = 2;
-  mesh.nz = 2;
-  mesh.lx = 1.0;
-  mesh.ly = 0.1;
-  mesh.lz = 0.15;
-  return mesh;
+  return steel_beam_mesh();
 }
 
 std::string deformable_deck(const BoxMesh& mesh, const std::string& extra, double end_time,

@@ -21,7 +21,7 @@
 namespace rf::test {
 namespace {
 
-constexpr double kRho = 7850.0, kYoung = 2.0e11, kNu = 0.3;
+constexpr double kRho = kSteelDensity, kYoung = kSteelYoung, kNu = kSteelPoisson;
 constexpr double kGap = 1e-3;        // the beam starts this far above the support
 constexpr double kV0 = 1.0;          // falling speed (m/s)
 constexpr double kSpin = 2.0;        // initial yaw rate about z (rad/s): the body rotates
@@ -31,13 +31,7 @@ constexpr int kBeamLastNode = 1000;  // beam node IDs below
 
 // Beam 1 x 0.1 x 0.15 m (10 x 2 x 2 hexahedra, part 1), bottom face kGap above z = 0.
 BoxMesh beam_mesh() {
-  BoxMesh mesh;
-  mesh.nx = 10;
-  mesh.ny = 2;
-  mesh.nz = 2;
-  mesh.lx = 1.0;
-  mesh.ly = 0.1;
-  mesh.lz = 0.15;
+  BoxMesh mesh = steel_beam_mesh();
   mesh.distort = [](double&, double&, double& z) { z += kGap; };
   return mesh;
 }

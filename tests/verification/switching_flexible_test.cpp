@@ -18,18 +18,10 @@ namespace rf::test {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kRho = 7850.0, kYoung = 2.0e11, kNu = 0.3;
+constexpr double kRho = kSteelDensity, kYoung = kSteelYoung, kNu = kSteelPoisson;
 
-// Beam 1 x 0.1 x 0.15 (10 x 2 x 2 ELFORM 2 hexahedra), part 1, elastic.
 BoxMesh beam() {
-  BoxMesh mesh;
-  mesh.nx = 10;
-  mesh.ny = 2;
-  mesh.nz = 2;
-  mesh.lx = 1.0;
-  mesh.ly = 0.1;
-  mesh.lz = 0.15;
-  return mesh;
+  return steel_beam_mesh();
 }
 
 // ELFORM 2, or ELFORM 1 with the stiffness hourglass control IHQ 4 (both linear elastic).
