@@ -16,6 +16,29 @@
 
 namespace rf::test {
 
+// Frequency (Hz) from the upward zero crossings of a sampled signal (linear interpolation).
+inline double zero_crossing_frequency(const std::vector<double>& t, const std::vector<double>& y) {
+  std::vector<double> crossings;
+  for (std::size_t i = 1; i < y.size(); ++i) {
+    if (y[i - 1] < 0.0 && y[i] >= 0.0) {
+      crossings.push_back(t[i - 1] + (t[i] - t[i - 1]) * (-y[i - 1]) / (y[i] - y[i - 1]));
+    }
+  }
+  if (crossings.size() < 2) return 0.0;
+  return static_cast<double>(crossings.size() - 1) / (crossings.back() - crossings.front());
+}
+
+// In-plane (x, y) coordinate of node `tip` across a spinning hub's axis line: the hub frame has
+// its origin midway between the hub nodes `hub_a` and `hub_b` and its x axis from a to b.
+inline double offset_across_hub_axis(const solver::NodalState& nodes, std::size_t hub_a,
+                                     std::size_t hub_b, std::size_t tip) {
+  const double cx = 0.5 * (nodes.x.x[hub_a] + nodes.x.x[hub_b]);
+  const double cy = 0.5 * (nodes.x.y[hub_a] + nodes.x.y[hub_b]);
+  const double angle =
+      std::atan2(nodes.x.y[hub_b] - nodes.x.y[hub_a], nodes.x.x[hub_b] - nodes.x.x[hub_a]);
+  return -std::sin(angle) * (nodes.x.x[tip] - cx) + std::cos(angle) * (nodes.x.y[tip] - cy);
+}
+
 // The steel test beam of the flexible-body tests: 1 x 0.1 x 0.15 m, 10 x 2 x 2 hexahedra,
 // part 1 (its modes are computed densely per test).
 constexpr double kSteelDensity = 7850.0, kSteelYoung = 2.0e11, kSteelPoisson = 0.3;

@@ -84,18 +84,6 @@ std::string initial_velocity(const modal::ModeSet& modes, const std::vector<int>
   return s;
 }
 
-// Frequency (Hz) from the upward zero crossings of a sampled signal (linear interpolation).
-double zero_crossing_frequency(const std::vector<double>& t, const std::vector<double>& y) {
-  std::vector<double> crossings;
-  for (std::size_t i = 1; i < y.size(); ++i) {
-    if (y[i - 1] < 0.0 && y[i] >= 0.0) {
-      crossings.push_back(t[i - 1] + (t[i] - t[i - 1]) * (-y[i - 1]) / (y[i] - y[i - 1]));
-    }
-  }
-  if (crossings.size() < 2) return 0.0;
-  return static_cast<double>(crossings.size() - 1) / (crossings.back() - crossings.front());
-}
-
 // ---------------------------------------------------------------------------------------
 // Free beam, initial modal velocity in two modes, no load: each mode oscillates at its own
 // eigenfrequency (the dense eigenvalue), the energy is constant, and the step is 20 times the

@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "deck_builder.hpp"
+#include "flexible_body_modes.hpp"
 #include "modal/eigen_analysis.hpp"
 #include "modal/mode_set.hpp"
 #include "solver/simulation.hpp"
@@ -445,12 +446,7 @@ ChordwiseTip chordwise_tip(solver::Simulation& sim, double end) {
   while (!sim.finished()) {
     sim.cycle();
     if (sim.finished()) break;
-    const double cx = 0.5 * (nodes.x.x[index[0]] + nodes.x.x[index[1]]);
-    const double cy = 0.5 * (nodes.x.y[index[0]] + nodes.x.y[index[1]]);
-    const double angle = std::atan2(nodes.x.y[index[1]] - nodes.x.y[index[0]],
-                                    nodes.x.x[index[1]] - nodes.x.x[index[0]]);
-    const double lag = std::abs(-std::sin(angle) * (nodes.x.x[index[2]] - cx) +
-                                std::cos(angle) * (nodes.x.y[index[2]] - cy));
+    const double lag = std::abs(offset_across_hub_axis(nodes, index[0], index[1], index[2]));
     tip.peak = std::max(tip.peak, lag);
     if (sim.state().time > 2.0 / 3.0 * end) tip.late = std::max(tip.late, lag);
   }

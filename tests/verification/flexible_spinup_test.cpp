@@ -48,6 +48,7 @@
 #include <vector>
 
 #include "deck_builder.hpp"
+#include "flexible_body_modes.hpp"
 #include "modal/eigen_analysis.hpp"
 #include "modal/mode_set.hpp"
 #include "modal/stiffness_assembly.hpp"
@@ -477,23 +478,14 @@ TipHistory run_spin_up(solver::Simulation& sim) {
       if (nodes.id[i] == ids[k]) index[k] = i;
     }
   }
-  const double tip_x0 = nodes.x0.x[index[2]], tip_y0 = nodes.x0.y[index[2]];
+  const double tip_y0 = nodes.x0.y[index[2]];
   TipHistory history;
   while (!sim.finished()) {
     sim.cycle();
     if (sim.finished()) break;
     // Hub frame: origin at the hub centre, angle from the hub's end nodes.
-    const double cx = 0.5 * (nodes.x.x[index[0]] + nodes.x.x[index[1]]);
-    const double cy = 0.5 * (nodes.x.y[index[0]] + nodes.x.y[index[1]]);
-    const double angle = std::atan2(nodes.x.y[index[1]] - nodes.x.y[index[0]],
-                                    nodes.x.x[index[1]] - nodes.x.x[index[0]]);
-    const double dx = nodes.x.x[index[2]] - cx, dy = nodes.x.y[index[2]] - cy;
-    const double local_y = -std::sin(angle) * dx + std::cos(angle) * dy;
-    const double local_x = std::cos(angle) * dx + std::sin(angle) * dy;
-    (void)local_x;
-    (void)tip_x0;
     history.time.push_back(sim.state().time);
-    history.lag.push_back(local_y - tip_y0);
+    history.lag.push_back(offset_across_hub_axis(nodes, index[0], index[1], index[2]) - tip_y0);
   }
   history.energy_ratio = sim.energy().ratio();
   history.external_work = sim.energy().external_work;

@@ -190,50 +190,58 @@ const Case kCases[] = {
 
 INSTANTIATE_TEST_SUITE_P(Restart, RestartBitwise, testing::ValuesIn(kCases), case_name);
 
-// A flexible body (*PART_MODES, modes from the eigen analysis written to modes.h5 next to the
-// deck) sharing its end face with a deformable block, spinning: the modal state (q, s) crosses
-// the dump and modal.csv continues; the restart equals the uninterrupted run byte for byte.
-TEST(Restart, FlexibleBodyBitwise) {
-  const fs::path base = scratch("flexible");
+// A 6 x 1 x 1 bar of ELFORM 2 hexahedra: elements 1-2 part 1 (elastic), 3-6 part 2 with
+// `part2_cards` (its material and whatever goes with it), spinning and stretching, 40 us.
+std::string bonded_bar_deck(const std::string& part2_cards) {
   BoxMesh mesh;
   mesh.nx = 6;
   mesh.lx = 6.0;
-  auto deck = [&](bool rigid) {
-    std::string s = "*KEYWORD\n*NODE\n";
-    for (int k = 0; k <= mesh.nz; ++k)
-      for (int j = 0; j <= mesh.ny; ++j)
-        for (int i = 0; i <= mesh.nx; ++i) {
-          double x, y, z;
-          mesh.coordinates(i, j, k, x, y, z);
-          s += fmt::format("{},{},{},{}\n", mesh.node_id(i, j, k), x, y, z);
-        }
-    s += "*ELEMENT_SOLID\n";
-    for (int i = 0; i < mesh.nx; ++i) {
-      s += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", i + 1, i < 2 ? 1 : 2,
-                       mesh.node_id(i, 0, 0), mesh.node_id(i + 1, 0, 0),
-                       mesh.node_id(i + 1, 1, 0), mesh.node_id(i, 1, 0), mesh.node_id(i, 0, 1),
-                       mesh.node_id(i + 1, 0, 1), mesh.node_id(i + 1, 1, 1),
-                       mesh.node_id(i, 1, 1));
-    }
-    s += "*PART\nblock\n1,1,1\n*PART\nflexible\n2,2,2\n*SECTION_SOLID\n1,2\n"
-         "*SECTION_SOLID\n2,2\n*MAT_ELASTIC\n1,7.85e-9,210000.0,0.3\n";
-    s += rigid ? "*MAT_RIGID\n2,7.85e-9,210000.0,0.3\n0,0,0\n*PART_MODES\n2,8,0,0,3\nmodes.h5\n"
-                 "1,8,0.01\n"
-               : "*MAT_ELASTIC\n2,7.85e-9,210000.0,0.3\n";
-    s += "*INITIAL_VELOCITY_GENERATION\n0,2,300,0,0,1000\n0.5,0.5,0.5,0,1,0\n"
-         "*CONTROL_TERMINATION\n4e-5,0\n*CONTROL_TIMESTEP\n0,0.5\n";
-    s += restart_decks::output_cards(2e-7, 2e-6) + "*END\n";
-    return s;
-  };
+  std::string s = "*KEYWORD\n*NODE\n";
+  for (int k = 0; k <= mesh.nz; ++k)
+    for (int j = 0; j <= mesh.ny; ++j)
+      for (int i = 0; i <= mesh.nx; ++i) {
+        double x, y, z;
+        mesh.coordinates(i, j, k, x, y, z);
+        s += fmt::format("{},{},{},{}\n", mesh.node_id(i, j, k), x, y, z);
+      }
+  s += "*ELEMENT_SOLID\n";
+  for (int i = 0; i < mesh.nx; ++i) {
+    s += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", i + 1, i < 2 ? 1 : 2, mesh.node_id(i, 0, 0),
+                     mesh.node_id(i + 1, 0, 0), mesh.node_id(i + 1, 1, 0), mesh.node_id(i, 1, 0),
+                     mesh.node_id(i, 0, 1), mesh.node_id(i + 1, 0, 1), mesh.node_id(i + 1, 1, 1),
+                     mesh.node_id(i, 1, 1));
+  }
+  s += "*PART\nblock\n1,1,1\n*PART\nflexible\n2,2,2\n*SECTION_SOLID\n1,2\n"
+       "*SECTION_SOLID\n2,2\n*MAT_ELASTIC\n1,7.85e-9,210000.0,0.3\n";
+  s += part2_cards;
+  s += "*INITIAL_VELOCITY_GENERATION\n0,2,300,0,0,1000\n0.5,0.5,0.5,0,1,0\n"
+       "*CONTROL_TERMINATION\n4e-5,0\n*CONTROL_TIMESTEP\n0,0.5\n";
+  return s + restart_decks::output_cards(2e-7, 2e-6) + "*END\n";
+}
+
+constexpr const char* kElasticPart2 = "*MAT_ELASTIC\n2,7.85e-9,210000.0,0.3\n";
+
+// The 8 lowest elastic modes of part 2 of the bar (eigen analysis of the all-elastic deck).
+void write_part2_modes(const fs::path& file) {
   modal::EigenRequest request;
   request.mode_count = 8;
   request.parts = {2};
   request.remove_rigid_below = true;
   request.left_frequency = 1.0;
-  const modal::ModeSet modes =
-      modal::compute_modes(io::read_deck_text(deck(false), "eigen.k"), request);
-  modal::write_mode_database(base / "modes.h5", modes);
-  write_file(base / "deck.k", deck(true));
+  modal::write_mode_database(
+      file,
+      modal::compute_modes(io::read_deck_text(bonded_bar_deck(kElasticPart2), "eigen.k"), request));
+}
+
+// A flexible body (*PART_MODES, modes from the eigen analysis written to modes.h5 next to the
+// deck) sharing its end face with a deformable block, spinning: the modal state (q, s) crosses
+// the dump and modal.csv continues; the restart equals the uninterrupted run byte for byte.
+TEST(Restart, FlexibleBodyBitwise) {
+  const fs::path base = scratch("flexible");
+  write_part2_modes(base / "modes.h5");
+  write_file(base / "deck.k",
+             bonded_bar_deck("*MAT_RIGID\n2,7.85e-9,210000.0,0.3\n0,0,0\n*PART_MODES\n2,8,0,0,3\n"
+                             "modes.h5\n1,8,0.01\n"));
   const double interval = 6e-6;
   const fs::path reference = base / "reference";
   const fs::path interrupted = base / "interrupted";
@@ -253,47 +261,12 @@ TEST(Restart, FlexibleBodyBitwise) {
 // byte (the flexible body is made again from the dumped mode frame).
 TEST(Restart, SwitchedFlexibleBodyBitwise) {
   const fs::path base = scratch("switched_flexible");
-  BoxMesh mesh;
-  mesh.nx = 6;
-  mesh.lx = 6.0;
-  auto deck = [&](bool modes) {
-    std::string s = "*KEYWORD\n*NODE\n";
-    for (int k = 0; k <= mesh.nz; ++k)
-      for (int j = 0; j <= mesh.ny; ++j)
-        for (int i = 0; i <= mesh.nx; ++i) {
-          double x, y, z;
-          mesh.coordinates(i, j, k, x, y, z);
-          s += fmt::format("{},{},{},{}\n", mesh.node_id(i, j, k), x, y, z);
-        }
-    s += "*ELEMENT_SOLID\n";
-    for (int i = 0; i < mesh.nx; ++i) {
-      s += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", i + 1, i < 2 ? 1 : 2,
-                       mesh.node_id(i, 0, 0), mesh.node_id(i + 1, 0, 0), mesh.node_id(i + 1, 1, 0),
-                       mesh.node_id(i, 1, 0), mesh.node_id(i, 0, 1), mesh.node_id(i + 1, 0, 1),
-                       mesh.node_id(i + 1, 1, 1), mesh.node_id(i, 1, 1));
-    }
-    s += "*PART\nblock\n1,1,1\n*PART\nflexible\n2,2,2\n*SECTION_SOLID\n1,2\n"
-         "*SECTION_SOLID\n2,2\n*MAT_ELASTIC\n1,7.85e-9,210000.0,0.3\n"
-         "*MAT_ELASTIC\n2,7.85e-9,210000.0,0.3\n";
-    if (modes) {
-      s += "*PART_MODES\n2,8,0,0,3\nmodes.h5\n1,8,0.01\n"
-           "*DEFORMABLE_TO_RIGID_AUTOMATIC\n10,0,1e-5\n0,0,0,0,1,0\n2\n"
-           "*DEFORMABLE_TO_RIGID_AUTOMATIC\n20,0,3e-5\n0,0,0,0,0,1\n2\n";
-    }
-    s += "*INITIAL_VELOCITY_GENERATION\n0,2,300,0,0,1000\n0.5,0.5,0.5,0,1,0\n"
-         "*CONTROL_TERMINATION\n4e-5,0\n*CONTROL_TIMESTEP\n0,0.5\n";
-    s += restart_decks::output_cards(2e-7, 2e-6) + "*END\n";
-    return s;
-  };
-  modal::EigenRequest request;
-  request.mode_count = 8;
-  request.parts = {2};
-  request.remove_rigid_below = true;
-  request.left_frequency = 1.0;
-  const modal::ModeSet modes =
-      modal::compute_modes(io::read_deck_text(deck(false), "eigen.k"), request);
-  modal::write_mode_database(base / "modes.h5", modes);
-  write_file(base / "deck.k", deck(true));
+  write_part2_modes(base / "modes.h5");
+  write_file(base / "deck.k",
+             bonded_bar_deck(std::string(kElasticPart2) +
+                             "*PART_MODES\n2,8,0,0,3\nmodes.h5\n1,8,0.01\n"
+                             "*DEFORMABLE_TO_RIGID_AUTOMATIC\n10,0,1e-5\n0,0,0,0,1,0\n2\n"
+                             "*DEFORMABLE_TO_RIGID_AUTOMATIC\n20,0,3e-5\n0,0,0,0,0,1\n2\n"));
   const double interval = 6e-6;
   const fs::path reference = base / "reference";
   const fs::path interrupted = base / "interrupted";

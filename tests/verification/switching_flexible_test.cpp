@@ -90,17 +90,6 @@ double project(int mode, const std::vector<double>& u, int elform = 2) {
   return sum;
 }
 
-double zero_crossing_frequency(const std::vector<double>& t, const std::vector<double>& y) {
-  std::vector<double> crossings;
-  for (std::size_t i = 1; i < y.size(); ++i) {
-    if (y[i - 1] < 0.0 && y[i] >= 0.0) {
-      crossings.push_back(t[i - 1] + (t[i] - t[i - 1]) * (-y[i - 1]) / (y[i] - y[i - 1]));
-    }
-  }
-  if (crossings.size() < 2) return 0.0;
-  return static_cast<double>(crossings.size() - 1) / (crossings.back() - crossings.front());
-}
-
 Eigen::Vector3d momentum(const solver::Simulation& sim) {
   const auto& e = sim.energy();
   return {e.momentum[0], e.momentum[1], e.momentum[2]};
