@@ -33,6 +33,10 @@ struct BoxMesh {
   }
 
   std::string keyword_text(int pid = 1) const {
+    return keyword_text([pid](int, int, int) { return pid; });
+  }
+  // The same with the part of element (i, j, k) chosen by `part_of` (multi-part blocks).
+  std::string keyword_text(const std::function<int(int, int, int)>& part_of) const {
     std::string s = "*NODE\n";
     for (int k = 0; k <= nz; ++k)
       for (int j = 0; j <= ny; ++j)
@@ -46,9 +50,9 @@ struct BoxMesh {
     for (int k = 0; k < nz; ++k)
       for (int j = 0; j < ny; ++j)
         for (int i = 0; i < nx; ++i) {
-          s += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", ++eid, pid, node_id(i, j, k),
-                           node_id(i + 1, j, k), node_id(i + 1, j + 1, k), node_id(i, j + 1, k),
-                           node_id(i, j, k + 1), node_id(i + 1, j, k + 1),
+          s += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", ++eid, part_of(i, j, k),
+                           node_id(i, j, k), node_id(i + 1, j, k), node_id(i + 1, j + 1, k),
+                           node_id(i, j + 1, k), node_id(i, j, k + 1), node_id(i + 1, j, k + 1),
                            node_id(i + 1, j + 1, k + 1), node_id(i, j + 1, k + 1));
         }
     return s;

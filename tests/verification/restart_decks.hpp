@@ -36,25 +36,7 @@ inline std::string deformable(double end_time) {
   std::string s = "*KEYWORD\n*TITLE\nrestart: deformable\n";
   s += fmt::format("*CONTROL_TERMINATION\n{},0\n*CONTROL_TIMESTEP\n0,0.5\n", end_time);
   s += output_cards(2e-7, 2e-6);
-  s += "*NODE\n";
-  for (int k = 0; k <= mesh.nz; ++k)
-    for (int j = 0; j <= mesh.ny; ++j)
-      for (int i = 0; i <= mesh.nx; ++i) {
-        double x, y, z;
-        mesh.coordinates(i, j, k, x, y, z);
-        s += fmt::format("{},{},{},{}\n", mesh.node_id(i, j, k), x, y, z);
-      }
-  s += "*ELEMENT_SOLID\n";
-  int eid = 0;
-  for (int k = 0; k < mesh.nz; ++k)
-    for (int j = 0; j < mesh.ny; ++j)
-      for (int i = 0; i < mesh.nx; ++i) {
-        s += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", ++eid, i < 2 ? 1 : 2,
-                         mesh.node_id(i, j, k), mesh.node_id(i + 1, j, k),
-                         mesh.node_id(i + 1, j + 1, k), mesh.node_id(i, j + 1, k),
-                         mesh.node_id(i, j, k + 1), mesh.node_id(i + 1, j, k + 1),
-                         mesh.node_id(i + 1, j + 1, k + 1), mesh.node_id(i, j + 1, k + 1));
-      }
+  s += mesh.keyword_text([](int i, int, int) { return i < 2 ? 1 : 2; });
   s += "*PART\nstiffness hourglass\n1,1,1,0,1\n*PART\nselective reduced\n2,2,1,0,2\n";
   s += "*SECTION_SOLID\n1,1\n*SECTION_SOLID\n2,2\n";
   s += "*MAT_ELASTIC\n1,7.85e-9,210000.0,0.3\n";
@@ -88,25 +70,7 @@ inline std::string spinning_rigid(double end_time, int update_type) {
   s += fmt::format("*PARAMETER\nI type,{}\n*RIGID_BODY_UPDATE\n&type\n", update_type);
   s += fmt::format("*CONTROL_TERMINATION\n{},0\n*CONTROL_TIMESTEP\n0,0.5\n", end_time);
   s += output_cards(2e-7, 2e-6);
-  s += "*NODE\n";
-  for (int k = 0; k <= mesh.nz; ++k)
-    for (int j = 0; j <= mesh.ny; ++j)
-      for (int i = 0; i <= mesh.nx; ++i) {
-        double x, y, z;
-        mesh.coordinates(i, j, k, x, y, z);
-        s += fmt::format("{},{},{},{}\n", mesh.node_id(i, j, k), x, y, z);
-      }
-  s += "*ELEMENT_SOLID\n";
-  int eid = 0;
-  for (int k = 0; k < mesh.nz; ++k)
-    for (int j = 0; j < mesh.ny; ++j)
-      for (int i = 0; i < mesh.nx; ++i) {
-        s += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", ++eid, i < 1 ? 1 : 2,
-                         mesh.node_id(i, j, k), mesh.node_id(i + 1, j, k),
-                         mesh.node_id(i + 1, j + 1, k), mesh.node_id(i, j + 1, k),
-                         mesh.node_id(i, j, k + 1), mesh.node_id(i + 1, j, k + 1),
-                         mesh.node_id(i + 1, j + 1, k + 1), mesh.node_id(i, j + 1, k + 1));
-      }
+  s += mesh.keyword_text([](int i, int, int) { return i < 1 ? 1 : 2; });
   s += "*PART\nrigid hub\n1,1,1\n*PART\nelastic shaft\n2,1,2,0,1\n";
   s += "*SECTION_SOLID\n1,1\n";
   s += "*MAT_RIGID\n1,7.85e-9,210000.0,0.3\n*MAT_ELASTIC\n2,7.85e-9,210000.0,0.3\n";

@@ -196,21 +196,8 @@ std::string bonded_bar_deck(const std::string& part2_cards) {
   BoxMesh mesh;
   mesh.nx = 6;
   mesh.lx = 6.0;
-  std::string s = "*KEYWORD\n*NODE\n";
-  for (int k = 0; k <= mesh.nz; ++k)
-    for (int j = 0; j <= mesh.ny; ++j)
-      for (int i = 0; i <= mesh.nx; ++i) {
-        double x, y, z;
-        mesh.coordinates(i, j, k, x, y, z);
-        s += fmt::format("{},{},{},{}\n", mesh.node_id(i, j, k), x, y, z);
-      }
-  s += "*ELEMENT_SOLID\n";
-  for (int i = 0; i < mesh.nx; ++i) {
-    s += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", i + 1, i < 2 ? 1 : 2, mesh.node_id(i, 0, 0),
-                     mesh.node_id(i + 1, 0, 0), mesh.node_id(i + 1, 1, 0), mesh.node_id(i, 1, 0),
-                     mesh.node_id(i, 0, 1), mesh.node_id(i + 1, 0, 1), mesh.node_id(i + 1, 1, 1),
-                     mesh.node_id(i, 1, 1));
-  }
+  std::string s = "*KEYWORD\n";
+  s += mesh.keyword_text([](int i, int, int) { return i < 2 ? 1 : 2; });
   s += "*PART\nblock\n1,1,1\n*PART\nflexible\n2,2,2\n*SECTION_SOLID\n1,2\n"
        "*SECTION_SOLID\n2,2\n*MAT_ELASTIC\n1,7.85e-9,210000.0,0.3\n";
   s += part2_cards;
