@@ -550,6 +550,53 @@ struct SensorControl {
   SourceLocation where;
 };
 
+// *ELEMENT_MASS: a point mass at a node.
+struct PointMass {
+  Id id = 0;    // EID
+  Id node = 0;  // NID
+  double mass = 0.0;
+  Id part = 0;               // PID (optional; only for bookkeeping)
+  SourceLocation where;
+};
+
+// *ELEMENT_MASS_PART(_SET): translational mass added to the nodes of a part (or part set), in
+// proportion to their lumped mass (docs/keywords.md).
+struct PartMassAddition {
+  Id id = 0;  // PID, or PSID with _SET
+  bool part_set = false;
+  double addmass = 0.0;
+  double finmass = 0.0;  // > 0: the added mass is FINMASS minus the mass the part has
+  SourceLocation where;
+};
+
+// *DAMPING_GLOBAL and *DAMPING_PART_MASS(_SET): mass-proportional damping, the force
+// f = -d(t) m v on each node (a rigid body: -d M v_c and the moment -d L), scaled per
+// global direction by ST (forces) and SR (rigid-body moments).
+struct MassDamping {
+  bool global = true;
+  Id id = 0;  // PID or PSID (part damping)
+  bool part_set = false;
+  Id lcid = 0;          // curve d(t); global: 0 means the constant VALDMP
+  double valdmp = 0.0;  // global: constant d when LCID is 0
+  double sf = 1.0;      // part damping: scale factor on the curve
+  std::array<double, 3> st{1.0, 1.0, 1.0};  // STX STY STZ
+  std::array<double, 3> sr{1.0, 1.0, 1.0};  // SRX SRY SRZ
+  SourceLocation where;
+};
+
+// *CONSTRAINED_JOINT_SPHERICAL / _REVOLUTE / _CYLINDRICAL / _TRANSLATIONAL: a penalty joint
+// between coincident node pairs (N1,N2), (N3,N4), (N5,N6); odd nodes on body A, even on B.
+struct Joint {
+  enum class Type { Spherical, Revolute, Cylindrical, Translational };
+  Type type = Type::Spherical;
+  Id id = 0;  // JID of the _ID card, else the joint's 1-based position in the deck
+  std::string title;
+  std::array<Id, 6> nodes{};  // N1..N6, 0 where the type uses fewer
+  double rps = 1.0;           // relative penalty stiffness
+  double damp = 1.0;          // scale on the default damping; 0 < DAMP <= 0.01: none
+  SourceLocation where;
+};
+
 struct Termination {
   double endtim = 0.0;
   int endcyc = 0;
@@ -650,6 +697,11 @@ struct Model {
   std::map<Id, Box> boxes;             // *DEFINE_BOX
   std::vector<RigidWall> rigid_walls;  // in deck order: rigid_walls[k].number == k + 1
   std::vector<Contact> contacts;       // in deck order: contacts[k].number == k + 1
+
+  std::vector<PointMass> point_masses;                   // *ELEMENT_MASS
+  std::vector<PartMassAddition> part_mass_additions;     // *ELEMENT_MASS_PART
+  std::vector<MassDamping> mass_damping;                 // *DAMPING_GLOBAL, *DAMPING_PART_MASS
+  std::vector<Joint> joints;                             // *CONSTRAINED_JOINT_..., deck order
 
   Termination termination;
   TimestepControl timestep;

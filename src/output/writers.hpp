@@ -34,6 +34,7 @@ struct GlstatRow {
   // Minus the work of the contact forces (stored penalty energy + dissipation).
   double contact_energy = 0.0;
   double modal_energy = 0.0;  // elastic energy of flexible bodies' modes (in internal_energy)
+  double damping_work = 0.0;  // the part of external_work done by *DAMPING_* (negative)
 };
 
 // Plain CSV file with a fixed header; rows are flushed at close. Numbers use %.9g or
@@ -84,7 +85,8 @@ struct CsvContinuation {
 inline constexpr std::string_view kGlstatHeader =
     "time,dt,cycle,kinetic_energy,internal_energy,hourglass_energy,external_work,total_energy,"
     "energy_ratio,momentum_x,momentum_y,momentum_z,angular_momentum_x,angular_momentum_y,"
-    "angular_momentum_z,switch_energy,frozen_energy,rigidwall_work,contact_energy,modal_energy";
+    "angular_momentum_z,switch_energy,frozen_energy,rigidwall_work,contact_energy,modal_energy,"
+    "damping_work";
 inline constexpr std::string_view kNodoutHeader = "time,node,x,y,z,vx,vy,vz,ax,ay,az";
 inline constexpr std::string_view kRbdoutHeader =
     "time,body,mass,x,y,z,vx,vy,vz,ax,ay,az,wx,wy,wz,r11,r12,r13,r21,r22,r23,r31,r32,r33";

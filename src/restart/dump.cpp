@@ -703,6 +703,9 @@ void write_boundary(const Group& g, const solver::Boundary& boundary, const mode
   write_vector(g, "fixed", boundary.fixed);
   write_vector(g, "constrained_nodes", boundary.constrained_nodes);
   write_vector(g, "body_force_mass", boundary.body_force_mass);
+  // The damping forces in f_ext (their work share is summed in the next cycle); the damping
+  // terms themselves are rebuilt from the deck.
+  if (!boundary.damping.empty()) write_vec3(g, "damping_force", boundary.damping.force);
 
   const Group pg = g.create_group("prescribed");
   const auto& prescribed = boundary.prescribed;
@@ -754,6 +757,13 @@ void read_boundary(const Group& g, solver::Boundary& boundary, const model::Mode
   for (const auto i : boundary.constrained_nodes) check_node_index(g, "constrained_nodes", i, n);
   boundary.body_force_mass =
       read_exact<double>(g, "body_force_mass", boundary.body_force_mass.size());
+  if (!boundary.damping.empty()) {
+    if (!g.has("damping_force")) {
+      g.fail("damping_force", "is missing: the dump was written without the deck's *DAMPING_* "
+                              "cards");
+    }
+    read_vec3(g, "damping_force", boundary.damping.force, n);
+  }
 
   const Group pg = g.group("prescribed");
   const std::size_t np = count_of(pg, "count");

@@ -53,6 +53,7 @@ void SimulationAccess::write_members(Simulation& s, const Group& g) {
   g.set("energy_frozen", e.frozen_energy);
   g.set("energy_rigidwall_work", e.rigidwall_work);
   g.set("energy_contact", e.contact_energy);
+  g.set("energy_damping_work", e.damping_work);
   g.set("switch_dt_cap", s.switch_dt_cap_);
   for (int k = 0; k < 3; ++k) {
     g.set(fmt::format("energy_momentum_{}", k), e.momentum[k]);
@@ -92,6 +93,8 @@ void SimulationAccess::read_members(Simulation& s, const Group& g) {
   e.frozen_energy = g.get_double("energy_frozen");
   e.rigidwall_work = g.get_double("energy_rigidwall_work");
   e.contact_energy = g.has_attribute("energy_contact") ? g.get_double("energy_contact") : 0.0;
+  e.damping_work =
+      g.has_attribute("energy_damping_work") ? g.get_double("energy_damping_work") : 0.0;
   s.switch_dt_cap_ = g.get_double("switch_dt_cap");
   for (int k = 0; k < 3; ++k) {
     e.momentum[k] = g.get_double(fmt::format("energy_momentum_{}", k));

@@ -10,6 +10,7 @@
 #include "model/error.hpp"
 #include "model/error_context.hpp"
 #include "model/function.hpp"
+#include "solver/mass_damping.hpp"
 
 namespace rf::solver {
 
@@ -229,6 +230,7 @@ Boundary resolve_boundary(const model::Model& model, const NodeIndex& node_index
     if (b.fixed[i]) b.constrained_nodes.push_back(static_cast<std::int32_t>(i));
   }
   set_body_force_masses(b, state.nodes, body_of_node);
+  b.damping = resolve_mass_damping(model, state);
   for (const auto& p : b.prescribed) b.constrained_nodes.push_back(p.node);
   std::sort(b.constrained_nodes.begin(), b.constrained_nodes.end());
   b.constrained_nodes.erase(std::unique(b.constrained_nodes.begin(), b.constrained_nodes.end()),
@@ -299,6 +301,7 @@ void compute_external_forces(const Boundary& boundary, double t, State& state) {
     for (std::size_t i = 0; i < n; ++i) fa[i] -= mass[i] * a;
   }
   for (const auto& load : boundary.nodal_forces) f[load.axis][load.node] += load.value(t);
+  add_damping_forces(boundary.damping, boundary.body_force_mass, t, state);
 }
 
 void constrain_accelerations(const Boundary& boundary, double t_n, State& state) {

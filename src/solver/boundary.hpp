@@ -1,6 +1,7 @@
 // Boundary conditions, loads and initial conditions resolved to dense node indices.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -46,6 +47,27 @@ struct BodyAcceleration {
   ScaledCurve value;
 };
 
+// One *DAMPING_GLOBAL / *DAMPING_PART_MASS card resolved (solver/mass_damping.hpp).
+struct DampingTerm {
+  ScaledCurve d;               // d(t) = SF * curve(t), or the constant VALDMP
+  std::array<double, 3> st{};  // scales of the translational forces (global x, y, z)
+  std::array<double, 3> sr{};  // scales of a rigid body's damping moments
+};
+
+struct MassDampingSystem {
+  std::vector<DampingTerm> terms;
+  // Per node: the term that damps it, -1 none (empty vector: no damping at all). A
+  // *DAMPING_PART_MASS card overrides *DAMPING_GLOBAL on its parts' nodes; later part cards
+  // override earlier ones.
+  std::vector<std::int16_t> term_of_node;
+  // The damping force of each node in the last f_ext (its share of the external work is
+  // summed with the same displacements as the rest, see Simulation::update_velocities), and
+  // d(t) ST per term at that time. Written by add_damping_forces.
+  mutable Vec3Array force;
+  mutable std::vector<std::array<double, 3>> coefficient;
+  bool empty() const { return terms.empty(); }
+};
+
 struct Boundary {
   // Bit k set: translation k of the node is fixed (SPC, *NODE TC).
   std::vector<std::uint8_t> fixed;
@@ -57,6 +79,9 @@ struct Boundary {
   // Mass that *LOAD_BODY acts on, per node: the lumped mass, zero on rigid-body nodes (the
   // body force of a rigid body is applied at its centre of mass, to the body's own mass).
   std::vector<double> body_force_mass;
+  // Mass-proportional damping (*DAMPING_GLOBAL, *DAMPING_PART_MASS); acts on the nodes through
+  // body_force_mass and on rigid bodies at their centre of mass.
+  MassDampingSystem damping;
 };
 
 // `body_of_node` (empty when there are no rigid bodies) gives each node's rigid body or -1.

@@ -13,6 +13,7 @@
 #include "mesh/p_order.hpp"
 #include "model/error.hpp"
 #include "model/error_context.hpp"
+#include "solver/mass_damping.hpp"
 
 namespace rf::solver {
 
@@ -290,6 +291,7 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
     element::initialize_block(block, view);
     element::add_block_lumped_mass(block, nodes.mass);
   }
+  state.added_mass = add_mass_elements(model, node_index, state);
 
   // Node -> element-slot incidence, counted then filled (CSR).
   NodeIncidence& inc = state.incidence;

@@ -489,6 +489,23 @@ RigidStepSums advance_rigid_bodies(RigidSystem& rigid, const Boundary& boundary,
     for (const auto& base : boundary.body_accelerations) {
       load_force[base.axis] -= s.mass * base.value(t_n);  // *LOAD_BODY: -M a at the centre
     }
+    // Mass-proportional damping at the centre of mass: -d ST M v_c and -d SR L (L = J w about
+    // the centre), with the velocities of the last half step as for the nodes.
+    Eigen::Vector3d damping_force = Eigen::Vector3d::Zero();
+    Eigen::Vector3d damping_moment = Eigen::Vector3d::Zero();
+    if (!boundary.damping.empty() && !body.nodes.empty()) {
+      const int term = boundary.damping.term_of_node[body.nodes.front()];
+      if (term >= 0) {
+        const DampingTerm& damping = boundary.damping.terms[term];
+        const double d = damping.d(t_n);
+        for (int k = 0; k < 3; ++k) {
+          damping_force[k] = -d * damping.st[k] * s.mass * body.velocity_before[k];
+          damping_moment[k] = -d * damping.sr[k] * s.angular_momentum[k];
+        }
+        load_force += damping_force;
+        load_moment += damping_moment;
+      }
+    }
     body.force = ft.force + load_force;
     body.torque = ft.torque + load_moment;
 
@@ -579,6 +596,7 @@ RigidStepSums advance_rigid_bodies(RigidSystem& rigid, const Boundary& boundary,
     body.mid_angular_velocity = 0.5 * (body.angular_velocity_before + s.angular_velocity);
     const Eigen::Vector3d& v_mid = body.mid_velocity;
     const Eigen::Vector3d& w_mid = body.mid_angular_velocity;
+    sums.damping_work += dt_avg * (damping_force.dot(v_mid) + damping_moment.dot(w_mid));
     sums.external_work += dt_avg * (load_force.dot(v_mid) + load_moment.dot(w_mid)) +
                           s.reaction_impulse.dot(v_mid) + s.reaction_angular_impulse.dot(w_mid);
   }

@@ -117,6 +117,7 @@ struct RigidStepSums {
   double modal_damping_loss = 0.0;
   double modal_inertia_work = 0.0;
   double modal_stiffening_work = 0.0;  // work of the geometric-stiffening forces (internal)
+  double damping_work = 0.0;  // work of *DAMPING_* on the bodies (part of external_work)
 };
 
 // One rigid step from t^n (after the nodal velocity update): force and torque from the

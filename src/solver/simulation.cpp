@@ -86,6 +86,7 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
   boundary_.constrained_nodes.erase(
       std::unique(boundary_.constrained_nodes.begin(), boundary_.constrained_nodes.end()),
       boundary_.constrained_nodes.end());
+  joints_ = build_joints(model_, node_index_, state_);
   contacts_ = contact::build_contacts(model_, node_index_, state_);
   // Contact surfaces are known before flexible bodies are attached: a flexible body reconstructs
   // its contact nodes every cycle because the search reads their positions.
@@ -529,8 +530,9 @@ void Simulation::update_velocities() {
   const Vec3Array* contact_force = contacts_.empty() ? nullptr : &contacts_.force;
   const double* modal_velocity =
       rigid_.modal_work_velocity.empty() ? nullptr : rigid_.modal_work_velocity.data();
-  auto sums = deterministic_sum<10>(
-      n, reduction_scratch_, [&](std::int64_t i, std::array<double, 10>& acc) {
+  const Vec3Array* damping_force = boundary_.damping.empty() ? nullptr : &boundary_.damping.force;
+  auto sums = deterministic_sum<11>(
+      n, reduction_scratch_, [&](std::int64_t i, std::array<double, 11>& acc) {
         const double m = nodes.mass[i];
         const double vx = nodes.v.x[i], vy = nodes.v.y[i], vz = nodes.v.z[i];
         double dx = 0.5 * dt_avg * (vp.x[i] + vx);
@@ -561,6 +563,9 @@ void Simulation::update_velocities() {
         acc[2] += nodes.f_ext.x[i] * dx + nodes.f_ext.y[i] * dy + nodes.f_ext.z[i] * dz;
         if (contact_force) {  // the contact share of f_ext
           acc[9] += contact_force->x[i] * dx + contact_force->y[i] * dy + contact_force->z[i] * dz;
+        }
+        if (damping_force) {  // the damping share of f_ext
+          acc[10] += damping_force->x[i] * dx + damping_force->y[i] * dy + damping_force->z[i] * dz;
         }
         if (rigid_node) return;
         acc[0] += 0.5 * m * (vx * vx + vy * vy + vz * vz);
@@ -602,6 +607,7 @@ void Simulation::update_velocities() {
   energy_.external_work +=
       sums[2] - sums[9] + reaction_work + rigid_sums.external_work + rigid_sums.modal_inertia_work;
   energy_.contact_energy -= sums[9];
+  energy_.damping_work += sums[10] + rigid_sums.damping_work;
   energy_.modal_elastic = rigid_sums.modal_elastic;
   if (!walls_.empty()) {  // already in sums[2] (the wall forces are in f_ext): its share
     energy_.rigidwall_work += contact::rigid_wall_work(walls_, rigid_, vp, state_, dt_avg);
@@ -676,6 +682,7 @@ void Simulation::write_output_if_due(bool force) {
     row.frozen_energy = energy_.frozen_energy;
     row.contact_energy = energy_.contact_energy;
     row.modal_energy = energy_.modal_elastic;
+    row.damping_work = energy_.damping_work;
     glstat_->write(row);
     glstat_schedule_.mark_written(t, cycle);
   }
@@ -785,6 +792,10 @@ void Simulation::compute_internal_forces() {
     }
   }
   assemble_internal_forces(state_);
+  if (!joints_.empty()) {  // penalty springs: their stiffness needs the first step
+    prepare_joint_stiffness(joints_, rigid_, state_, initial_dt_);
+    add_joint_forces(joints_, state_);
+  }
 }
 
 void Simulation::compute_contact_forces() {

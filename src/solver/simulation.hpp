@@ -19,6 +19,7 @@
 #include "solver/boundary.hpp"
 #include "solver/build_state.hpp"
 #include "solver/flexible_bodies.hpp"
+#include "solver/joints.hpp"
 #include "solver/rigid_bodies.hpp"
 #include "solver/state.hpp"
 #include "switching/part_switching.hpp"
@@ -55,6 +56,9 @@ struct EnergyAccount {
   // Minus the work of the contact forces (penalty energy stored plus friction and damping
   // dissipation); kept out of external_work and counted in the total (docs/contact.md).
   double contact_energy = 0.0;
+  // The part of external_work done by mass-proportional damping (*DAMPING_GLOBAL,
+  // *DAMPING_PART_MASS); negative: the energy damping has removed.
+  double damping_work = 0.0;
   double initial_total = 0.0;
   // Elastic energy 1/2 w^2 q^2 of the modes of flexible bodies now (their kinetic energy is in
   // `kinetic`, modal damping losses in internal_work).
@@ -106,6 +110,7 @@ class Simulation {
   double end_time() const { return end_time_; }
   std::int64_t element_count() const { return element_count_; }
   const RigidSystem& rigid_bodies() const { return rigid_; }
+  const JointSystem& joints() const { return joints_; }
   const contact::RigidWallSystem& rigid_walls() const { return walls_; }
   contact::RigidWallSystem& mutable_rigid_walls() { return walls_; }
   const contact::ContactSystem& contacts() const { return contacts_; }
@@ -157,6 +162,7 @@ class Simulation {
   NodeIndex node_index_;
   State state_;
   RigidSystem rigid_;
+  JointSystem joints_;  // *CONSTRAINED_JOINT_... (penalty springs between node pairs)
   std::vector<model::Warning> warnings_;
   Boundary boundary_;
   contact::RigidWallSystem walls_;

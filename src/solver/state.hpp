@@ -76,6 +76,8 @@ struct State {
   std::vector<const double*> block_force_pointers;  // scratch for assembly, sized once
   // Nodes added by *CHANGE_P-ORDER (dense indices after the model's nodes; IDs above them).
   std::int64_t generated_node_count = 0;
+  // Mass added by *ELEMENT_MASS and *ELEMENT_MASS_PART (already in nodes.mass).
+  double added_mass = 0.0;
   AssemblyPlan assembly_plan;
 };
 

@@ -164,6 +164,16 @@ TEST_P(RestartBitwise, StoppedAfterADumpAndRestartedEqualsUninterrupted) {
   if (!HasFailure()) fs::remove_all(base);  // kept for inspection otherwise
 }
 
+// The spinning deck with mass-proportional damping: global on the shaft, a curve on the rigid
+// hub (the damping forces in f_ext and the damping work cross the dump).
+std::string damped_spinning_rigid() {
+  std::string deck = restart_decks::spinning_rigid(4e-5, 0);
+  deck.insert(deck.rfind("*END"),
+              "*DAMPING_GLOBAL\n0,2.0e4\n*DEFINE_CURVE\n90\n0.0,1.0e4\n1.0,1.0e4\n"
+              "*DAMPING_PART_MASS\n1,90\n");
+  return deck;
+}
+
 const Case kCases[] = {
     {"deformable", restart_decks::deformable(4e-5), "", {}, 6e-6, 1},
     {"deformable", restart_decks::deformable(4e-5), "", {}, 6e-6, 2},
@@ -186,6 +196,9 @@ const Case kCases[] = {
     // Contact: friction springs, nodal contact forces and contact energy across the dump.
     {"contact", "", RIGIDFLEX_TEST_DECKS "/contact_sliding_block.k", {}, 0.004, 1},
     {"contact", "", RIGIDFLEX_TEST_DECKS "/contact_sliding_block.k", {}, 0.004, 2},
+    // Mass-proportional damping of nodes and of a rigid body.
+    {"damping", damped_spinning_rigid(), "", {}, 6e-6, 1},
+    {"damping", damped_spinning_rigid(), "", {}, 6e-6, 2},
 };
 
 INSTANTIATE_TEST_SUITE_P(Restart, RestartBitwise, testing::ValuesIn(kCases), case_name);

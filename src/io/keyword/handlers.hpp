@@ -30,6 +30,15 @@ void initial_velocity_generation(const Block&, ReaderContext&);
 void load_node(const Block&, ReaderContext&);
 void load_body(const Block&, ReaderContext&);
 
+// handlers_mass.cpp
+void element_mass(const Block&, ReaderContext&);
+void element_mass_part(const Block&, ReaderContext&);
+void damping_global(const Block&, ReaderContext&);
+void damping_part_mass(const Block&, ReaderContext&);
+
+// handlers_joints.cpp
+void constrained_joint(const Block&, ReaderContext&);
+
 // handlers_control.cpp
 void control_termination(const Block&, ReaderContext&);
 void control_timestep(const Block&, ReaderContext&);

@@ -1,0 +1,61 @@
+// Penalty joints (*CONSTRAINED_JOINT_SPHERICAL / _REVOLUTE / _CYLINDRICAL / _TRANSLATIONAL)
+// resolved to dense node indices. docs/theory.md "Joints".
+#pragma once
+
+#include <Eigen/Dense>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "model/model.hpp"
+#include "solver/build_state.hpp"
+#include "solver/rigid_bodies.hpp"
+#include "solver/state.hpp"
+
+namespace rf::solver {
+
+struct SolverJoint {
+  model::Joint::Type type = model::Joint::Type::Spherical;
+  model::Id id = 0;
+  std::array<std::int32_t, 6> node{-1, -1, -1, -1, -1, -1};
+  int pairs = 1;  // node pairs (N1,N2), (N3,N4), (N5,N6) in use
+  // Pairs constrained only across the axis N1 -> N3 of body A (cylindrical, translational).
+  bool axial_free = false;
+  double rps = 1.0, damp = 1.0;
+  double stiffness = 0.0;  // k of each pair's penalty spring (set by prepare_joint_stiffness)
+  double damping = 0.0;    // c of each pair's dashpot
+  // Total force the joint exerts on its body-A nodes (N1, N3, N5) in the last evaluation; the
+  // body-B nodes get the opposite.
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  double gap = 0.0;  // largest constrained separation of a pair in the last evaluation
+};
+
+struct JointSystem {
+  std::vector<SolverJoint> joints;
+  bool prepared = false;
+  bool empty() const { return joints.empty(); }
+};
+
+// Resolves the joints of the model. Throws InputError naming the card when a node does not
+// exist, when a pair's nodes do not coincide (within 1e-6 of the larger of the model's size and
+// the pair's distance from the origin), or when N1 and N3 coincide where they define the axis.
+JointSystem build_joints(const model::Model& model, const NodeIndex& node_index,
+                         const State& state);
+
+// Penalty stiffness k = RPS 0.1 m* / dt0^2 per pair, with m* the effective mass of the two sides
+// at the pair (a rigid body's point mass 1 / (1/M + r^2 / J_min) with the lever arm r from its
+// centre of mass; a deformable node's lumped mass), combined in series: the spring's frequency
+// is w dt0 = 0.32 sqrt(RPS), well inside the stability limit w dt < 2 of central differences.
+// The dashpot has 10 % of critical damping times DAMP (0 for 0 < DAMP <= 0.01). Uses only
+// quantities that do not change during the run (masses, reference lever arms, the first step),
+// so a restart computes the same values.
+void prepare_joint_stiffness(JointSystem& joints, const RigidSystem& rigid, const State& state,
+                             double dt0);
+
+// Adds the joint forces at x^{n+1} (and v^{n+1/2} for the dashpots) to f_int: a pair's force
+// F = k g + c w (g = x_B - x_A, w = v_B - v_A, across the axis only where the axis is free) pulls
+// the body-A node towards the body-B node and the body-B node back, so the work of the joints
+// is internal work (the springs' energy and the dashpots' losses are in internal_energy).
+void add_joint_forces(JointSystem& joints, State& state);
+
+}  // namespace rf::solver

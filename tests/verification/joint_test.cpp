@@ -1,0 +1,273 @@
+// Penalty joints between rigid bodies against closed-form mechanics:
+//  - spherical joint: a rigid bar released at 60 degrees swings with the exact period of the
+//    compound pendulum, T = 4 sqrt(I / (M g d)) K(sin(theta0 / 2)) (complete elliptic integral
+//    of the first kind; e.g. Thornton & Marion, Classical Dynamics, ch. 4);
+//  - revolute joint: the same period while a side load along the hinge axis is carried;
+//  - cylindrical joint: a slider falls freely along the axis (z = -g t^2 / 2) and spins up
+//    under a torque about the axis (w = T t / J), while a side load is carried;
+//  - translational joint: the same slider falls freely and does not spin.
+// The reference masses, centres and inertias come from the test's own lumped-mass sums over
+// the node grid (rho V / 8 per element node), not from the solver.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "deck_builder.hpp"
+#include "model/error.hpp"
+
+namespace rf::test {
+namespace {
+
+constexpr double kRho = 7850.0, kG = 9.81, kTheta0 = std::numbers::pi / 3;
+
+// Ground: a fixed rigid block 2 x 2 x 1 over [-0.05, 0.05]^2 x [0, 0.1]; node (1,1,0) sits at
+// the origin (the pivot), (1,2,0) at (0, 0.05, 0), (1,1,1) at (0, 0, 0.1), (2,1,0) at
+// (0.05, 0, 0).
+Block ground() {
+  Block b;
+  b.nx = b.ny = 2;
+  b.nz = 1;
+  b.lx = b.ly = b.lz = 0.1;
+  b.local = Eigen::Vector3d(-0.05, -0.05, 0.0);
+  b.first_node = 1;
+  b.first_element = 1;
+  b.pid = 1;
+  return b;
+}
+
+// Pendulum bar 0.1 x 0.1 x 1 hanging from the origin, turned by theta0 about y.
+Block bar(double tilt) {
+  Block b;
+  b.nx = b.ny = 2;
+  b.nz = 10;
+  b.lx = b.ly = 0.1;
+  b.lz = 1.0;
+  b.local = Eigen::Vector3d(-0.05, -0.05, -1.0);
+  b.tilt = tilt;
+  b.first_node = 1001;
+  b.first_element = 1001;
+  b.pid = 2;
+  return b;
+}
+
+std::string rigid_parts() {
+  return "*PART\nground\n1,1,1\n*PART\nmoving\n2,1,2\n*SECTION_SOLID\n1,1\n"
+         "*MAT_RIGID\n1,7850.0,2.1e11,0.3\n1.0,7,7\n*MAT_RIGID\n2,7850.0,2.1e11,0.3\n";
+}
+
+std::string gravity(char axis, double g, int curve) {
+  return fmt::format("*DEFINE_CURVE\n{0}\n0.0,{1:.17g}\n100.0,{1:.17g}\n*LOAD_BODY_{2}\n{0}\n",
+                     curve, g, axis);
+}
+
+// Lumped-mass sums of a block in its own (untilted) frame: mass, first moment about the
+// origin along z, and the second moment about the y axis through the origin.
+struct MassSums {
+  double mass = 0, first_z = 0, second_y = 0, second_z = 0;
+};
+MassSums lumped_sums(const Block& b) {
+  MassSums s;
+  const double m_node = kRho * (b.lx / b.nx) * (b.ly / b.ny) * (b.lz / b.nz) / 8.0;
+  for (int k = 0; k < b.nz; ++k)
+    for (int j = 0; j < b.ny; ++j)
+      for (int i = 0; i < b.nx; ++i)
+        for (int c = 0; c < 8; ++c) {
+          const int di = c & 1, dj = (c >> 1) & 1, dk = (c >> 2) & 1;
+          const Eigen::Vector3d p = Eigen::Vector3d(b.lx * (i + di) / b.nx, b.ly * (j + dj) / b.ny,
+                                                    b.lz * (k + dk) / b.nz) +
+                                    b.local;
+          s.mass += m_node;
+          s.first_z += m_node * p.z();
+          s.second_y += m_node * (p.x() * p.x() + p.z() * p.z());
+          s.second_z += m_node * (p.x() * p.x() + p.y() * p.y());
+        }
+  return s;
+}
+
+double elliptic_k(double k) {  // K(k) = pi / (2 AGM(1, sqrt(1 - k^2)))
+  double a = 1.0, b = std::sqrt(1.0 - k * k);
+  for (int n = 0; n < 40; ++n) {
+    const double a1 = 0.5 * (a + b);
+    b = std::sqrt(a * b);
+    a = a1;
+  }
+  return std::numbers::pi / (2.0 * a);
+}
+
+double pendulum_period() {
+  const MassSums s = lumped_sums(bar(0.0));
+  const double d = -s.first_z / s.mass;  // centre of mass below the pivot
+  return 4.0 * std::sqrt(s.second_y / (s.mass * kG * d)) * elliptic_k(std::sin(kTheta0 / 2));
+}
+
+std::int32_t dense(const solver::Simulation& sim, model::Id id) {
+  const auto& ids = sim.state().nodes.id;
+  return static_cast<std::int32_t>(std::find(ids.begin(), ids.end(), id) - ids.begin());
+}
+
+// Runs the pendulum and returns the period from the times at which the bar's tip crosses
+// x = 0 (twice per period), with the largest tip excursion along y.
+struct Swing {
+  double period = 0.0, max_y = 0.0, max_gap = 0.0, energy_ratio = 0.0;
+};
+Swing swing(const std::string& joint_cards, const std::string& extra_loads) {
+  const Block g = ground(), b = bar(kTheta0);
+  const double period = pendulum_period();
+  std::string deck = "*KEYWORD\n" + g.text() + b.text() + rigid_parts() + joint_cards +
+                     gravity('Z', kG, 1) + extra_loads;
+  deck += fmt::format("*CONTROL_TERMINATION\n{:.17g},0\n*CONTROL_TIMESTEP\n1.0e-3\n*END\n",
+                      2.3 * period);
+  solver::Simulation sim(read(deck), {});
+  const std::int32_t tip = dense(sim, b.node(1, 1, 0));
+  const auto& x = sim.state().nodes.x;
+  std::vector<double> crossings;
+  double t_prev = 0.0, x_prev = x.x[tip];
+  Swing s;
+  while (!sim.finished()) {
+    sim.cycle();
+    const double t = sim.state().time, xt = x.x[tip];
+    if ((x_prev < 0.0) != (xt < 0.0) && t > 0.0) {
+      crossings.push_back(t_prev + (t - t_prev) * x_prev / (x_prev - xt));
+    }
+    s.max_y = std::max(s.max_y, std::abs(x.y[tip]));
+    for (const auto& j : sim.joints().joints) s.max_gap = std::max(s.max_gap, j.gap);
+    t_prev = t;
+    x_prev = xt;
+  }
+  EXPECT_GE(crossings.size(), 4u);
+  if (crossings.size() >= 2) {
+    s.period =
+        2.0 * (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+  }
+  s.energy_ratio = sim.energy().ratio();
+  return s;
+}
+
+TEST(Joint, SphericalPendulumSwingsWithTheExactLargeAmplitudePeriod) {
+  const Block g = ground(), b = bar(kTheta0);
+  const Swing s = swing(
+      fmt::format("*CONSTRAINED_JOINT_SPHERICAL\n{},{}\n", g.node(1, 1, 0), b.node(1, 1, b.nz)),
+      "");
+  const double period = pendulum_period();
+  std::printf(
+      "spherical pendulum: period %.6f s vs exact %.6f s (ratio %.6f), largest gap "
+      "%.3g m, energy ratio %.9f\n",
+      s.period, period, s.period / period, s.max_gap, s.energy_ratio);
+  EXPECT_NEAR(s.period / period, 1.0, 2e-3) << "period " << s.period << " vs " << period;
+  EXPECT_LT(s.max_gap, 1e-3);  // the penalty spring gives way by less than 1 mm on a 1 m bar
+  EXPECT_LT(s.max_y, 1e-9);    // nothing pushes the swing out of its plane
+  // The joints' dashpots take a little energy; the ledger (spring energy and losses are
+  // internal energy) still closes.
+  EXPECT_NEAR(s.energy_ratio, 1.0, 1e-6);
+}
+
+TEST(Joint, RevoluteHingeCarriesASideLoadAlongItsAxis) {
+  const Block g = ground(), b = bar(kTheta0);
+  // RPS 10 (w dt0 = 1): the hinge's two pairs are only 5 cm apart, and the side load's moment
+  // about the pivot (0.5 m arm) loads them twentyfold.
+  const std::string joint =
+      fmt::format("*CONSTRAINED_JOINT_REVOLUTE_ID\n7,hinge\n{},{},{},{},,,10.0\n", g.node(1, 1, 0),
+                  b.node(1, 1, b.nz), g.node(1, 2, 0), b.node(1, 2, b.nz));
+  // A spherical joint would let this load along y tilt the swing plane by atan(5 / 9.81) = 27
+  // degrees: the tip would move 0.45 m sideways. The hinge gives way by F / k only.
+  const Swing s = swing(joint, gravity('Y', 5.0, 2));
+  std::printf("revolute pendulum: period ratio %.6f, tip off the plane %.4g m, gap %.3g m\n",
+              s.period / pendulum_period(), s.max_y, s.max_gap);
+  EXPECT_NEAR(s.period / pendulum_period(), 1.0, 2e-3);
+  EXPECT_LT(s.max_y, 0.03);  // measured 0.018 m
+  EXPECT_NEAR(s.energy_ratio, 1.0, 1e-6);
+}
+
+// A slider block coincident with the ground block, joined along the vertical axis through
+// N1 = (0,0,0), N3 = (0,0,0.1); gravity along -z, a side load along x and a torque about z.
+struct Slide {
+  double drop = 0.0, expected_drop = 0.0, spin = 0.0, expected_spin = 0.0, side = 0.0;
+};
+Slide slide(const char* type, int pairs) {
+  const Block g = ground();
+  Block s = ground();
+  s.first_node = 1001;
+  s.first_element = 1001;
+  s.pid = 2;
+  std::string nodes = fmt::format("{},{},{},{}", g.node(1, 1, 0), s.node(1, 1, 0), g.node(1, 1, 1),
+                                  s.node(1, 1, 1));
+  if (pairs == 3) nodes += fmt::format(",{},{}", g.node(2, 1, 0), s.node(2, 1, 0));
+  const double torque = 2.0, end = 0.05;
+  std::string deck = "*KEYWORD\n" + g.text() + s.text() + rigid_parts() +
+                     fmt::format("*CONSTRAINED_JOINT_{}\n{}\n", type, nodes) + gravity('Z', kG, 1) +
+                     gravity('X', 3.0, 2) +
+                     fmt::format(
+                         "*DEFINE_CURVE\n3\n0.0,1.0\n100.0,1.0\n"
+                         "*LOAD_RIGID_BODY\n2,7,3,{:.17g}\n",
+                         torque) +
+                     fmt::format(
+                         "*CONTROL_TERMINATION\n{:.17g},0\n*CONTROL_TIMESTEP\n1.0e-4\n"
+                         "*END\n",
+                         end);
+  solver::Simulation sim(read(deck), {});
+  sim.run();
+  const auto& body = sim.rigid_bodies().bodies;
+  const auto it = std::find_if(body.begin(), body.end(), [](const auto& b) { return b.id == 2; });
+  EXPECT_NE(it, body.end());
+  const MassSums m = lumped_sums(s);
+  const double centre_z0 = m.first_z / m.mass;
+  Slide r;
+  const double t = sim.state().time;
+  // The body sits at t^n (previous_centre) with its velocities at t^{n+1/2} (the last cycle
+  // advanced them once more); central differences fall exactly as -g t^2 / 2.
+  const double dt = sim.state().dt_prev > 0.0 ? sim.state().dt_prev : sim.state().dt;
+  r.drop = centre_z0 - it->state.previous_centre.z();
+  r.expected_drop = 0.5 * kG * t * t;
+  r.side = std::abs(it->state.previous_centre.x()) + std::abs(it->state.previous_centre.y());
+  r.spin = it->state.angular_velocity.z();
+  r.expected_spin = torque * (t + 0.5 * dt) / m.second_z;  // J_zz about the axis
+  EXPECT_NEAR(sim.energy().ratio(), 1.0, 1e-6);
+  std::printf("%s slider: drop ratio %.9f, spin %.6g (expected %.6g), side %.3g m\n", type,
+              r.drop / r.expected_drop, r.spin, r.expected_spin, r.side);
+  return r;
+}
+
+TEST(Joint, CylindricalSliderFallsFreelyAndTurnsAboutTheAxis) {
+  const Slide r = slide("CYLINDRICAL", 2);
+  EXPECT_NEAR(r.drop / r.expected_drop, 1.0, 1e-3);
+  // The torque acts from t = 0 (first half step on t^0): w = T t / J up to one step.
+  EXPECT_NEAR(r.spin / r.expected_spin, 1.0, 5e-3);
+  EXPECT_LT(r.side, 1e-4);
+}
+
+TEST(Joint, TranslationalSliderFallsFreelyAndDoesNotTurn) {
+  const Slide r = slide("TRANSLATIONAL", 3);
+  EXPECT_NEAR(r.drop / r.expected_drop, 1.0, 1e-3);
+  EXPECT_LT(std::abs(r.spin), 1e-3 * r.expected_spin);
+  EXPECT_LT(r.side, 1e-4);
+}
+
+TEST(JointInput, BadCardsAreInputErrors) {
+  const Block g = ground(), b = bar(0.0);
+  const std::string base = "*KEYWORD\n" + g.text() + b.text() + rigid_parts() +
+                           "*CONTROL_TERMINATION\n0.01\n*CONTROL_TIMESTEP\n1.0e-3\n";
+  auto expect_error = [&](const std::string& cards, const std::string& field) {
+    try {
+      solver::Simulation sim(read(base + cards + "*END\n"), {});
+      ADD_FAILURE() << "expected an input error at " << field;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+    }
+  };
+  const int pivot_a = g.node(1, 1, 0), pivot_b = b.node(1, 1, b.nz);
+  // N2 not coincident with N1.
+  expect_error(fmt::format("*CONSTRAINED_JOINT_SPHERICAL\n{},{}\n", pivot_a, b.node(0, 0, 0)),
+               "N2");
+  expect_error(fmt::format("*CONSTRAINED_JOINT_SPHERICAL\n{},999999\n", pivot_a), "N2");
+  expect_error(fmt::format("*CONSTRAINED_JOINT_REVOLUTE\n{},{}\n", pivot_a, pivot_b), "N3");
+  expect_error(fmt::format("*CONSTRAINED_JOINT_SPHERICAL\n{},{},5\n", pivot_a, pivot_b), "N3");
+  expect_error(fmt::format("*CONSTRAINED_JOINT_SPHERICAL\n{},{},,,,,-1.0\n", pivot_a, pivot_b),
+               "RPS");
+  expect_error(fmt::format("*CONSTRAINED_JOINT_SPHERICAL_FAILURE\n{},{}\n", pivot_a, pivot_b),
+               "FAILURE");
+}
+
+}  // namespace
+}  // namespace rf::test
