@@ -758,7 +758,7 @@ void read_boundary(const Group& g, solver::Boundary& boundary, const model::Mode
   boundary.body_force_mass =
       read_exact<double>(g, "body_force_mass", boundary.body_force_mass.size());
   if (!boundary.damping.empty()) {
-    if (!g.has("damping_force")) {
+    if (!g.has("damping_force_x")) {
       g.fail("damping_force", "is missing: the dump was written without the deck's *DAMPING_* "
                               "cards");
     }
