@@ -8,8 +8,8 @@
 #include <CLI/CLI.hpp>
 
 #include <chrono>
-#include <ctime>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -188,12 +188,10 @@ int run_to_termination(rf::solver::Simulation& sim, const fs::path& out,
     const rf::restart::Dumper* dumper = sim.restart_dumper();
     const fs::path dump = dumper && !dumper->written().empty() ? dumper->written().back() : "";
     summary.status = "interrupted";
-    summary.message =
-        fmt::format("stopped by {} at t = {:.9g} (cycle {}){}",
-                    rf::solver::interrupt::signal_name(signal), sim.state().time,
-                    sim.state().cycle,
-                    dump.empty() ? "" : fmt::format("; continue with: rigidflex restart {}",
-                                                    dump.string()));
+    summary.message = fmt::format(
+        "stopped by {} at t = {:.9g} (cycle {}){}", rf::solver::interrupt::signal_name(signal),
+        sim.state().time, sim.state().cycle,
+        dump.empty() ? "" : fmt::format("; continue with: rigidflex restart {}", dump.string()));
     finish();
     if (!quiet && isatty(fileno(stdout))) std::fputc('\n', stdout);  // end the progress line
     std::fprintf(stderr, "interrupted: %s\n", summary.message.c_str());

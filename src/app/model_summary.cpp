@@ -38,8 +38,7 @@ void print_model_summary(const model::Model& model, std::FILE* out) {
   print_model_summary(model, sim, out);
 }
 
-void print_model_summary(const model::Model& model, const solver::Simulation& sim,
-                         std::FILE* out) {
+void print_model_summary(const model::Model& model, const solver::Simulation& sim, std::FILE* out) {
   const solver::State& state = sim.state();
 
   std::map<std::string, std::int64_t> shapes;

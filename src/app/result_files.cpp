@@ -18,17 +18,20 @@ namespace fs = std::filesystem;
 const std::vector<std::regex>& patterns(ResultKind kind) {
   static const std::vector<std::regex> transient = [] {
     std::vector<std::regex> p;
-    for (const char* re :
-         {R"((glstat|nodout|rbdout|modal|switch|sensor|rwforc|rcforc|matsum|elout|spcforc|secforc)\.csv)",
-          R"(run\.json)", R"(d3hsp\.txt)", R"((d3plot|frames)\.pvd)", R"((d3plot|frames)_\d{4,}\.vtu)",
-          R"(d3plot(\d{2,})?)", R"(d3dump_\d{4,}\.h5)", R"(plot_[a-z0-9_]+\.png)"}) {
+    for (
+        const char* re :
+        {R"((glstat|nodout|rbdout|modal|switch|sensor|rwforc|rcforc|matsum|elout|spcforc|secforc)\.csv)",
+         R"(run\.json)", R"(d3hsp\.txt)", R"((d3plot|frames)\.pvd)",
+         R"((d3plot|frames)_\d{4,}\.vtu)", R"(d3plot(\d{2,})?)", R"(d3dump_\d{4,}\.h5(\.partial)?)",
+         R"(plot_[a-z0-9_]+\.png)"}) {
       p.emplace_back(re);
     }
     return p;
   }();
   static const std::vector<std::regex> eigen = [] {
     std::vector<std::regex> p;
-    for (const char* re : {R"(modes\.h5)", R"(eigout\.csv)", R"(modes\.pvd)", R"(modes_\d{4,}\.vtu)"}) {
+    for (const char* re :
+         {R"(modes\.h5)", R"(eigout\.csv)", R"(modes\.pvd)", R"(modes_\d{4,}\.vtu)"}) {
       p.emplace_back(re);
     }
     return p;

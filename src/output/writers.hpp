@@ -37,8 +37,8 @@ struct GlstatRow {
 };
 
 // Plain CSV file with a fixed header; rows are buffered and reach the file whole (never a
-// partial row, even when the process is ended by a second Ctrl-C); flushed at close. Numbers use %.9g or
-// better so that histories can be differentiated downstream.
+// partial row, even when the process is ended by a second Ctrl-C); flushed at close. Numbers use
+// %.9g or better so that histories can be differentiated downstream.
 class CsvFile {
  public:
   CsvFile() = default;

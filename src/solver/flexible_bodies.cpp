@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <stdexcept>
 #include <set>
+#include <stdexcept>
 #include <unordered_map>
 
 #include "model/error.hpp"

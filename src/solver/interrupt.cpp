@@ -11,8 +11,8 @@ namespace {
 
 // Lock-free atomics only: they are all a signal handler may touch (POSIX async-signal safety).
 std::atomic<int> g_first_signal{0};
-std::atomic<int> g_abort_signal{0};   // a second signal, waiting for a whole write to end
-std::atomic<int> g_writes_open{0};    // WholeWrite scopes open (the main thread's, normally one)
+std::atomic<int> g_abort_signal{0};  // a second signal, waiting for a whole write to end
+std::atomic<int> g_writes_open{0};   // WholeWrite scopes open (the main thread's, normally one)
 
 void on_signal(int signal) {
   int none = 0;

@@ -14,9 +14,9 @@
 #include "model/error.hpp"
 #include "model/error_context.hpp"
 #include "restart/dumper.hpp"
-#include "solver/interrupt.hpp"
 #include "sensor/sensor.hpp"
 #include "sensor/sensor_output.hpp"
+#include "solver/interrupt.hpp"
 
 namespace rf::solver {
 

@@ -90,9 +90,10 @@ struct PhaseTimes {
     kCount
   };
   static constexpr const char* kNames[kCount] = {
-      "part switching", "velocity update",  "rigid bodies and walls", "output",
-      "positions",      "elements",         "contact",                "loads",
-      "sensors",        "time step",        "restart dumps"};
+      "part switching", "velocity update", "rigid bodies and walls",
+      "output",         "positions",       "elements",
+      "contact",        "loads",           "sensors",
+      "time step",      "restart dumps"};
   double seconds[kCount] = {};
 };
 
