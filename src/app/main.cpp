@@ -2,6 +2,8 @@
 //   rigidflex run DECK [-o DIR] [--threads N] [--quiet] [--set name=value]... [--dump-every T]
 //   rigidflex restart DUMP [RESTART_DECK] [-o DIR] [--threads N] [--quiet] [--dump-every T]
 //   rigidflex check DECK
+//   rigidflex eigen DECK [-o DIR] [--modes N] [--parts LIST] ...
+//   rigidflex plot DIR [-o OUTDIR]
 #include <fmt/format.h>
 #include <omp.h>
 #include <unistd.h>
@@ -357,6 +359,40 @@ int command_restart(const std::string& dump, const std::string& restart_deck,
   return run_to_termination(sim, restarted.output_directory, summary, quiet, log);
 }
 
+// `rigidflex plot DIR`: runs the plot script (scripts/rigidflex-plot.py, installed beside the
+// executable as rigidflex-plot) with Debian's python3; its exit status is the command's.
+int command_plot(const std::string& directory, const std::string& output_dir) {
+  std::error_code ec;
+  const fs::path exe_dir = fs::read_symlink("/proc/self/exe", ec).parent_path();
+  std::string script;
+  for (const fs::path& candidate :
+       {exe_dir / "rigidflex-plot",
+        fs::path(RIGIDFLEX_SOURCE_DIR) / "scripts" / "rigidflex-plot.py"}) {
+    if (!ec && fs::exists(candidate)) {
+      script = candidate.string();
+      break;
+    }
+  }
+  if (script.empty()) {
+    throw std::runtime_error(
+        "the plot script rigidflex-plot is neither beside the executable "
+        "nor in the source tree");
+  }
+  std::vector<std::string> args = {"python3", script, directory};
+  if (!output_dir.empty()) {
+    args.push_back("-o");
+    args.push_back(output_dir);
+  }
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  std::fflush(stdout);
+  // Debian's interpreter first: matplotlib is a Debian package (scripts/install-deps.sh).
+  execv("/usr/bin/python3", argv.data());
+  execvp("python3", argv.data());
+  throw std::runtime_error("cannot start python3 for the plot script");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -430,6 +466,12 @@ int main(int argc, char** argv) {
   eigen->add_option("--dialect", dialect, "Input dialect")
       ->check(CLI::IsMember({"auto", "lsdyna", "impetus"}));
 
+  std::string plot_dir;
+  auto* plot = app.add_subcommand(
+      "plot", "PNG plots of a run's histories (energies, nodes, rigid bodies, forces) into DIR");
+  plot->add_option("dir", plot_dir, "Output directory of a run")->required();
+  plot->add_option("-o,--output", output_dir, "Where the PNGs go (default: DIR)");
+
   // Usage errors (unknown option, missing or invalid argument) exit with 1, not CLI11's own
   // codes (105-109...), so that the documented set stays small (docs/cli.md).
   try {
@@ -448,6 +490,7 @@ int main(int argc, char** argv) {
     read_options.dialect = parse_dialect(dialect);
     read_options.parameter_overrides = parse_overrides(assignments);
     if (*check) return command_check(deck, read_options);
+    if (*plot) return command_plot(plot_dir, output_dir);
     if (*eigen) {
       if (threads > 0) omp_set_num_threads(threads);
       if (eigen_shift && !(*eigen_shift < 0.0)) {
