@@ -18,8 +18,10 @@ namespace rf::output {
 
 namespace {
 
-// Large enough that a typical run touches the disk a handful of times per output file.
-constexpr std::size_t kCsvBufferBytes = 1 << 20;
+// Rows go to the file once this much is pending: the block size glibc's stdio used here before
+// (setvbuf with a null buffer ignores the size asked for), so files fill as a run goes on and
+// can be followed (tail -f, tests reading while the simulation lives), at one write per 4 KiB.
+constexpr std::size_t kCsvBufferBytes = 1 << 12;
 
 void append_number(fmt::memory_buffer& out, double value) {
   fmt::format_to(std::back_inserter(out), "{:.17g}", value);
@@ -53,7 +55,7 @@ CsvFile::CsvFile(const std::filesystem::path& path, const std::string& header,
   // a row, and a process killed then leaves a cut row. Ours holds whole rows only and goes to
   // the file in one write (flush_pending), which a second Ctrl-C lets finish.
   std::setvbuf(file_, nullptr, _IONBF, 0);
-  pending_.reserve(kCsvBufferBytes);
+  pending_.reserve(2 * kCsvBufferBytes);
   if (continue_at < 0) write_line(header);
 }
 
