@@ -461,7 +461,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"cholmod", "simplicial"}));
   eigen->add_option("--threads", threads, "OpenMP threads (default: all cores)")
       ->check(CLI::NonNegativeNumber);
-  eigen->add_flag("--quiet", quiet, "Print nothing but errors");
+  eigen->add_flag("--quiet", quiet, "No progress or summary (warnings and errors still printed)");
   eigen->add_option("--set", assignments, "Override a *PARAMETER: name=value (repeatable)");
   eigen->add_option("--dialect", dialect, "Input dialect")
       ->check(CLI::IsMember({"auto", "lsdyna", "impetus"}));
