@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "app/model_summary.hpp"
+#include "app/result_files.hpp"
 #include "modal/eigen_analysis.hpp"
 #include "modal/mode_output.hpp"
 
@@ -51,18 +52,17 @@ int run_eigen_command(const model::Model& model, const EigenCommandOptions& opti
                                                    : modal::FactorizationBackend::Cholmod;
   std::vector<std::string> log;
   request.log = &log;
+  // Warnings always (--quiet hides progress and summaries only).
   for (const auto& w : model.warnings) {
-    if (!options.quiet) std::fprintf(stderr, "warning: %s\n", format_warning(w).c_str());
+    std::fprintf(stderr, "warning: %s\n", format_warning(w).c_str());
   }
   modal::EigenReport report;
   const modal::ModeSet modes = modal::compute_modes(model, request, report);
-  if (!options.quiet) {
-    for (const auto& line : log) {
-      if (line.rfind("warning: ", 0) == 0)
-        std::fprintf(stderr, "%s\n", line.c_str());
-      else
-        std::printf("%s\n", line.c_str());
-    }
+  for (const auto& line : log) {
+    if (line.rfind("warning: ", 0) == 0)
+      std::fprintf(stderr, "%s\n", line.c_str());
+    else if (!options.quiet)
+      std::printf("%s\n", line.c_str());
   }
   modal::write_eigen_outputs(options.output, model, request, modes);
   const double seconds =
@@ -80,8 +80,9 @@ int run_eigen_command(const model::Model& model, const EigenCommandOptions& opti
         "%zu DOFs, %.2f s wall (assembly %.2f s, factorization %.2f s, Lanczos %.2f s)\n",
         modes.mode_count(), report.rigid_found, report.removed_by_lflag, report.dof_count, seconds,
         report.seconds_assembly, report.seconds_factorization, report.seconds_lanczos);
-    std::printf("results in %s/ (modes.h5, eigout.csv, modes.pvd)\n",
-                std::filesystem::absolute(options.output).lexically_normal().string().c_str());
+    std::printf("results in %s/: %s\n",
+                std::filesystem::absolute(options.output).lexically_normal().string().c_str(),
+                list_results(options.output, ResultKind::kEigen).c_str());
   }
   return 0;
 }

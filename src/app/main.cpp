@@ -2,6 +2,8 @@
 //   rigidflex run DECK [-o DIR] [--threads N] [--quiet] [--set name=value]... [--dump-every T]
 //   rigidflex restart DUMP [RESTART_DECK] [-o DIR] [--threads N] [--quiet] [--dump-every T]
 //   rigidflex check DECK
+//   rigidflex eigen DECK [-o DIR] [--modes N] [--parts LIST] ...
+//   rigidflex plot DIR [-o OUTDIR]
 #include <fmt/format.h>
 #include <omp.h>
 #include <unistd.h>
@@ -9,6 +11,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -16,12 +19,15 @@
 
 #include "app/eigen_command.hpp"
 #include "app/model_summary.hpp"
+#include "app/result_files.hpp"
+#include "app/run_log.hpp"
 #include "io/keyword/reader.hpp"
 #include "modal/eigen_analysis.hpp"
 #include "model/error.hpp"
 #include "output/writers.hpp"
 #include "restart/dumper.hpp"
 #include "restart/restart.hpp"
+#include "solver/interrupt.hpp"
 #include "solver/simulation.hpp"
 
 namespace {
@@ -29,10 +35,16 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-// Exit codes: documented in docs/cli.md.
+// Exit codes: documented in docs/cli.md. An interrupted run exits with 128 + the signal
+// (solver/interrupt.hpp): 130 for SIGINT, 143 for SIGTERM.
+constexpr int kExitUsageError = 1;
 constexpr int kExitInputError = 2;
 constexpr int kExitSolverError = 3;
 constexpr int kExitOtherError = 4;
+
+// Warnings the reader found before an input error ended the read (ReadOptions::
+// warnings_on_error): printed before the error, which they often explain.
+std::vector<rf::model::Warning> g_warnings_before_error;
 
 std::map<std::string, double> parse_overrides(const std::vector<std::string>& assignments) {
   std::map<std::string, double> out;
@@ -117,17 +129,40 @@ class ProgressPrinter {
 
 int command_check(const std::string& deck, const rf::io::ReadOptions& read_options) {
   const rf::model::Model model = rf::io::read_deck(deck, read_options);
-  rf::app::print_model_summary(model, stdout);
+  try {
+    rf::app::print_model_summary(model, stdout);
+  } catch (const rf::InputError&) {
+    // The set-up failed: the summary (with its warnings) was not printed; the reader's
+    // warnings may explain the error, so they come first.
+    g_warnings_before_error = model.warnings;
+    throw;
+  }
   return 0;
+}
+
+// The frame collection to open in ParaView: the new name first, the old one otherwise.
+std::string frames_collection(const fs::path& out) {
+  for (const char* name : {"frames.pvd", "d3plot.pvd"}) {
+    if (fs::exists(out / name)) return name;
+  }
+  return {};
 }
 
 // Runs a constructed simulation to termination with progress output, writes run.json and the
 // closing lines. `summary` arrives with status-independent fields (threads, warnings) filled.
 int run_to_termination(rf::solver::Simulation& sim, const fs::path& out,
-                       rf::output::RunSummary& summary, bool quiet) {
+                       rf::output::RunSummary& summary, bool quiet, rf::app::RunLog& log) {
   const auto start = Clock::now();
   const std::int64_t first_cycle = sim.state().cycle;  // > 0 on restart
+  const std::size_t warnings_at_start = sim.warnings().size();
   auto finish = [&] {
+    // Warnings that came up during the run (switches): reported now, kept in run.json.
+    std::vector<std::string> run_warnings;
+    for (std::size_t k = warnings_at_start; k < sim.warnings().size(); ++k) {
+      run_warnings.push_back(rf::app::format_warning(sim.warnings()[k]));
+      std::fprintf(stderr, "warning: %s\n", run_warnings.back().c_str());
+      summary.warnings.push_back(run_warnings.back());
+    }
     summary.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
     summary.final_time = sim.state().time;
     summary.cycles = sim.state().cycle;
@@ -137,6 +172,7 @@ int run_to_termination(rf::solver::Simulation& sim, const fs::path& out,
         static_cast<double>(summary.elements) *
         static_cast<double>(std::max<std::int64_t>(1, summary.cycles - first_cycle));
     summary.ns_per_element_cycle = 1e9 * summary.wall_seconds / element_cycles;
+    log.finish(sim, summary.status, summary.message, run_warnings, summary.wall_seconds);
     rf::output::write_run_json(out / "run.json", summary);
   };
   try {
@@ -148,6 +184,23 @@ int run_to_termination(rf::solver::Simulation& sim, const fs::path& out,
     summary.message = e.what();
     finish();
     throw;
+  }
+  if (const int signal = sim.interrupt_signal(); signal != 0) {
+    // Sense switch: the run stopped between cycles with its last rows, frame and a dump.
+    const rf::restart::Dumper* dumper = sim.restart_dumper();
+    const fs::path dump = dumper && !dumper->written().empty() ? dumper->written().back() : "";
+    summary.status = "interrupted";
+    summary.message = fmt::format(
+        "stopped by {} at t = {:.9g} (cycle {}){}", rf::solver::interrupt::signal_name(signal),
+        sim.state().time, sim.state().cycle,
+        dump.empty() ? "" : fmt::format("; continue with: rigidflex restart {}", dump.string()));
+    finish();
+    if (!quiet && isatty(fileno(stdout))) std::fputc('\n', stdout);  // end the progress line
+    std::fprintf(stderr, "interrupted: %s\n", summary.message.c_str());
+    std::fprintf(stderr, "results in %s/: %s\n",
+                 fs::absolute(out).lexically_normal().string().c_str(),
+                 rf::app::list_results(out, rf::app::ResultKind::kTransient).c_str());
+    return rf::solver::interrupt::exit_status(signal);
   }
   summary.status = "normal termination";
   finish();
@@ -162,21 +215,50 @@ int run_to_termination(rf::solver::Simulation& sim, const fs::path& out,
       std::printf("restart dumps: %zu written (last %s), %.2f s\n", dumper->written().size(),
                   dumper->written().back().filename().string().c_str(), dumper->seconds());
     }
-    std::printf(
-        "results in %s/ (glstat.csv, d3plot.pvd, run.json); open d3plot.pvd in "
-        "ParaView\n",
-        fs::absolute(out).lexically_normal().string().c_str());
+    const std::string frames = frames_collection(out);
+    std::printf("results in %s/: %s%s\n", fs::absolute(out).lexically_normal().string().c_str(),
+                rf::app::list_results(out, rf::app::ResultKind::kTransient).c_str(),
+                frames.empty() ? "" : fmt::format("; open {} in ParaView", frames).c_str());
   }
   return 0;
 }
 
-void report_warning(rf::output::RunSummary& summary, const rf::model::Warning& w, bool quiet) {
+// Warnings are printed whatever --quiet says (it hides progress only).
+void report_warning(rf::output::RunSummary& summary, const rf::model::Warning& w) {
   summary.warnings.push_back(rf::app::format_warning(w));
-  if (!quiet) std::fprintf(stderr, "warning: %s\n", summary.warnings.back().c_str());
+  std::fprintf(stderr, "warning: %s\n", summary.warnings.back().c_str());
+}
+
+// A reused output directory: the result files of an earlier run are removed first, so that
+// nothing of it is mistaken for this run's (only RigidFlex's own names: app/result_files.hpp).
+void clear_output_directory(const fs::path& out, rf::app::ResultKind kind, bool quiet,
+                            std::string* log_line = nullptr) {
+  const std::vector<std::string> removed = rf::app::clear_earlier_results(out, kind);
+  if (removed.empty()) return;
+  const std::string line =
+      fmt::format("output directory {} held {} result file(s) of an earlier run; removed: {}",
+                  out.string(), removed.size(), rf::app::short_list(removed));
+  if (!quiet) std::printf("%s\n", line.c_str());
+  if (log_line) *log_line = line;
+}
+
+std::string command_line_of(int argc, char** argv) {
+  std::string text;
+  for (int k = 0; k < argc; ++k) text += fmt::format("{}{}", k ? " " : "", argv[k]);
+  return text;
+}
+
+std::string log_header(const std::string& command_line) {
+  const std::time_t now = std::time(nullptr);
+  char when[64] = {};
+  std::strftime(when, sizeof when, "%Y-%m-%d %H:%M:%S %Z", std::localtime(&now));
+  return fmt::format("RigidFlex {}\nstarted {}\ncommand: {}\nthreads: {}\n", RIGIDFLEX_VERSION,
+                     when, command_line, omp_get_max_threads());
 }
 
 int command_run(const std::string& deck, std::string output_dir, int threads, bool quiet,
-                rf::io::ReadOptions read_options, const std::string& dialect, double dump_every) {
+                rf::io::ReadOptions read_options, const std::string& dialect, double dump_every,
+                const std::string& command_line) {
   if (threads > 0) omp_set_num_threads(threads);
   if (output_dir.empty()) output_dir = fs::path(deck).stem().string() + "_out";
   const fs::path out = output_dir;
@@ -185,9 +267,10 @@ int command_run(const std::string& deck, std::string output_dir, int threads, bo
   rf::output::RunSummary summary;
   summary.threads = omp_get_max_threads();
 
-  // With restart dumps the deck texts are kept: a dump carries them (restart/model_input.hpp).
+  // The deck texts are kept: a dump carries them (restart/model_input.hpp), and an interrupted
+  // run writes one even without --dump-every.
   rf::restart::ModelInput input;
-  if (dump_every > 0.0) read_options.record_files = &input.files;
+  read_options.record_files = &input.files;
   rf::model::Model model;
   try {
     model = rf::io::read_deck(deck, read_options);
@@ -197,9 +280,10 @@ int command_run(const std::string& deck, std::string output_dir, int threads, bo
     rf::output::write_run_json(out / "run.json", summary);
     throw;
   }
-  for (const auto& w : model.warnings) report_warning(summary, w, quiet);
+  for (const auto& w : model.warnings) report_warning(summary, w);
   // *CONTROL_IMPLICIT_EIGENVALUE with IMFLAG 1: an eigen analysis instead of a transient run.
   if (rf::modal::deck_requests_eigen_analysis(model)) {
+    clear_output_directory(out, rf::app::ResultKind::kEigen, quiet);
     rf::model::Model quiet_model = model;
     quiet_model.warnings.clear();  // reported above
     rf::app::EigenCommandOptions eigen;
@@ -214,6 +298,8 @@ int command_run(const std::string& deck, std::string output_dir, int threads, bo
                          "*CONTROL_IMPLICIT_EIGENVALUE with NEIG > 0");
   }
 
+  std::string cleared;
+  clear_output_directory(out, rf::app::ResultKind::kTransient, quiet, &cleared);
   std::unique_ptr<rf::solver::Simulation> sim;
   try {
     sim = std::make_unique<rf::solver::Simulation>(model, rf::solver::SimulationOptions{out, true});
@@ -223,25 +309,30 @@ int command_run(const std::string& deck, std::string output_dir, int threads, bo
     rf::output::write_run_json(out / "run.json", summary);
     throw;
   }
-  for (const auto& w : sim->warnings()) report_warning(summary, w, quiet);
-  if (dump_every > 0.0) {
-    input.main_deck = deck;
-    input.dialect = dialect;
-    input.overrides = read_options.parameter_overrides;
-    sim->enable_restart_dumps(std::make_unique<rf::restart::Dumper>(
-        std::move(input), rf::restart::Dumper::every(dump_every)));
-  }
+  for (const auto& w : sim->warnings()) report_warning(summary, w);
+  input.main_deck = deck;
+  input.dialect = dialect;
+  input.overrides = read_options.parameter_overrides;
+  // Without --dump-every no dump is scheduled, not even at termination; an interrupt still
+  // writes one (Dumper::write_if_due).
+  rf::restart::DumpSchedule schedule = rf::restart::Dumper::every(dump_every);
+  schedule.at_termination = dump_every > 0.0;
+  sim->enable_restart_dumps(std::make_unique<rf::restart::Dumper>(std::move(input), schedule));
+  rf::app::RunLog log(out / "d3hsp.txt", false);
+  log.write(log_header(command_line));
+  if (!cleared.empty()) log.write(cleared + "\n");
+  log.model_summary(model, *sim);
   if (!quiet) {
     std::printf("rigidflex %s: %zu nodes, %lld elements, end time %g, %d thread(s)\n",
                 RIGIDFLEX_VERSION, sim->state().nodes.size(),
                 static_cast<long long>(sim->element_count()), sim->end_time(), summary.threads);
   }
-  return run_to_termination(*sim, out, summary, quiet);
+  return run_to_termination(*sim, out, summary, quiet, log);
 }
 
 int command_restart(const std::string& dump, const std::string& restart_deck,
                     const std::string& output_dir, int threads, bool quiet,
-                    std::optional<double> dump_every) {
+                    std::optional<double> dump_every, const std::string& command_line) {
   rf::restart::RestartOptions options;
   options.dump = dump;
   options.restart_deck = restart_deck;
@@ -251,8 +342,13 @@ int command_restart(const std::string& dump, const std::string& restart_deck,
   rf::restart::Restarted restarted = rf::restart::restart_from_dump(options);
   rf::output::RunSummary summary;
   summary.threads = restarted.threads;
-  for (const auto& w : restarted.warnings) report_warning(summary, w, quiet);
+  for (const auto& w : restarted.warnings) report_warning(summary, w);
   rf::solver::Simulation& sim = *restarted.simulation;
+  rf::app::RunLog log(restarted.output_directory / "d3hsp.txt", true);
+  log.write("\n== restart ==\n" + log_header(command_line));
+  log.write(fmt::format("from {} at t = {:.9g} (cycle {})\n", dump, restarted.header.time,
+                        restarted.header.cycle));
+  for (const auto& w : summary.warnings) log.write(fmt::format("warning: {}\n", w));
   if (!quiet) {
     std::printf(
         "rigidflex %s: restart from %s at t = %g (cycle %lld), end time %g, %d "
@@ -260,7 +356,41 @@ int command_restart(const std::string& dump, const std::string& restart_deck,
         RIGIDFLEX_VERSION, dump.c_str(), restarted.header.time,
         static_cast<long long>(restarted.header.cycle), sim.end_time(), summary.threads);
   }
-  return run_to_termination(sim, restarted.output_directory, summary, quiet);
+  return run_to_termination(sim, restarted.output_directory, summary, quiet, log);
+}
+
+// `rigidflex plot DIR`: runs the plot script (scripts/rigidflex-plot.py, installed beside the
+// executable as rigidflex-plot) with Debian's python3; its exit status is the command's.
+int command_plot(const std::string& directory, const std::string& output_dir) {
+  std::error_code ec;
+  const fs::path exe_dir = fs::read_symlink("/proc/self/exe", ec).parent_path();
+  std::string script;
+  for (const fs::path& candidate :
+       {exe_dir / "rigidflex-plot",
+        fs::path(RIGIDFLEX_SOURCE_DIR) / "scripts" / "rigidflex-plot.py"}) {
+    if (!ec && fs::exists(candidate)) {
+      script = candidate.string();
+      break;
+    }
+  }
+  if (script.empty()) {
+    throw std::runtime_error(
+        "the plot script rigidflex-plot is neither beside the executable "
+        "nor in the source tree");
+  }
+  std::vector<std::string> args = {"python3", script, directory};
+  if (!output_dir.empty()) {
+    args.push_back("-o");
+    args.push_back(output_dir);
+  }
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  std::fflush(stdout);
+  // Debian's interpreter first: matplotlib is a Debian package (scripts/install-deps.sh).
+  execv("/usr/bin/python3", argv.data());
+  execvp("python3", argv.data());
+  throw std::runtime_error("cannot start python3 for the plot script");
 }
 
 }  // namespace
@@ -281,7 +411,7 @@ int main(int argc, char** argv) {
   run->add_option("-o,--output", output_dir, "Output directory (default: <deck stem>_out)");
   run->add_option("--threads", threads, "OpenMP threads (default: all cores)")
       ->check(CLI::NonNegativeNumber);
-  run->add_flag("--quiet", quiet, "Print nothing but errors");
+  run->add_flag("--quiet", quiet, "No progress or summary (warnings and errors still printed)");
   run->add_option("--set", assignments, "Override a *PARAMETER: name=value (repeatable)");
   run->add_option("--dialect", dialect, "Input dialect")
       ->check(CLI::IsMember({"auto", "lsdyna", "impetus"}));
@@ -298,7 +428,7 @@ int main(int argc, char** argv) {
   restart->add_option("-o,--output", output_dir, "Output directory (default: the dump's)");
   restart->add_option("--threads", threads, "OpenMP threads (default: as the dumped run)")
       ->check(CLI::NonNegativeNumber);
-  restart->add_flag("--quiet", quiet, "Print nothing but errors");
+  restart->add_flag("--quiet", quiet, "No progress or summary (warnings and errors still printed)");
   auto* restart_dump_every = restart
                                  ->add_option("--dump-every", dump_every,
                                               "Restart dump interval (default: as the dumped run)")
@@ -331,18 +461,36 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"cholmod", "simplicial"}));
   eigen->add_option("--threads", threads, "OpenMP threads (default: all cores)")
       ->check(CLI::NonNegativeNumber);
-  eigen->add_flag("--quiet", quiet, "Print nothing but errors");
+  eigen->add_flag("--quiet", quiet, "No progress or summary (warnings and errors still printed)");
   eigen->add_option("--set", assignments, "Override a *PARAMETER: name=value (repeatable)");
   eigen->add_option("--dialect", dialect, "Input dialect")
       ->check(CLI::IsMember({"auto", "lsdyna", "impetus"}));
 
-  CLI11_PARSE(app, argc, argv);
+  std::string plot_dir;
+  auto* plot = app.add_subcommand(
+      "plot", "PNG plots of a run's histories (energies, nodes, rigid bodies, forces) into DIR");
+  plot->add_option("dir", plot_dir, "Output directory of a run")->required();
+  plot->add_option("-o,--output", output_dir, "Where the PNGs go (default: DIR)");
+
+  // Usage errors (unknown option, missing or invalid argument) exit with 1, not CLI11's own
+  // codes (105-109...), so that the documented set stays small (docs/cli.md).
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int status = app.exit(e);  // prints the message (or --help, --version)
+    return status == 0 ? 0 : kExitUsageError;
+  }
+  // Ctrl-C and SIGTERM end a run or restart between cycles, with its files whole.
+  if (*run || *restart) rf::solver::interrupt::install_handlers();
+  const std::string command_line = command_line_of(argc, argv);
 
   try {
     rf::io::ReadOptions read_options;
+    read_options.warnings_on_error = &g_warnings_before_error;
     read_options.dialect = parse_dialect(dialect);
     read_options.parameter_overrides = parse_overrides(assignments);
     if (*check) return command_check(deck, read_options);
+    if (*plot) return command_plot(plot_dir, output_dir);
     if (*eigen) {
       if (threads > 0) omp_set_num_threads(threads);
       if (eigen_shift && !(*eigen_shift < 0.0)) {
@@ -358,15 +506,22 @@ int main(int argc, char** argv) {
       options.remove_rigid_below = eigen_remove_rigid;
       options.solver = eigen_solver;
       options.quiet = quiet;
-      return rf::app::run_eigen_command(rf::io::read_deck(deck, read_options), options);
+      rf::model::Model model = rf::io::read_deck(deck, read_options);
+      clear_output_directory(options.output, rf::app::ResultKind::kEigen, quiet);
+      return rf::app::run_eigen_command(std::move(model), options);
     }
     if (*restart) {
       std::optional<double> interval;
       if (restart_dump_every->count() > 0) interval = dump_every;
-      return command_restart(dump, restart_deck, output_dir, threads, quiet, interval);
+      return command_restart(dump, restart_deck, output_dir, threads, quiet, interval,
+                             command_line);
     }
-    return command_run(deck, output_dir, threads, quiet, read_options, dialect, dump_every);
+    return command_run(deck, output_dir, threads, quiet, read_options, dialect, dump_every,
+                       command_line);
   } catch (const rf::InputError& e) {
+    for (const auto& w : g_warnings_before_error) {
+      std::fprintf(stderr, "warning: %s\n", rf::app::format_warning(w).c_str());
+    }
     std::fprintf(stderr, "input error: %s\n", e.what());
     return kExitInputError;
   } catch (const rf::SolverError& e) {

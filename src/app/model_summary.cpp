@@ -35,6 +35,10 @@ const char* shape_of(const model::SolidElement& e) {
 void print_model_summary(const model::Model& model, std::FILE* out) {
   // Building the simulation validates every cross reference exactly as `run` would.
   const solver::Simulation sim(model, solver::SimulationOptions{});
+  print_model_summary(model, sim, out);
+}
+
+void print_model_summary(const model::Model& model, const solver::Simulation& sim, std::FILE* out) {
   const solver::State& state = sim.state();
 
   std::map<std::string, std::int64_t> shapes;

@@ -37,8 +37,9 @@ struct GlstatRow {
   double damping_work = 0.0;  // the part of external_work done by *DAMPING_* (negative)
 };
 
-// Plain CSV file with a fixed header; rows are flushed at close. Numbers use %.9g or
-// better so that histories can be differentiated downstream.
+// Plain CSV file with a fixed header; rows are buffered and reach the file whole (never a
+// partial row, even when the process is ended by a second Ctrl-C); flushed at close. Numbers use
+// %.9g or better so that histories can be differentiated downstream.
 class CsvFile {
  public:
   CsvFile() = default;
@@ -65,8 +66,10 @@ class CsvFile {
 
  private:
   void close() noexcept;
+  void flush_pending();
   std::FILE* file_ = nullptr;
   std::filesystem::path path_;
+  std::string pending_;  // whole rows not yet in the file
 };
 
 // Where a restart continues each CSV file: its size at the dump, or -1 to start it anew.

@@ -26,7 +26,9 @@ void Dumper::write_if_due(solver::Simulation& sim) {
   if (directory.empty() || schedule_.last_cycle == state.cycle) return;
   // Same tolerance as the output schedules (Simulation::OutputSchedule::due).
   const bool scheduled = schedule_.interval > 0.0 && state.time >= schedule_.next * (1.0 - 1e-12);
-  const bool at_end = schedule_.at_termination && SimulationAccess::end_reached(sim);
+  // An interrupted run (Ctrl-C, SIGTERM) always leaves a dump to continue from.
+  const bool at_end = (schedule_.at_termination || sim.interrupt_signal() != 0) &&
+                      SimulationAccess::end_reached(sim);
   if (!scheduled && !at_end) return;
 
   const auto start = std::chrono::steady_clock::now();

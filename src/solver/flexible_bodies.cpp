@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <set>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -77,6 +78,37 @@ SelectedModes select_part_modes(const model::PartModes& card, const std::string&
         context_of(card.where, "FILENAME"),
         fmt::format("mode database '{}' has no data for {} node(s) of {}: {}{}", card.path,
                     missing.size(), owner, list, missing.size() > 10 ? ", ..." : ""));
+  }
+  // Every node of the body is in the database; the database must hold no others either. Modes
+  // of a larger structure (more parts, e.g. `run` on a deck that analyses every part) are not
+  // the modes of this body: their shapes restricted to its nodes are neither mass-orthonormal
+  // nor eigenvectors of its stiffness, and the answer would silently change.
+  if (dn != body_nodes.size()) {
+    std::vector<std::uint8_t> used(dn, 0);
+    for (const auto r : rows) used[r] = 1;
+    std::vector<model::Id> extra;
+    for (std::size_t r = 0; r < dn; ++r) {
+      if (!used[r]) extra.push_back(set.node_ids[r]);
+    }
+    std::sort(extra.begin(), extra.end());
+    std::string list;
+    for (std::size_t k = 0; k < std::min<std::size_t>(extra.size(), 10); ++k) {
+      list += fmt::format("{}{}", k ? ", " : "", extra[k]);
+    }
+    std::set<model::Id> parts;
+    for (std::size_t r = 0; r < dn && r < set.node_parts.size(); ++r) {
+      if (!used[r]) parts.insert(set.node_parts[r]);
+    }
+    std::string part_list;
+    for (const auto p : parts) part_list += fmt::format("{}{}", part_list.empty() ? "" : ", ", p);
+    throw InputError(
+        context_of(card.where, "FILENAME"),
+        fmt::format("mode database '{}' has {} nodes, {} has {}: {} node(s) in it are not the "
+                    "body's ({}{}{}), so its modes belong to a larger model. Compute the modes of "
+                    "this part alone (rigidflex eigen --parts, docs/eigen.md)",
+                    card.path, dn, owner, body_nodes.size(), extra.size(), list,
+                    extra.size() > 10 ? ", ..." : "",
+                    part_list.empty() ? "" : fmt::format("; of part(s) {}", part_list)));
   }
   for (std::size_t k = 0; k < body_nodes.size(); ++k) {
     const auto i = body_nodes[k];

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -15,6 +16,7 @@
 #include "restart/dumper.hpp"
 #include "sensor/sensor.hpp"
 #include "sensor/sensor_output.hpp"
+#include "solver/interrupt.hpp"
 
 namespace rf::solver {
 
@@ -42,6 +44,8 @@ std::array<double, N> deterministic_sum(std::int64_t n, std::vector<double>& scr
   }
   return total;
 }
+
+using PhaseClock = std::chrono::steady_clock;
 
 element::NodalView view_of(const NodalState& nodes) {
   return {nodes.x.x.data(), nodes.x.y.data(), nodes.x.z.data(),
@@ -232,28 +236,45 @@ void Simulation::initialize() {
   dt_average_ = 0.5 * state_.dt;  // first half step: v^{1/2} = v^0 + dt/2 a^0
 }
 
-// One explicit cycle, from t^n (forces known) to t^{n+1} (forces known).
+// One explicit cycle, from t^n (forces known) to t^{n+1} (forces known). `lap` books the time
+// since the last reading to a phase (d3hsp.txt).
 void Simulation::cycle() {
+  auto since = PhaseClock::now();
+  auto lap = [&](PhaseTimes::Phase phase) {
+    const auto now = PhaseClock::now();
+    phase_times_.seconds[phase] += std::chrono::duration<double>(now - since).count();
+    since = now;
+  };
   switch_parts_if_due();
+  lap(PhaseTimes::kSwitching);
   update_velocities();
+  lap(PhaseTimes::kVelocities);
   write_output_if_due(false);
   if (end_reached()) {
     write_output_if_due(true);
+    lap(PhaseTimes::kOutput);
     finished_ = true;
     return;
   }
+  lap(PhaseTimes::kOutput);
   update_positions();
+  lap(PhaseTimes::kPositions);
   compute_internal_forces();
+  lap(PhaseTimes::kElements);
   compute_contact_forces();
+  lap(PhaseTimes::kContact);
   compute_external_forces();
   check_breakdown();
+  lap(PhaseTimes::kLoads);
   update_sensors();
+  lap(PhaseTimes::kSensors);
   select_time_step();
+  lap(PhaseTimes::kTimeStep);
   ++state_.cycle;
 }
 
 bool Simulation::end_reached() const {
-  return (end_time_ > 0.0 && state_.time >= end_time_ * (1.0 - 1e-12)) ||
+  return interrupt_signal_ != 0 || (end_time_ > 0.0 && state_.time >= end_time_ * (1.0 - 1e-12)) ||
          (end_cycle_ > 0 && state_.cycle >= end_cycle_);
 }
 
@@ -311,8 +332,15 @@ void Simulation::run(const std::function<void(const Simulation&)>& on_progress) 
   try {
     while (!finished_) {
       // Between cycles: the state is complete at t^n (forces known), so a dump taken here
-      // resumes exactly (restart/dumper.hpp).
-      if (dumper_) dumper_->write_if_due(*this);
+      // resumes exactly (restart/dumper.hpp). An interrupt makes this the end of the run: the
+      // dump, then one cycle's velocity update and the output of termination.
+      if (interrupt_signal_ == 0) interrupt_signal_ = interrupt::requested();
+      if (dumper_) {
+        const auto start = PhaseClock::now();
+        dumper_->write_if_due(*this);
+        phase_times_.seconds[PhaseTimes::kDumps] +=
+            std::chrono::duration<double>(PhaseClock::now() - start).count();
+      }
       cycle();
       if (on_progress) on_progress(*this);
     }
@@ -508,10 +536,16 @@ void Simulation::update_velocities() {
     nodes.v.z[i] += dt_avg * nodes.a.z[i];
   }
   constrain_velocities(boundary_, state_.time, state_.dt, state_);
+  const auto rigid_start = PhaseClock::now();
   apply_rigid_walls();
   // Rigid bodies take the nodal forces on their nodes and set those nodes' velocities.
   const RigidStepSums rigid_sums =
       advance_rigid_bodies(rigid_, boundary_, state_.time, dt_avg, state_.dt, state_);
+  {  // booked to its own phase and taken out of the velocity update's (cycle() times it whole)
+    const double spent = std::chrono::duration<double>(PhaseClock::now() - rigid_start).count();
+    phase_times_.seconds[PhaseTimes::kRigidBodies] += spent;
+    phase_times_.seconds[PhaseTimes::kVelocities] -= spent;
+  }
   const Vec3Array& vp = v_previous_;
   if (!rigid_.empty() && dt_avg > 0.0) {
     for (const auto& body : rigid_.bodies) {

@@ -76,6 +76,31 @@ struct EnergyAccount {
   }
 };
 
+// Wall time spent in each phase of the cycle (d3hsp.txt), summed over the run. A steady_clock
+// reading costs tens of nanoseconds; a cycle takes about a dozen, negligible against the work.
+struct PhaseTimes {
+  enum Phase {
+    kSwitching,    // part switches due between cycles
+    kVelocities,   // accelerations, velocity update, constraints, energy sums
+    kRigidBodies,  // rigid walls and rigid/flexible bodies
+    kOutput,       // CSV rows and frames
+    kPositions,    // position update
+    kElements,     // element kernels and force assembly
+    kContact,      // contact search and forces
+    kLoads,        // external loads
+    kSensors,      // sensors and controls (their CSV rows included)
+    kTimeStep,     // step selection
+    kDumps,        // restart dumps
+    kCount
+  };
+  static constexpr const char* kNames[kCount] = {
+      "part switching", "velocity update", "rigid bodies and walls",
+      "output",         "positions",       "elements",
+      "contact",        "loads",           "sensors",
+      "time step",      "restart dumps"};
+  double seconds[kCount] = {};
+};
+
 struct SimulationOptions {
   std::filesystem::path output_directory;  // empty: no files written
   bool write_fields = true;                // d3plot VTU frames
@@ -102,7 +127,13 @@ class Simulation {
 
   // Runs to termination. `on_progress` is called every cycle with this object; it decides
   // itself how often to print. Throws rf::SolverError on breakdown after writing the state.
+  // A SIGINT/SIGTERM (solver/interrupt.hpp) ends the run as termination does, at the next
+  // cycle boundary, with a restart dump if dumps are enabled: see interrupt_signal().
   void run(const std::function<void(const Simulation&)>& on_progress = {});
+  // The signal that ended run() early, or 0.
+  int interrupt_signal() const { return interrupt_signal_; }
+  // Wall time per phase so far (this process: a restarted run counts from the restart).
+  const PhaseTimes& phase_times() const { return phase_times_; }
 
   const State& state() const { return state_; }
   State& mutable_state() { return state_; }
@@ -178,6 +209,8 @@ class Simulation {
   std::int64_t element_count_ = 0;
   model::Id controlling_element_ = 0;
   bool finished_ = false;
+  int interrupt_signal_ = 0;  // SIGINT/SIGTERM seen between cycles: the run ends as at ENDTIM
+  PhaseTimes phase_times_;
 
   // Breakdown detected by a kernel or the velocity update (reported by check_breakdown()).
   std::string breakdown_message_;

@@ -248,12 +248,26 @@ class DeckReader {
 
 }  // namespace
 
+// Runs `read` (reading into `model`); on an input error hands the warnings so far to
+// ReadOptions::warnings_on_error before passing the error on.
+template <class Read>
+void keeping_warnings(const model::Model& model, const ReadOptions& options, const Read& read) {
+  try {
+    read();
+  } catch (const InputError&) {
+    if (options.warnings_on_error) *options.warnings_on_error = model.warnings;
+    throw;
+  }
+}
+
 model::Model read_deck_text(std::string_view text, const std::string& name,
                             const std::filesystem::path& base_dir, const ReadOptions& options) {
   model::Model model;
   DeckReader reader(model, options);
-  reader.read_text(text, name, base_dir);
-  reader.finish();
+  keeping_warnings(model, options, [&] {
+    reader.read_text(text, name, base_dir);
+    reader.finish();
+  });
   return model;
 }
 
@@ -266,8 +280,10 @@ model::Model read_deck(const std::filesystem::path& path, const ReadOptions& opt
     model::Model model;
     DeckReader reader(model, options);
     reader.push_file(path);
-    reader.read_text(it->second, path.string(), path.parent_path());
-    reader.finish();
+    keeping_warnings(model, options, [&] {
+      reader.read_text(it->second, path.string(), path.parent_path());
+      reader.finish();
+    });
     return model;
   }
   std::ifstream in(path, std::ios::binary);
@@ -278,8 +294,10 @@ model::Model read_deck(const std::filesystem::path& path, const ReadOptions& opt
   model::Model model;
   DeckReader reader(model, options);
   reader.push_file(path);
-  reader.read_text(text, path.string(), path.parent_path());
-  reader.finish();
+  keeping_warnings(model, options, [&] {
+    reader.read_text(text, path.string(), path.parent_path());
+    reader.finish();
+  });
   return model;
 }
 

@@ -24,6 +24,10 @@ struct ReadOptions {
   // When set, every file read (main deck and includes) is stored here under that name, so that
   // a restart dump can carry the model input.
   std::map<std::string, std::string>* record_files = nullptr;
+  // When set and the read ends in an input error, the warnings found before it are stored here
+  // (the model that held them is gone): a misspelt *MAT keyword's warning explains the "material
+  // is not defined" error that follows, so the CLI prints them first.
+  std::vector<model::Warning>* warnings_on_error = nullptr;
 };
 
 // Reads a deck file and everything it includes (paths relative to the including file).
