@@ -64,6 +64,12 @@ std::vector<Case> cases() {
       {"etan_024", deck(k024 + "1,7800,2e11,0.3,2e8,3e11\n"), {"*MAT_PIECEWISE", "ETAN"}},
       {"tdel", deck(k024 + "1,7800,2e11,0.3,2e8,0,0,1e-9\n"), {"TDEL", "not supported"}},
       {"vp3_shells_only", deck(k024 + "1,7800,2e11,0.3,2e8,0\n0,0,0,0,3\n"), {"VP", "shells"}},
+      {"fs_deletion_not_supported",
+       deck(k003 + "1,7800,2e11,0.3,2e8,0,1\n0,0,0.3,0\n"),
+       {"FS", "element deletion", "not supported"}},
+      {"fail_deletion_not_supported",
+       deck(k024 + "1,7800,2e11,0.3,2e8,0,0.3\n"),
+       {"FAIL", "element deletion", "not supported"}},
       {"fail_negative", deck(k024 + "1,7800,2e11,0.3,2e8,0,-1\n"), {"FAIL", "user"}},
       {"no_hardening", deck(k024 + "1,7800,2e11,0.3,0,0\n"), {"SIGY", "LCSS"}},
       {"lcss_missing_or_table",
@@ -98,12 +104,14 @@ INSTANTIATE_TEST_SUITE_P(Plasticity, PlasticInput, ::testing::ValuesIn(cases()),
                          [](const auto& info) { return info.param.name; });
 
 TEST(PlasticInput, ValidCardsBuild) {
-  EXPECT_EQ(error_of(deck(k003 + "1,7800,2e11,0.3,2e8,2e9,0.5\n40.4,5,0.3,1\n")), "");
+  EXPECT_EQ(error_of(deck(k003 + "1,7800,2e11,0.3,2e8,2e9,0.5\n40.4,5,0,1\n")), "");
   EXPECT_EQ(error_of(deck("*MAT_024_TITLE\nsteel\n1,7800,2e11,0.3,0,0\n0,0,5,0,0\n",
                           "*DEFINE_CURVE\n5\n0,2e8\n0.1,3e8\n1,4e8\n")),
             "");
   EXPECT_EQ(error_of(deck(k024 + "1,7800,2e11,0.3,0,0\n0,0,0,0,0\n0,0.1,0.3\n2e8,3e8,3.5e8\n")),
             "");
+  // LS-DYNA's FAIL default 10^20 means no failure.
+  EXPECT_EQ(error_of(deck(k024 + "1,7800,2e11,0.3,2e8,0,1e21\n")), "");
 }
 
 }  // namespace
