@@ -3,8 +3,10 @@
 
 The plane is modelled by fixing the z translation of the cube's bottom face from t = 0 (the
 cube arrives with all other nodes moving at -10 m/s), so a compressive wave runs up the cube.
-Usage: make_cube_deck.py N [ELFORM] [IHQ] [CYCLES] > cube.k
+Usage: make_cube_deck.py N [ELFORM] [IHQ] [CYCLES] [MATERIAL] > cube.k
 The run ends after CYCLES cycles (default 200) so timings are comparable between sizes.
+MATERIAL: elastic (default, *MAT_ELASTIC) or mat003 (*MAT_PLASTIC_KINEMATIC, SIGY 200 MPa,
+ETAN 2 GPa, BETA 1: the impact stress rho c v = 460 MPa yields the elements near the plane).
 """
 import sys
 
@@ -12,6 +14,7 @@ n = int(sys.argv[1])
 elform = int(sys.argv[2]) if len(sys.argv) > 2 else 1
 ihq = int(sys.argv[3]) if len(sys.argv) > 3 else 1
 cycles = int(sys.argv[4]) if len(sys.argv) > 4 else 200
+material = sys.argv[5] if len(sys.argv) > 5 else "elastic"
 size = 0.1
 w = sys.stdout.write
 
@@ -25,7 +28,13 @@ w("*DATABASE_GLSTAT\n%10.4g\n" % 1.0)
 w("*DATABASE_BINARY_D3PLOT\n%10.4g\n" % 1.0)
 w("*PART\ncube\n%10d%10d%10d\n" % (1, 1, 1))
 w("*SECTION_SOLID\n%10d%10d\n" % (1, elform))
-w("*MAT_ELASTIC\n%10d%10.4g%10.4g%10.4g\n" % (1, 7850.0, 210e9, 0.3))
+if material == "elastic":
+    w("*MAT_ELASTIC\n%10d%10.4g%10.4g%10.4g\n" % (1, 7850.0, 210e9, 0.3))
+elif material == "mat003":
+    w("*MAT_PLASTIC_KINEMATIC\n%10d%10.4g%10.4g%10.4g%10.4g%10.4g%10.4g\n"
+      % (1, 7850.0, 210e9, 0.3, 200e6, 2e9, 1.0))
+else:
+    sys.exit("MATERIAL must be elastic or mat003")
 w("*NODE\n")
 for k in range(n + 1):
     for j in range(n + 1):

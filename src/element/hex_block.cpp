@@ -65,6 +65,7 @@
 
 #include "element/hex_geometry.hpp"
 #include "material/elastic_update.hpp"
+#include "material/registry.hpp"
 #include "model/error.hpp"
 
 namespace rf::element {
@@ -408,6 +409,36 @@ void corotational_hourglass(const HexBlock& block, double dt, Lanes state[4][3],
   h.work = wsum * dt;
 }
 
+// History of material M for a batch: the fields' components gathered lane by lane into
+// h[0 .. history_size<M>()) in kHistory order (point `point` of `points` per element), and
+// written back for the lanes that hold real elements.
+template <class M>
+constexpr int history_slots() {
+  return material::history_size<M>() > 0 ? material::history_size<M>() : 1;
+}
+
+template <class M>
+inline void load_history(const HexBlock& block, const Batch& b, Lanes* h) {
+  int slot = 0;
+  for (std::size_t f = 0; f < M::kHistory.size(); ++f) {
+    const int nc = M::kHistory[f].components;
+    std::size_t off[kLanes];
+    lane_offsets(b, static_cast<std::size_t>(nc), off);
+    const double* base = block.history[f].values.data();
+    for (int c = 0; c < nc; ++c) h[slot++] = load_lanes(base + c, off);
+  }
+}
+
+template <class M>
+inline void store_history(HexBlock& block, std::size_t e, int lane, const Lanes* h) {
+  int slot = 0;
+  for (std::size_t f = 0; f < M::kHistory.size(); ++f) {
+    const int nc = M::kHistory[f].components;
+    double* out = block.history[f].values.data() + static_cast<std::size_t>(nc) * e;
+    for (int c = 0; c < nc; ++c) out[c] = h[slot++][lane];
+  }
+}
+
 // The hourglass forms the kernel is instantiated for (IHQ 3 == 2, IHQ 5 == 4).
 enum class HourglassForm { kViscousLsDyna, kViscousFB, kStiffnessFB, kBelytschkoBindeman };
 
@@ -418,7 +449,7 @@ inline HourglassForm hourglass_form(int ihq) {
   return HourglassForm::kBelytschkoBindeman;
 }
 
-template <HourglassForm kForm>
+template <HourglassForm kForm, class M>
 void elform1_batch(HexBlock& block, std::size_t first, int count, const NodalView& nv, double dt,
                    Partial& part) {
   constexpr bool kStateful =
@@ -453,7 +484,9 @@ void elform1_batch(HexBlock& block, std::size_t first, int count, const NodalVie
   std::size_t off[kLanes];
   lane_offsets(b, 6, off);
   for (int c = 0; c < 6; ++c) sig[c] = load_lanes(block.stress.data() + c, off);
-  material::elastic_jaumann_update(block.material, d, w, dt, sig);
+  Lanes hist[history_slots<M>()];
+  load_history<M>(block, b, hist);
+  M::update(block.material, block.plastic, d, w, dt, sig, hist);
 
   HourglassTerms h{ax, av, g, vol, {w[0], w[1], w[2]}, {}, {}};
   Lanes state[4][3];
@@ -518,6 +551,7 @@ void elform1_batch(HexBlock& block, std::size_t first, int count, const NodalVie
     }
     double* s = &block.stress[6 * e];
     for (int c = 0; c < 6; ++c) s[c] = sig[c][l];
+    store_history<M>(block, e, l, hist);
     if constexpr (kStateful) {
       double* q = &block.hourglass_state[12 * e];
       for (int a = 0; a < 4; ++a)
@@ -538,7 +572,7 @@ void elform1_batch(HexBlock& block, std::size_t first, int count, const NodalVie
   }
 }
 
-template <HourglassForm kForm>
+template <HourglassForm kForm, class M>
 void elform1_range(HexBlock& block, std::int64_t batches, const NodalView& nv, double dt,
                    Partial& part) {
   const std::size_t n = block.size();
@@ -546,7 +580,7 @@ void elform1_range(HexBlock& block, std::int64_t batches, const NodalView& nv, d
   for (std::int64_t bi = 0; bi < batches; ++bi) {
     const std::size_t first = static_cast<std::size_t>(bi) * kLanes;
     const int count = static_cast<int>(std::min<std::size_t>(kLanes, n - first));
-    elform1_batch<kForm>(block, first, count, nv, dt, part);
+    elform1_batch<kForm, M>(block, first, count, nv, dt, part);
   }
 }
 
@@ -559,6 +593,7 @@ inline bool finite_forces(const double f[3][8]) {
   return std::isfinite(s);
 }
 
+template <class M>
 void elform2_element(HexBlock& block, std::size_t e, const NodalView& nv, double dt,
                      Partial& part) {
   const int* slots = slot_map(block, e);
@@ -608,7 +643,22 @@ void elform2_element(HexBlock& block, std::size_t e, const NodalView& nv, double
     L[8] += corr;
     double d[6], w[3];
     material::split_velocity_gradient(L, d, w);
-    material::elastic_jaumann_update(block.material, d, w, dt, stress + 6 * gp);
+    // History of point gp: gathered, updated, written back (8 points per element).
+    double h[history_slots<M>()];
+    int slot = 0;
+    for (std::size_t f = 0; f < M::kHistory.size(); ++f) {
+      const int nc = M::kHistory[f].components;
+      const double* in =
+          block.history[f].values.data() + static_cast<std::size_t>(nc) * (8 * e + gp);
+      for (int c = 0; c < nc; ++c) h[slot++] = in[c];
+    }
+    M::update(block.material, block.plastic, d, w, dt, stress + 6 * gp, h);
+    slot = 0;
+    for (std::size_t f = 0; f < M::kHistory.size(); ++f) {
+      const int nc = M::kHistory[f].components;
+      double* out = block.history[f].values.data() + static_cast<std::size_t>(nc) * (8 * e + gp);
+      for (int c = 0; c < nc; ++c) out[c] = h[slot++];
+    }
   }
 
   for (int i = 0; i < 3; ++i)
@@ -650,6 +700,20 @@ HexShape detect_shape(const std::int32_t* c) {
 
 }  // namespace
 
+const material::HistoryArray* find_history(const HexBlock& block, std::string_view name) {
+  for (const auto& h : block.history)
+    if (h.field.name == name) return &h;
+  return nullptr;
+}
+
+void allocate_history(HexBlock& block) {
+  block.history.clear();
+  const std::size_t points = static_cast<std::size_t>(block.points_per_element()) * block.size();
+  for (const material::HistoryField& f : material::history_fields(block.material_index))
+    block.history.push_back(
+        {f, std::vector<double>(points * static_cast<std::size_t>(f.components), 0.0)});
+}
+
 int distinct_node_count(const std::int32_t* c) {
   int count = 0;
   for (int k = 0; k < 8; ++k) {
@@ -669,6 +733,7 @@ void initialize_hex_block(HexBlock& block, const NodalView& nodes) {
                     block.part_id, n, block.conn.size()));
   block.stress.assign(6 * static_cast<std::size_t>(block.points_per_element()) * n, 0.0);
   block.hourglass_state.assign(12 * n, 0.0);
+  allocate_history(block);
   block.force.assign(24 * n, 0.0);
   block.volume0.assign(n, 0.0);
   block.volume0_cbrt.assign(n, 0.0);
@@ -701,27 +766,30 @@ KernelResult compute_hex_forces(HexBlock& block, const NodalView& nodes, double 
 #pragma omp parallel num_threads(thread_count())
   {
     Partial local;
-    if (elform2) {
+    // One instantiation per (hourglass form, material): chosen here once per block.
+    material::with_material(block.material_index, [&]<class M>(std::type_identity<M>) {
+      if (elform2) {
 #pragma omp for schedule(static)
-      for (std::int64_t e = 0; e < n; ++e)
-        elform2_element(block, static_cast<std::size_t>(e), nodes, dt, local);
-    } else {
-      // Static schedule over batches: each thread still owns a contiguous element range.
-      switch (form) {
-        case HourglassForm::kViscousLsDyna:
-          elform1_range<HourglassForm::kViscousLsDyna>(block, batches, nodes, dt, local);
-          break;
-        case HourglassForm::kViscousFB:
-          elform1_range<HourglassForm::kViscousFB>(block, batches, nodes, dt, local);
-          break;
-        case HourglassForm::kStiffnessFB:
-          elform1_range<HourglassForm::kStiffnessFB>(block, batches, nodes, dt, local);
-          break;
-        case HourglassForm::kBelytschkoBindeman:
-          elform1_range<HourglassForm::kBelytschkoBindeman>(block, batches, nodes, dt, local);
-          break;
+        for (std::int64_t e = 0; e < n; ++e)
+          elform2_element<M>(block, static_cast<std::size_t>(e), nodes, dt, local);
+      } else {
+        // Static schedule over batches: each thread still owns a contiguous element range.
+        switch (form) {
+          case HourglassForm::kViscousLsDyna:
+            elform1_range<HourglassForm::kViscousLsDyna, M>(block, batches, nodes, dt, local);
+            break;
+          case HourglassForm::kViscousFB:
+            elform1_range<HourglassForm::kViscousFB, M>(block, batches, nodes, dt, local);
+            break;
+          case HourglassForm::kStiffnessFB:
+            elform1_range<HourglassForm::kStiffnessFB, M>(block, batches, nodes, dt, local);
+            break;
+          case HourglassForm::kBelytschkoBindeman:
+            elform1_range<HourglassForm::kBelytschkoBindeman, M>(block, batches, nodes, dt, local);
+            break;
+        }
       }
-    }
+    });
     partials[omp_get_thread_num()] = local;
 #pragma omp single
     threads = omp_get_num_threads();

@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "material/elastic.hpp"
+#include "material/history.hpp"
+#include "material/plastic_parameters.hpp"
 #include "model/model.hpp"
 
 namespace rf::element {
@@ -50,7 +52,12 @@ struct HexBlock {
   int elform =
       1;  // 1: one-point + hourglass; 2: selective-reduced (2x2x2 deviatoric, 1pt volumetric)
   HourglassSettings hourglass;
+  // Elastic constants of every material (wave speed, hourglass, contact stiffness), then the
+  // material's own: index in material::SolidMaterials (material/registry.hpp) selects the stress
+  // update once per block; plasticity parameters for the J2 materials.
   material::ElasticConstants material;
+  int material_index = 0;
+  material::PlasticParameters plastic;
   // Elements of a *MAT_RIGID part: they give mass and appear in the output, but have no kernel
   // and no force slots in the assembly (the body moves their nodes).
   bool rigid = false;
@@ -69,6 +76,9 @@ struct HexBlock {
   // Per-element state, struct-of-arrays where it is streamed.
   // Cauchy stress, Voigt order xx,yy,zz,xy,yz,zx; 6 * points_per_element() per element.
   std::vector<double> stress;
+  // History variables of the material, one array per registered field, each with
+  // field.components values per stress point (material/history.hpp). Empty for elastic blocks.
+  std::vector<material::HistoryArray> history;
   // Accumulated hourglass generalized forces for the stiffness forms (IHQ 4,5,6): 12 per element.
   std::vector<double> hourglass_state;
   std::vector<double> volume0;       // reference volume
@@ -108,6 +118,12 @@ struct KernelResult {
   std::int64_t failed_element = -1;
   double failed_volume = 0.0;
 };
+
+// Finds a history array by name (nullptr if the block's material has none).
+const material::HistoryArray* find_history(const HexBlock& block, std::string_view name);
+
+// Sizes block.history for the block's material (zeros), points_per_element() points each.
+void allocate_history(HexBlock& block);
 
 // Allocates per-element state and computes reference volumes. Throws rf::SolverError naming
 // the element if a volume is not positive.

@@ -83,7 +83,25 @@ struct SectionSolid {
 
 // Material cards. Each kind is its own struct; the variant-like tag keeps dispatch out of
 // per-element loops (the solver groups elements by material kind once).
-enum class MaterialKind { Elastic, Rigid };
+enum class MaterialKind { Elastic, Rigid, PlasticKinematic, PiecewiseLinearPlasticity };
+
+// The plasticity fields of *MAT_PLASTIC_KINEMATIC (003) and *MAT_PIECEWISE_LINEAR_PLASTICITY
+// (024) as read; curves are resolved (and checked) when the solver state is built.
+struct PlasticCard {
+  double sigy = 0.0;
+  double etan = 0.0;
+  double beta = 0.0;  // 003 only
+  double c = 0.0;     // SRC (003) / C (024)
+  double p = 0.0;     // SRP (003) / P (024)
+  double fail = 0.0;  // FS (003) / FAIL (024); 0: no failure
+  int vp = 0;
+  Id lcss = 0;              // 024
+  Id lcsr = 0;              // 024
+  std::vector<double> eps;  // 024 EPS1..: the table's points (may be empty)
+  std::vector<double> es;
+  SourceLocation card2;  // where the second card is (C, P, LCSS, LCSR, VP)
+  SourceLocation card3;  // EPS card (024)
+};
 
 struct Material {
   Id id = 0;
@@ -108,6 +126,7 @@ struct Material {
   bool has_output_vectors = false;
   std::array<double, 3> output_a{};
   std::array<double, 3> output_v{};
+  PlasticCard plastic;  // PlasticKinematic and PiecewiseLinearPlasticity
   SourceLocation where;
 };
 

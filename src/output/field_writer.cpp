@@ -322,6 +322,37 @@ void FieldWriter::write_frame(const solver::State& state) {
     }
   }
 
+  // Material history (plastic strain, back stress, ...): one cell array per field name found
+  // in any block, the mean over the element's stress points; zero in blocks without it.
+  struct HistoryCells {
+    std::string name;
+    int components;
+    std::vector<double> values;
+  };
+  std::vector<HistoryCells> history;
+  for (const element::HexBlock& block : state.hex_blocks)
+    for (const auto& h : block.history)
+      if (std::none_of(history.begin(), history.end(),
+                       [&](const HistoryCells& c) { return c.name == h.field.name; }))
+        history.push_back({std::string(h.field.name), h.field.components,
+                           std::vector<double>(cell_count * h.field.components, 0.0)});
+  for (HistoryCells& cells : history) {
+    std::size_t first_cell = 0;
+    for (const element::HexBlock& block : state.hex_blocks) {
+      const std::size_t points = static_cast<std::size_t>(block.points_per_element());
+      const std::size_t nc = static_cast<std::size_t>(cells.components);
+      const material::HistoryArray* h = element::find_history(block, cells.name);
+      if (h && h->values.size() == nc * points * block.size()) {
+        for (std::size_t e = 0; e < block.size(); ++e)
+          for (std::size_t p = 0; p < points; ++p)
+            for (std::size_t c = 0; c < nc; ++c)
+              cells.values[(first_cell + e) * nc + c] +=
+                  h->values[(e * points + p) * nc + c] / static_cast<double>(points);
+      }
+      first_cell += block.size();
+    }
+  }
+
   const double time_value = state.time;
   auto bytes_of = [](const auto& v) { return static_cast<std::uint64_t>(v.size() * sizeof(v[0])); };
   // Order here is the order of the blocks in the appended section.
@@ -345,6 +376,12 @@ void FieldWriter::write_frame(const solver::State& state) {
       {"offsets", "Int64", 1, offsets.data(), bytes_of(offsets)},
       {"types", "UInt8", 1, types.data(), bytes_of(types)},
   };
+  for (const HistoryCells& cells : history) {
+    AppendedArray a{cells.name, "Float64", cells.components, cells.values.data(),
+                    bytes_of(cells.values)};
+    if (cells.components == 6) a.component_names = {"xx", "yy", "zz", "xy", "yz", "zx"};
+    arrays.push_back(std::move(a));
+  }
   std::uint64_t offset = 0;
   for (AppendedArray& a : arrays) {
     a.offset = offset;
@@ -374,6 +411,8 @@ void FieldWriter::write_frame(const solver::State& state) {
   fmt::format_to(out, "      </PointData>\n");
   fmt::format_to(out, "      <CellData Scalars=\"effective_stress\">\n");
   for (int i : {kStress, kEff, kPart, kElem}) append_data_array(xml, arrays[i], "        ");
+  for (std::size_t i = kType + 1; i < arrays.size(); ++i)
+    append_data_array(xml, arrays[i], "        ");
   fmt::format_to(out, "      </CellData>\n");
   fmt::format_to(out, "      <Points>\n");
   append_data_array(xml, arrays[kPoints], "        ");

@@ -542,6 +542,9 @@ void write_hex_blocks(const Group& g, const std::vector<element::HexBlock>& bloc
     bg.set("size", static_cast<std::int64_t>(block.size()));
     write_vector(bg, "element_id", block.element_id);
     visit_block_arrays([&](const char* name, auto get) { write_vector(bg, name, get(block)); });
+    // Material history, whatever the material: one dataset per registered field.
+    for (const auto& h : block.history)
+      write_vector(bg, fmt::format("history_{}", h.field.name), h.values);
   }
 }
 
@@ -579,6 +582,8 @@ void read_hex_blocks(const Group& g, std::vector<element::HexBlock>& blocks) {
       auto& array = get(block);
       array = read_exact<double>(bg, name, array.size());
     });
+    for (auto& h : block.history)
+      h.values = read_exact<double>(bg, fmt::format("history_{}", h.field.name), h.values.size());
   }
 }
 

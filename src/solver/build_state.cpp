@@ -10,6 +10,8 @@
 #include <memory>
 
 #include "element/kernels.hpp"
+#include "material/plastic_setup.hpp"
+#include "material/registry.hpp"
 #include "mesh/p_order.hpp"
 #include "model/error.hpp"
 #include "model/error_context.hpp"
@@ -244,7 +246,8 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
           fmt::format("part {} refers to material {}, which is not defined", pid, part.mid));
     }
     const model::Material& mat = mat_it->second;
-    if (mat.kind != model::MaterialKind::Elastic && mat.kind != model::MaterialKind::Rigid) {
+    const int material_index = material::material_index(mat.kind);
+    if (material_index < 0 && mat.kind != model::MaterialKind::Rigid) {
       throw InputError(context_of(mat.where, "MID"),
                        fmt::format("part {} uses {} (material {}), which this version does not "
                                    "simulate yet",
@@ -261,6 +264,21 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
     // Rigid parts: the section and hourglass do not matter; E and PR only for contact later.
     if (!block.rigid) block.hourglass = resolve_hourglass(model, part);
     block.material = material::make_elastic(mat.rho, mat.e, mat.pr);
+    if (!block.rigid) {
+      // The registry says which element families the material runs on (material/registry.hpp).
+      const auto family = block.order > 1 ? material::kLagrangeHex : material::kHex8;
+      if (!material::serves(material_index, family)) {
+        throw InputError(context_of(part.where, "MID"),
+                         fmt::format("part {} uses {} (material {}) on order {} elements, which "
+                                     "run elastic materials only (*MAT_ELASTIC); remove the part "
+                                     "from *CHANGE_P-ORDER or use *MAT_ELASTIC",
+                                     pid, mat.keyword, mat.id, block.order));
+      }
+      block.material_index = material_index;
+      if (mat.kind == model::MaterialKind::PlasticKinematic ||
+          mat.kind == model::MaterialKind::PiecewiseLinearPlasticity)
+        block.plastic = material::make_plastic_parameters(model, mat);
+    }
     block.element_id.reserve(element_indices.size());
     block.conn.reserve(element_indices.size() * 8);
     for (const std::size_t e : element_indices) {

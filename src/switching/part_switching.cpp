@@ -80,21 +80,28 @@ double strain_energy(const element::HexBlock& block) {
   return sum;
 }
 
+// s -> Q s Q^T for a symmetric tensor in Voigt order xx yy zz xy yz zx.
+void rotate_symmetric(const Eigen::Matrix3d& q, double* s) {
+  Eigen::Matrix3d m;
+  m << s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2];
+  const Eigen::Matrix3d r = q * m * q.transpose();
+  s[0] = r(0, 0);
+  s[1] = r(1, 1);
+  s[2] = r(2, 2);
+  s[3] = r(0, 1);
+  s[4] = r(1, 2);
+  s[5] = r(2, 0);
+}
+
 // Rotates a block's stresses (s -> Q s Q^T) and stored hourglass forces (each mode's 3-vector
 // -> Q q): objective, so a body turned while rigid carries no spurious stress.
 void rotate_block_state(element::HexBlock& block, const Eigen::Matrix3d& q) {
   const std::size_t points = block.stress.size() / 6;
-  for (std::size_t k = 0; k < points; ++k) {
-    double* s = &block.stress[k * 6];
-    Eigen::Matrix3d m;
-    m << s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2];
-    const Eigen::Matrix3d r = q * m * q.transpose();
-    s[0] = r(0, 0);
-    s[1] = r(1, 1);
-    s[2] = r(2, 2);
-    s[3] = r(0, 1);
-    s[4] = r(1, 2);
-    s[5] = r(2, 0);
+  for (std::size_t k = 0; k < points; ++k) rotate_symmetric(q, &block.stress[k * 6]);
+  // Material history that is a symmetric tensor (e.g. a back stress) turns like the stress.
+  for (auto& h : block.history) {
+    if (!h.field.symmetric_tensor) continue;
+    for (std::size_t k = 0; k + 5 < h.values.size(); k += 6) rotate_symmetric(q, &h.values[k]);
   }
   // hourglass_state, IHQ 4/5: 4 modes x (x, y, z) per element in global axes. IHQ 6 keeps
   // them in the element's corotational frame, which turned with the body already.

@@ -55,6 +55,23 @@ inline std::string deformable(double end_time) {
   return s;
 }
 
+// The deformable deck with plastic materials: part 1 *MAT_PLASTIC_KINEMATIC with a BETA mix (a
+// back stress in the history) and Cowper-Symonds VP 1, part 2 *MAT_PIECEWISE_LINEAR_PLASTICITY
+// with an 8-point table and C/P. The yield stresses are low enough for the spin to drive
+// plastic flow (effective plastic strain up to 0.6).
+inline std::string plastic(double end_time) {
+  std::string s = deformable(end_time);
+  auto replace = [&s](const std::string& from, const std::string& to) {
+    s.replace(s.find(from), from.size(), to);
+  };
+  replace("*PART\nselective reduced\n2,2,1,0,2\n", "*PART\nselective reduced\n2,2,2,0,2\n");
+  replace("*MAT_ELASTIC\n1,7.85e-9,210000.0,0.3\n",
+          "*MAT_PLASTIC_KINEMATIC\n1,7.85e-9,210000.0,0.3,100.0,2000.0,0.5\n40.4,5.0,0,1\n"
+          "*MAT_PIECEWISE_LINEAR_PLASTICITY\n2,7.85e-9,210000.0,0.3,0,0\n40.4,5.0,0,0,0\n"
+          "0,0.01,0.02,0.05,0.1,0.2,0.5,1.0\n100,110,120,135,150,165,185,200\n");
+  return s;
+}
+
 // A spinning 3 x 2 x 2 block: x < 1 is a rigid part, the rest is deformable (ELFORM 1, viscous
 // hourglass) and shares the interface nodes with it; the far face is a nodal rigid body. The
 // rigid part gets a moment from a curve; *RIGID_BODY_UPDATE selects the node update (&type).

@@ -181,6 +181,8 @@ const Case kCases[] = {
     {"rigid_linear", restart_decks::spinning_rigid(4e-5, 0), "", {}, 6e-6, 2},
     {"rigid_curvilinear", restart_decks::spinning_rigid(4e-5, 2), "", {}, 6e-6, 1},
     {"rigid_curvilinear", restart_decks::spinning_rigid(4e-5, 2), "", {}, 6e-6, 2},
+    {"plastic", restart_decks::plastic(4e-5), "", {}, 6e-6, 1},
+    {"plastic", restart_decks::plastic(4e-5), "", {}, 6e-6, 2},
     {"quadratic", restart_decks::quadratic(4e-5), "", {}, 6e-6, 1},
     {"quadratic", restart_decks::quadratic(4e-5), "", {}, 6e-6, 2},
     // The *RIGID_BODY_UPDATE example: prescribed rotation (accumulated travel), both updates.
@@ -202,6 +204,28 @@ const Case kCases[] = {
 };
 
 INSTANTIATE_TEST_SUITE_P(Restart, RestartBitwise, testing::ValuesIn(kCases), case_name);
+
+// The plastic case flows plastically before the dump it restarts from (12 us) and after it,
+// in both parts, and its back stress is not zero: the dump carries real history.
+TEST(Restart, PlasticDeckFlowsPlasticallyAcrossTheDump) {
+  solver::Simulation sim(read(restart_decks::plastic(4e-5)), {});
+  auto max_of = [&](std::size_t b, const char* name) {
+    const auto* h = element::find_history(sim.state().hex_blocks[b], name);
+    double m = 0.0;
+    if (h)
+      for (double v : h->values) m = std::max(m, std::abs(v));
+    return m;
+  };
+  while (sim.state().time < 1.0e-5) sim.cycle();
+  const double early[2] = {max_of(0, "effective_plastic_strain"),
+                           max_of(1, "effective_plastic_strain")};
+  EXPECT_GT(early[0], 1e-3);
+  EXPECT_GT(early[1], 1e-3);
+  EXPECT_GT(max_of(0, "back_stress"), 1.0);
+  while (!sim.finished()) sim.cycle();
+  EXPECT_GT(max_of(0, "effective_plastic_strain"), early[0]);
+  EXPECT_GT(max_of(1, "effective_plastic_strain"), early[1]);
+}
 
 // A 6 x 1 x 1 bar of ELFORM 2 hexahedra: elements 1-2 part 1 (elastic), 3-6 part 2 with
 // `part2_cards` (its material and whatever goes with it), spinning and stretching, 40 us.

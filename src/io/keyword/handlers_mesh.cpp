@@ -252,6 +252,141 @@ void mat_rigid(const Block& block, ReaderContext& context) {
   warn_unread_lines(block, cursor, context);
 }
 
+// *MAT_PLASTIC_KINEMATIC (003). Card 1: MID RO E PR SIGY ETAN BETA; card 2: SRC SRP FS VP.
+// Range checks that need E (ETAN < E) are made here; the curve-free law needs nothing later.
+void mat_plastic_kinematic(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  read_title(block, cursor);
+  const int n = block.has_option("TITLE") ? 2 : 1;
+  const Card card = cursor.next(n, kEightByTen, "MID RO E PR SIGY ETAN BETA");
+  model::Material m;
+  m.id = positive_id(card, 0, "MID", "material");
+  m.kind = model::MaterialKind::PlasticKinematic;
+  m.keyword = block.keyword;
+  m.rho = card.real(1, "RO", 0.0);
+  m.e = card.real(2, "E", 0.0);
+  m.pr = card.real(3, "PR", 0.0);
+  m.where = card.location();
+  check_elastic_constants(card, m);
+  auto& p = m.plastic;
+  p.sigy = card.real(4, "SIGY", 0.0);
+  p.etan = card.real(5, "ETAN", 0.0);
+  p.beta = card.real(6, "BETA", 0.0);
+  if (!(p.sigy > 0.0))
+    throw card.error("SIGY", fmt::format("yield stress {} must be positive", p.sigy));
+  if (!(p.etan >= 0.0 && p.etan < m.e))
+    throw card.error("ETAN",
+                     fmt::format("tangent modulus {} must lie in [0, E) with E = {}", p.etan, m.e));
+  if (!(p.beta >= 0.0 && p.beta <= 1.0))
+    throw card.error("BETA",
+                     fmt::format("hardening parameter {} must lie in [0, 1] (0 kinematic, 1 "
+                                 "isotropic)",
+                                 p.beta));
+  p.card2 = m.where;
+  if (const auto c2 = cursor.next_optional(n + 1, kEightByTen)) {
+    p.card2 = c2->location();
+    p.c = c2->real(0, "SRC", 0.0);
+    p.p = c2->real(1, "SRP", 0.0);
+    p.fail = c2->real(2, "FS", 0.0);
+    const double vp = c2->real(3, "VP", 0.0);
+    if (p.c < 0.0)
+      throw c2->error("SRC", fmt::format("strain rate parameter C {} must not be negative", p.c));
+    if (p.p < 0.0)
+      throw c2->error("SRP", fmt::format("strain rate parameter P {} must not be negative", p.p));
+    if ((p.c > 0.0) != (p.p > 0.0))
+      throw c2->error(p.c > 0.0 ? "SRP" : "SRC",
+                      "Cowper-Symonds rate effects need both SRC and SRP (or neither)");
+    if (p.fail < 0.0)
+      throw c2->error("FS", fmt::format("failure strain {} must not be negative", p.fail));
+    // Element deletion is not implemented yet: a failure strain would change the physics.
+    if (p.fail > 0.0)
+      throw c2->error("FS", fmt::format("failure strain {} asks for element deletion, which is "
+                                        "not supported yet (leave FS blank or 0)",
+                                        p.fail));
+    if (vp != 0.0 && vp != 1.0)
+      throw c2->error("VP",
+                      fmt::format("VP {} is not 0 (scale yield stress) or 1 (viscoplastic)", vp));
+    p.vp = static_cast<int>(vp);
+  }
+  add_material(context, card, std::move(m));
+  warn_unread_lines(block, cursor, context);
+}
+
+// *MAT_PIECEWISE_LINEAR_PLASTICITY (024). Card 1: MID RO E PR SIGY ETAN FAIL TDEL; card 2:
+// C P LCSS LCSR VP; cards 3-4: EPS1-8, ES1-8. Curves (LCSS, LCSR) are resolved and checked when
+// the solver state is built (material/plastic_setup.cpp): they may come later in the deck.
+void mat_piecewise_linear_plasticity(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  read_title(block, cursor);
+  const int n = block.has_option("TITLE") ? 2 : 1;
+  const Card card = cursor.next(n, kEightByTen, "MID RO E PR SIGY ETAN FAIL TDEL");
+  model::Material m;
+  m.id = positive_id(card, 0, "MID", "material");
+  m.kind = model::MaterialKind::PiecewiseLinearPlasticity;
+  m.keyword = block.keyword;
+  m.rho = card.real(1, "RO", 0.0);
+  m.e = card.real(2, "E", 0.0);
+  m.pr = card.real(3, "PR", 0.0);
+  m.where = card.location();
+  check_elastic_constants(card, m);
+  auto& p = m.plastic;
+  p.sigy = card.real(4, "SIGY", 0.0);
+  p.etan = card.real(5, "ETAN", 0.0);
+  p.fail = card.real(6, "FAIL", 0.0);
+  if (p.fail >= 1.0e20) p.fail = 0.0;  // LS-DYNA's default 10^20: no failure
+  if (p.sigy < 0.0)
+    throw card.error("SIGY", fmt::format("yield stress {} must not be negative", p.sigy));
+  if (!(p.etan >= 0.0 && p.etan < m.e))
+    throw card.error("ETAN",
+                     fmt::format("tangent modulus {} must lie in [0, E) with E = {}", p.etan, m.e));
+  if (p.fail < 0.0)
+    throw card.error("FAIL",
+                     "a negative FAIL calls a user failure subroutine, which is not supported");
+  // Element deletion is not implemented yet: a failure strain would change the physics.
+  if (p.fail > 0.0)
+    throw card.error("FAIL", fmt::format("plastic strain to failure {} asks for element deletion, "
+                                         "which is not supported yet (leave FAIL blank, 0 or "
+                                         "10^20)",
+                                         p.fail));
+  if (card.real(7, "TDEL", 0.0) != 0.0)
+    throw card.error("TDEL",
+                     "element deletion by time step (TDEL) is not supported (leave it blank)");
+  p.card2 = p.card3 = m.where;
+  if (const auto c2 = cursor.next_optional(n + 1, kEightByTen)) {
+    p.card2 = c2->location();
+    p.c = c2->real(0, "C", 0.0);
+    p.p = c2->real(1, "P", 0.0);
+    p.lcss = c2->id(2, "LCSS");
+    p.lcsr = c2->id(3, "LCSR");
+    const double vp = c2->real(4, "VP", 0.0);
+    if (p.c < 0.0)
+      throw c2->error("C", fmt::format("strain rate parameter {} must not be negative", p.c));
+    if (p.p < 0.0)
+      throw c2->error("P", fmt::format("strain rate parameter {} must not be negative", p.p));
+    if (p.lcss < 0) throw c2->error("LCSS", "curve ID must not be negative");
+    if (p.lcsr < 0) throw c2->error("LCSR", "curve ID must not be negative");
+    if (vp == 3.0)
+      throw c2->error("VP", "VP 3 (filtered rates) exists for shells only; solids take -1, 0 or 1");
+    if (vp != 0.0 && vp != 1.0 && vp != -1.0)
+      throw c2->error(
+          "VP", fmt::format("VP {} is not -1, 0 (scale yield stress) or 1 (viscoplastic)", vp));
+    p.vp = static_cast<int>(vp);
+  }
+  if (const auto c3 = cursor.next_optional(n + 2, kEightByTen)) {
+    p.card3 = c3->location();
+    const auto c4 = cursor.next_optional(n + 3, kEightByTen);
+    static const char* const kEps[] = {"EPS1", "EPS2", "EPS3", "EPS4",
+                                       "EPS5", "EPS6", "EPS7", "EPS8"};
+    static const char* const kEs[] = {"ES1", "ES2", "ES3", "ES4", "ES5", "ES6", "ES7", "ES8"};
+    for (std::size_t i = 0; i < 8; ++i) {
+      p.eps.push_back(c3->real(i, kEps[i], 0.0));
+      p.es.push_back(c4 ? c4->real(i, kEs[i], 0.0) : 0.0);
+    }
+  }
+  add_material(context, card, std::move(m));
+  warn_unread_lines(block, cursor, context);
+}
+
 void hourglass(const Block& block, ReaderContext& context) {
   CardCursor cursor(block, context.parameters);
   do {

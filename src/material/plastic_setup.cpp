@@ -1,0 +1,167 @@
+#include "material/plastic_setup.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "model/error_context.hpp"
+
+namespace rf::material {
+
+namespace {
+
+using model::context_of;
+
+// Points of a *DEFINE_CURVE with its scale factors and offsets applied (LS-DYNA:
+// value(t) = SFO f(t / SFA - OFFA) + OFFO, so the point (a, o) sits at ((a + OFFA) SFA, SFO o +
+// OFFO)).
+void curve_points(const model::Curve& c, std::vector<double>& x, std::vector<double>& y) {
+  x.clear();
+  y.clear();
+  for (std::size_t i = 0; i < c.abscissa.size(); ++i) {
+    x.push_back((c.abscissa[i] + c.offa) * c.sfa);
+    y.push_back(c.sfo * c.ordinate[i] + c.offo);
+  }
+}
+
+const model::Curve& find_curve(const model::Model& model, model::Id id,
+                               const model::SourceLocation& where, const char* field,
+                               const char* what) {
+  const auto it = model.curves.find(id);
+  if (it == model.curves.end())
+    throw InputError(context_of(where, field),
+                     fmt::format("{} {} is not a *DEFINE_CURVE of this deck ({}); tables of curves "
+                                 "by strain rate (*DEFINE_TABLE) are not supported",
+                                 field, id, what));
+  return it->second;
+}
+
+// Hardening points: strictly increasing strains, positive and non-decreasing stresses.
+void check_hardening(const std::vector<double>& x, const std::vector<double>& y,
+                     const model::SourceLocation& where, const char* field,
+                     const std::string& source) {
+  if (x.size() < 2)
+    throw InputError(
+        context_of(where, field),
+        fmt::format("{}: a hardening law needs at least 2 points, got {}", source, x.size()));
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (!(y[i] > 0.0))
+      throw InputError(context_of(where, field),
+                       fmt::format("{}: yield stress {} at plastic strain {} (point {}) must be "
+                                   "positive",
+                                   source, y[i], x[i], i + 1));
+    if (x[i] < 0.0)
+      throw InputError(context_of(where, field),
+                       fmt::format("{}: plastic strain {} (point {}) must not be negative", source,
+                                   x[i], i + 1));
+    if (i > 0 && !(x[i] > x[i - 1]))
+      throw InputError(context_of(where, field),
+                       fmt::format("{}: plastic strains must increase (point {}: {} after {})",
+                                   source, i + 1, x[i], x[i - 1]));
+    if (i > 0 && y[i] < y[i - 1])
+      throw InputError(context_of(where, field),
+                       fmt::format("{}: yield stress decreases from {} to {} at point {} "
+                                   "(softening is not supported)",
+                                   source, y[i - 1], y[i], i + 1));
+  }
+}
+
+void set_linear(PlasticParameters& p, double sigy, double iso, double kin) {
+  p.linear = true;
+  p.sigy = sigy;
+  p.isotropic_modulus = iso;
+  p.kinematic_modulus = kin;
+  p.strain = {0.0, 1.0};
+  p.stress = {sigy, sigy + iso};
+}
+
+}  // namespace
+
+PlasticParameters make_plastic_parameters(const model::Model& model, const model::Material& mat) {
+  const model::PlasticCard& c = mat.plastic;
+  PlasticParameters p;
+  p.vp = c.vp;
+  p.failure_strain = c.fail;
+  if (mat.kind == model::MaterialKind::PlasticKinematic) {
+    const double ep = mat.e * c.etan / (mat.e - c.etan);
+    set_linear(p, c.sigy, c.beta * ep, (1.0 - c.beta) * ep);
+    if (c.c > 0.0 && c.p > 0.0) {
+      p.rate_model = RateModel::kCowperSymonds;
+      p.rate_c = c.c;
+      p.rate_p = c.p;
+    }
+    return p;
+  }
+
+  // *MAT_024: LCSS curve, else the EPS/ES table, else SIGY/ETAN.
+  bool table = false;
+  for (double s : c.es) table |= s != 0.0;
+  if (c.lcss > 0) {
+    const model::Curve& curve =
+        find_curve(model, c.lcss, c.card2, "LCSS", "stress against effective plastic strain");
+    curve_points(curve, p.strain, p.stress);
+    check_hardening(p.strain, p.stress, c.card2, "LCSS", fmt::format("curve {}", c.lcss));
+    p.linear = false;
+  } else if (table) {
+    for (std::size_t i = 0; i < c.eps.size(); ++i) {
+      if (i > 0 && !(c.eps[i] > c.eps[i - 1])) {
+        // The table ends at the first blank (non-increasing) strain; later stresses must be blank.
+        for (std::size_t j = i; j < c.eps.size(); ++j)
+          if (c.es[j] != 0.0 || c.eps[j] != 0.0)
+            throw InputError(context_of(c.card3, "EPS"),
+                             fmt::format("EPS{} = {} does not increase from EPS{} = {}", i + 1,
+                                         c.eps[i], i, c.eps[i - 1]));
+        break;
+      }
+      p.strain.push_back(c.eps[i]);
+      p.stress.push_back(c.es[i]);
+    }
+    check_hardening(p.strain, p.stress, c.card3, "ES", "EPS/ES table");
+    p.linear = false;
+  } else {
+    if (!(c.sigy > 0.0))
+      throw InputError(context_of(mat.where, "SIGY"),
+                       "give SIGY > 0 (with ETAN), the EPS/ES table or an LCSS curve");
+    set_linear(p, c.sigy, mat.e * c.etan / (mat.e - c.etan), 0.0);
+  }
+  // A two-point law from zero strain is a straight line: keep the vectorised closed form.
+  if (!p.linear && p.strain.size() == 2 && p.strain[0] == 0.0) {
+    const double s0 = p.stress[0];
+    set_linear(p, s0, (p.stress[1] - s0) / p.strain[1], 0.0);
+  }
+
+  if (c.lcsr > 0) {
+    const model::Curve& curve =
+        find_curve(model, c.lcsr, c.card2, "LCSR", "yield scale factor against strain rate");
+    curve_points(curve, p.rate_curve_x, p.rate_curve_y);
+    for (std::size_t i = 0; i < p.rate_curve_x.size(); ++i) {
+      if (!(p.rate_curve_y[i] > 0.0))
+        throw InputError(context_of(c.card2, "LCSR"),
+                         fmt::format("curve {}: scale factor {} at strain rate {} must be positive",
+                                     c.lcsr, p.rate_curve_y[i], p.rate_curve_x[i]));
+      if (i > 0 && !(p.rate_curve_x[i] > p.rate_curve_x[i - 1]))
+        throw InputError(context_of(c.card2, "LCSR"),
+                         fmt::format("curve {}: strain rates must increase", c.lcsr));
+    }
+    p.rate_model = RateModel::kScaleCurve;
+  } else if (c.c > 0.0 || c.p > 0.0) {
+    if (!(c.c > 0.0 && c.p > 0.0))
+      throw InputError(context_of(c.card2, c.c > 0.0 ? "P" : "C"),
+                       "Cowper-Symonds rate effects need both C and P (or neither)");
+    p.rate_model = RateModel::kCowperSymonds;
+    p.rate_c = c.c;
+    p.rate_p = c.p;
+    if (c.vp == 1) {
+      // LS-DYNA's VP 1 for 024: sigma_y = sigma_s(eps_p) + SIGY (rate / C)^(1/P).
+      p.additive_overstress = true;
+      if (!(c.sigy > 0.0))
+        throw InputError(context_of(mat.where, "SIGY"),
+                         "VP 1 with C and P scales the viscoplastic overstress by SIGY: give "
+                         "SIGY > 0");
+      p.overstress_scale = c.sigy;
+    }
+  }
+  return p;
+}
+
+}  // namespace rf::material

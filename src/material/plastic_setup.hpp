@@ -1,0 +1,16 @@
+// Resolves the plasticity card of a *MAT_003 / *MAT_024 material into the parameters the stress
+// update uses: hardening law (linear, 8-point table or LCSS curve), rate model and failure
+// strain. Curves are checked here (they may follow the material in the deck): non-increasing
+// strains, negative or decreasing stresses and missing curves are input errors naming the
+// material card's file, line, keyword and field.
+#pragma once
+
+#include "material/elastic.hpp"
+#include "material/plastic_parameters.hpp"
+#include "model/model.hpp"
+
+namespace rf::material {
+
+PlasticParameters make_plastic_parameters(const model::Model& model, const model::Material& mat);
+
+}  // namespace rf::material

@@ -1,0 +1,118 @@
+// Bad *MAT_PLASTIC_KINEMATIC / *MAT_PIECEWISE_LINEAR_PLASTICITY input: every error names the
+// file, line, keyword and field, and says what was expected. Errors found while reading (card
+// values) and while building the solver state (curves, element families) are both covered.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "io/keyword/reader.hpp"
+#include "model/error.hpp"
+#include "solver/build_state.hpp"
+
+namespace rf::test {
+namespace {
+
+// One hexahedron of part 1 with material `mat` (MID 1) and any extra keywords.
+std::string deck(const std::string& mat, const std::string& extra = "") {
+  return "*KEYWORD\n*NODE\n1,0,0,0\n2,1,0,0\n3,1,1,0\n4,0,1,0\n5,0,0,1\n6,1,0,1\n7,1,1,1\n8,0,1,1\n"
+         "*ELEMENT_SOLID\n1,1,1,2,3,4,5,6,7,8\n*PART\nblock\n1,1,1\n*SECTION_SOLID\n1,1\n" +
+         mat + extra + "*END\n";
+}
+
+// Reads and builds the state; returns the InputError message, or "" if none.
+std::string error_of(const std::string& text) {
+  try {
+    const model::Model model = io::read_deck_text(text, "plastic.k");
+    const solver::NodeIndex index(model);
+    solver::build_state(model, index);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+struct Case {
+  std::string name;
+  std::string text;
+  std::vector<std::string> expected;
+};
+
+class PlasticInput : public ::testing::TestWithParam<Case> {};
+
+TEST_P(PlasticInput, ErrorNamesFileLineKeywordAndField) {
+  const Case& c = GetParam();
+  const std::string message = error_of(c.text);
+  ASSERT_FALSE(message.empty()) << "no error for " << c.name;
+  for (const auto& part : c.expected)
+    EXPECT_NE(message.find(part), std::string::npos) << "missing '" << part << "' in: " << message;
+}
+
+const std::string k003 = "*MAT_PLASTIC_KINEMATIC\n";
+const std::string k024 = "*MAT_PIECEWISE_LINEAR_PLASTICITY\n";
+
+std::vector<Case> cases() {
+  return {
+      {"etan_not_below_e",
+       deck(k003 + "1,7800,2e11,0.3,2e8,2e11,1\n"),
+       {"plastic.k:", "*MAT_PLASTIC_KINEMATIC", "ETAN", "[0, E)"}},
+      {"negative_sigy", deck(k003 + "1,7800,2e11,0.3,-1,0,1\n"), {"SIGY", "positive"}},
+      {"beta_out_of_range", deck(k003 + "1,7800,2e11,0.3,2e8,0,1.5\n"), {"BETA", "[0, 1]"}},
+      {"src_without_srp",
+       deck(k003 + "1,7800,2e11,0.3,2e8,0,1\n40,0,0,0\n"),
+       {"SRP", "both SRC and SRP"}},
+      {"vp_003", deck(k003 + "1,7800,2e11,0.3,2e8,0,1\n0,0,0,2\n"), {"VP", "not 0"}},
+      {"etan_024", deck(k024 + "1,7800,2e11,0.3,2e8,3e11\n"), {"*MAT_PIECEWISE", "ETAN"}},
+      {"tdel", deck(k024 + "1,7800,2e11,0.3,2e8,0,0,1e-9\n"), {"TDEL", "not supported"}},
+      {"vp3_shells_only", deck(k024 + "1,7800,2e11,0.3,2e8,0\n0,0,0,0,3\n"), {"VP", "shells"}},
+      {"fs_deletion_not_supported",
+       deck(k003 + "1,7800,2e11,0.3,2e8,0,1\n0,0,0.3,0\n"),
+       {"FS", "element deletion", "not supported"}},
+      {"fail_deletion_not_supported",
+       deck(k024 + "1,7800,2e11,0.3,2e8,0,0.3\n"),
+       {"FAIL", "element deletion", "not supported"}},
+      {"fail_negative", deck(k024 + "1,7800,2e11,0.3,2e8,0,-1\n"), {"FAIL", "user"}},
+      {"no_hardening", deck(k024 + "1,7800,2e11,0.3,0,0\n"), {"SIGY", "LCSS"}},
+      {"lcss_missing_or_table",
+       deck(k024 + "1,7800,2e11,0.3,0,0\n0,0,5,0,0\n"),
+       {"plastic.k:", "LCSS", "*DEFINE_TABLE", "not supported"}},
+      {"curve_decreasing",
+       deck(k024 + "1,7800,2e11,0.3,0,0\n0,0,5,0,0\n",
+            "*DEFINE_CURVE\n5\n0,2e8\n0.1,3e8\n0.2,2.5e8\n"),
+       {"LCSS", "curve 5", "decreases"}},
+      {"curve_negative",
+       deck(k024 + "1,7800,2e11,0.3,0,0\n0,0,5,0,0\n", "*DEFINE_CURVE\n5\n0,-2e8\n0.1,3e8\n"),
+       {"LCSS", "positive"}},
+      {"table_not_increasing",
+       deck(k024 + "1,7800,2e11,0.3,0,0\n0,0,0,0,0\n0,0.1,0.05\n2e8,3e8,3.5e8\n"),
+       {"EPS", "does not increase"}},
+      {"table_softening",
+       deck(k024 + "1,7800,2e11,0.3,0,0\n0,0,0,0,0\n0,0.1,0.2\n2e8,3e8,2.9e8\n"),
+       {"ES", "decreases"}},
+      {"lcsr_negative",
+       deck(k024 + "1,7800,2e11,0.3,2e8,0\n0,0,0,6,0\n", "*DEFINE_CURVE\n6\n0,1\n10,-1\n"),
+       {"LCSR", "positive"}},
+      {"vp1_needs_sigy",
+       deck(k024 + "1,7800,2e11,0.3,0,0\n40,5,5,0,1\n", "*DEFINE_CURVE\n5\n0,2e8\n1,3e8\n"),
+       {"SIGY", "VP 1"}},
+      {"plastic_on_p_order",
+       deck(k003 + "1,7800,2e11,0.3,2e8,0,1\n", "*CHANGE_P-ORDER\nP,1,2\n"),
+       {"MID", "order 2", "elastic materials only"}},
+  };
+}
+
+INSTANTIATE_TEST_SUITE_P(Plasticity, PlasticInput, ::testing::ValuesIn(cases()),
+                         [](const auto& info) { return info.param.name; });
+
+TEST(PlasticInput, ValidCardsBuild) {
+  EXPECT_EQ(error_of(deck(k003 + "1,7800,2e11,0.3,2e8,2e9,0.5\n40.4,5,0,1\n")), "");
+  EXPECT_EQ(error_of(deck("*MAT_024_TITLE\nsteel\n1,7800,2e11,0.3,0,0\n0,0,5,0,0\n",
+                          "*DEFINE_CURVE\n5\n0,2e8\n0.1,3e8\n1,4e8\n")),
+            "");
+  EXPECT_EQ(error_of(deck(k024 + "1,7800,2e11,0.3,0,0\n0,0,0,0,0\n0,0.1,0.3\n2e8,3e8,3.5e8\n")),
+            "");
+  // LS-DYNA's FAIL default 10^20 means no failure.
+  EXPECT_EQ(error_of(deck(k024 + "1,7800,2e11,0.3,2e8,0,1e21\n")), "");
+}
+
+}  // namespace
+}  // namespace rf::test
