@@ -1,5 +1,6 @@
 // Keyword deck reader: LS-DYNA dialect (fixed-width and free format) today; the IMPETUS
-// dialect plugs in beside it. Produces a model::Model or throws rf::InputError.
+// dialect plugs in beside it. Produces a model::Model or throws rf::InputError (a single
+// problem) or rf::InputErrorList (every problem found, grouped by kind).
 #pragma once
 
 #include <filesystem>
@@ -24,6 +25,12 @@ struct ReadOptions {
   // When set, every file read (main deck and includes) is stored here under that name, so that
   // a restart dump can carry the model input.
   std::map<std::string, std::string>* record_files = nullptr;
+  // Skip unsupported keywords that change the physics (warnings, model.ignored_physics)
+  // instead of refusing the deck (CLI --ignore-unsupported).
+  bool ignore_unsupported = false;
+  // Also refuse what `run` would refuse (no *CONTROL_TERMINATION, no elements, nothing that
+  // limits the time step, IMFLAG 1 without an eigen analysis): `check` and `run` set it.
+  bool check_runnable = false;
 };
 
 // Reads a deck file and everything it includes (paths relative to the including file).
