@@ -585,7 +585,11 @@ void finish_model(ReaderContext& context) {
   nodes.reserve(m.nodes.size());
   for (const auto& n : m.nodes) nodes.insert(n.id);
 
-  // Deferred resolution.
+  // Deferred resolution. IMPETUS meshes are generated only from a deck read without errors:
+  // a damaged card can leave sizes that would take gigabytes for nothing.
+  if (!context.errors.empty()) {
+    if (!context.components.empty() || !context.merges.empty() || !context.motions.empty()) return;
+  }
   finish_impetus(context);
   for (const auto& n : m.nodes) nodes.insert(n.id);  // generated meshes
   handlers::finish_sets(context);

@@ -100,13 +100,13 @@ constexpr std::array kRules{
 UnsupportedKind classify_unsupported(std::string_view keyword) {
   const Rule* best = nullptr;
   for (const Rule& rule : kRules) {
+    if (best && !best->prefix) break;  // an exact name wins
     if (!rule.prefix) {
-      if (keyword == rule.name || (keyword.starts_with(rule.name) &&
-                                   keyword.size() > rule.name.size() &&
-                                   keyword[rule.name.size()] == '_')) {
-        // Exact names also cover their options (*CONTROL_OUTPUT_TITLE).
-        if (!best || best->prefix || rule.name.size() > best->name.size()) best = &rule;
-      }
+      // An exact name, also with the _TITLE or _ID option (*CONTROL_OUTPUT_TITLE); any other
+      // suffix makes another keyword, unknown to this rule.
+      const std::string_view rest =
+          keyword.starts_with(rule.name) ? keyword.substr(rule.name.size()) : "?";
+      if (rest.empty() || rest == "_TITLE" || rest == "_ID") best = &rule;
       continue;
     }
     if (!keyword.starts_with(rule.name)) continue;
