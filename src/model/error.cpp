@@ -51,7 +51,8 @@ std::string list_text(const std::vector<InputErrorList::Entry>& entries, std::si
 }  // namespace
 
 InputErrorList::InputErrorList(std::vector<Entry> entries, std::size_t dropped)
-    : InputError(Preformatted{}, entries.empty() ? InputErrorContext{} : entries.front().error.context(),
+    : InputError(Preformatted{},
+                 entries.empty() ? InputErrorContext{} : entries.front().error.context(),
                  list_text(entries, dropped)),
       entries_(std::move(entries)) {}
 

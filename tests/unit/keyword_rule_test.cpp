@@ -14,8 +14,8 @@
 
 namespace {
 
-using rf::io::ReadOptions;
 using rf::io::read_deck_text;
+using rf::io::ReadOptions;
 using rf::model::Model;
 
 // One unit cube hexahedron, part 1, elastic, end time 1; 21 lines. `extra` starts on line 22.
@@ -53,9 +53,9 @@ ReadOptions ignoring() {
 
 TEST(KeywordClasses, OutputOnlyKeywordsAreNamed) {
   using rf::io::UnsupportedClass;
-  for (const char* k : {"*DATABASE_ELOUT", "*DATABASE_BINARY_D3THDT", "*CONTROL_ENERGY",
-                        "*CONTROL_OUTPUT", "*CONTROL_OUTPUT_TITLE", "*CONTROL_MPP_IO_NODUMP",
-                        "*INTERFACE_SPRINGBACK_LSDYNA"}) {
+  for (const char* k :
+       {"*DATABASE_ELOUT", "*DATABASE_BINARY_D3THDT", "*CONTROL_ENERGY", "*CONTROL_OUTPUT",
+        "*CONTROL_OUTPUT_TITLE", "*CONTROL_MPP_IO_NODUMP", "*INTERFACE_SPRINGBACK_LSDYNA"}) {
     EXPECT_EQ(rf::io::classify_unsupported(k).cls, UnsupportedClass::OutputOnly) << k;
   }
 }
@@ -79,10 +79,10 @@ TEST(KeywordClasses, EverythingElseChangesThePhysics) {
 
 TEST(KeywordRule, PhysicsKeywordsAreErrorsListedWithTheirLines) {
   const std::string deck = cube(
-      "*LOAD_SEGMENT\n1,1.0\n"       // line 22
-      "*CONTROL_ACCURACY\n1,4\n"     // line 24
-      "*DATABASE_SBTOUT\n1e-3\n"     // line 26: output-only, a warning
-      "*LOAD_SEGMENT\n2,1.0\n");     // line 28
+      "*LOAD_SEGMENT\n1,1.0\n"    // line 22
+      "*CONTROL_ACCURACY\n1,4\n"  // line 24
+      "*DATABASE_SBTOUT\n1e-3\n"  // line 26: output-only, a warning
+      "*LOAD_SEGMENT\n2,1.0\n");  // line 28
   const std::string message = rf::test::input_error_of(deck, "d.k");
   EXPECT_NE(message.find("3 problems in the deck"), std::string::npos) << message;
   EXPECT_NE(message.find("--ignore-unsupported"), std::string::npos) << message;
@@ -137,8 +137,9 @@ TEST(KeywordRule, PartsWithShellSectionsNameTheRealCause) {
                          "are not supported yet"),
             std::string::npos)
       << message;
-  EXPECT_EQ(count_of(message, "a *SECTION_SHELL_TITLE at d.k:22: a shell section: shells are not "
-                              "supported yet"),
+  EXPECT_EQ(count_of(message,
+                     "a *SECTION_SHELL_TITLE at d.k:22: a shell section: shells are not "
+                     "supported yet"),
             3u)
       << message;
   EXPECT_NE(message.find("d.k:28: *PART field SECID: part 2 uses section 2"), std::string::npos)
@@ -148,9 +149,9 @@ TEST(KeywordRule, PartsWithShellSectionsNameTheRealCause) {
 
 TEST(KeywordRule, EveryCardErrorIsReportedInOnePass) {
   const std::string deck = cube(
-      "*NODE\n9,abc,0,0\n"              // line 23: bad number
-      "*SET_NODE_LIST\n1\n1.5\n"        // line 26: fraction in an integer field
-      "*PART\nsecond\n5,1,7\n");        // line 29: material 7 is not defined
+      "*NODE\n9,abc,0,0\n"        // line 23: bad number
+      "*SET_NODE_LIST\n1\n1.5\n"  // line 26: fraction in an integer field
+      "*PART\nsecond\n5,1,7\n");  // line 29: material 7 is not defined
   const std::string message = rf::test::input_error_of(deck, "d.k");
   EXPECT_NE(message.find("3 problems in the deck"), std::string::npos) << message;
   EXPECT_NE(message.find("errors in cards (2):"), std::string::npos) << message;
@@ -270,15 +271,15 @@ TEST(KeywordParameters, DuplicationFollowsDflag) {
 // --- reader gaps ---------------------------------------------------------------------------------
 
 TEST(KeywordReader, GenerateAndGeneralSets) {
-  const Model m = read_deck_text(cube(
-      "*SET_NODE_LIST_GENERATE_TITLE\nends\n10\n1,2,7,100\n"
-      "*SET_PART_LIST_GENERATE\n11\n1,5\n"
-      "*SET_NODE_GENERAL\n12\nPART,1\nDNODE,1,2\n"
-      "*DEFINE_BOX\n3,-0.5,0.5,-0.5,1.5,-0.5,0.5\n"
-      "*SET_NODE_GENERAL\n13\nBOX,3\n"
-      "*SET_PART_GENERAL\n14\nALL\n"
-      "*SET_SOLID_TITLE\nall solids\n15\n1\n"
-      "*SET_SOLID_GENERATE\n16\n1,9\n"));
+  const Model m =
+      read_deck_text(cube("*SET_NODE_LIST_GENERATE_TITLE\nends\n10\n1,2,7,100\n"
+                          "*SET_PART_LIST_GENERATE\n11\n1,5\n"
+                          "*SET_NODE_GENERAL\n12\nPART,1\nDNODE,1,2\n"
+                          "*DEFINE_BOX\n3,-0.5,0.5,-0.5,1.5,-0.5,0.5\n"
+                          "*SET_NODE_GENERAL\n13\nBOX,3\n"
+                          "*SET_PART_GENERAL\n14\nALL\n"
+                          "*SET_SOLID_TITLE\nall solids\n15\n1\n"
+                          "*SET_SOLID_GENERATE\n16\n1,9\n"));
   using V = std::vector<rf::model::Id>;
   EXPECT_EQ(m.node_sets.at(10).nodes, (V{1, 2, 7, 8}));
   EXPECT_EQ(m.part_sets.at(11).parts, (V{1}));
@@ -299,20 +300,19 @@ TEST(KeywordReader, CurveFunctionIsAnExpressionOfTime) {
     const double s = t / 2.0;
     EXPECT_NEAR(rf::model::evaluate(c, t), 0.5 * (3.0 * std::sin(2.0 * M_PI * s) + s), 1e-10);
   }
-  const std::string bad =
-      rf::test::input_error_of("*DEFINE_CURVE_FUNCTION\n7\nsin(tim)\n");
+  const std::string bad = rf::test::input_error_of("*DEFINE_CURVE_FUNCTION\n7\nsin(tim)\n");
   EXPECT_NE(bad.find("bar.k:3: *DEFINE_CURVE_FUNCTION card 2 field FUNCTION"), std::string::npos)
       << bad;
 }
 
 TEST(KeywordReader, IdCardBeforeEveryDataCardAsLsPrePostWritesThem) {
-  const Model m = read_deck_text(cube(
-      "*SET_NODE_LIST\n1\n1,2\n"
-      "*BOUNDARY_SPC_SET_ID\n"
-      "         1fixed base\n"
-      "         1         0         1         1         1         0         0         0\n"
-      "         2\n"
-      "         1         0         0         0         1         0         0         0\n"));
+  const Model m = read_deck_text(
+      cube("*SET_NODE_LIST\n1\n1,2\n"
+           "*BOUNDARY_SPC_SET_ID\n"
+           "         1fixed base\n"
+           "         1         0         1         1         1         0         0         0\n"
+           "         2\n"
+           "         1         0         0         0         1         0         0         0\n"));
   ASSERT_EQ(m.spcs.size(), 2u);
   EXPECT_TRUE(m.spcs[0].fix[0]);
   EXPECT_FALSE(m.spcs[1].fix[0]);
@@ -320,8 +320,8 @@ TEST(KeywordReader, IdCardBeforeEveryDataCardAsLsPrePostWritesThem) {
 }
 
 TEST(KeywordReader, FixedFormatValueWiderThanItsColumnIsExplained) {
-  const std::string message = rf::test::input_error_of(cube(
-      "*MAT_ELASTIC\n         2   7.85e-09  2.1e+05       0.3\n"));
+  const std::string message =
+      rf::test::input_error_of(cube("*MAT_ELASTIC\n         2   7.85e-09  2.1e+05       0.3\n"));
   EXPECT_NE(message.find("card 1 field E"), std::string::npos) << message;
   EXPECT_NE(message.find("columns 21-30"), std::string::npos) << message;
   EXPECT_NE(message.find("free format"), std::string::npos) << message;
@@ -335,11 +335,11 @@ TEST(KeywordReader, FourNodeSolidIsATetrahedron) {
 }
 
 TEST(KeywordReader, KeywordIdAndContactTitleAreRead) {
-  const Model m = read_deck_text(cube(
-      "*KEYWORD_ID\nmodel 12 revision 3\n"
-      "*SET_PART_LIST\n1\n1\n"
-      "*CONTACT_AUTOMATIC_SINGLE_SURFACE_TITLE\n"
-      "        42self contact\n1,0,2\n0.1\n\n"));
+  const Model m =
+      read_deck_text(cube("*KEYWORD_ID\nmodel 12 revision 3\n"
+                          "*SET_PART_LIST\n1\n1\n"
+                          "*CONTACT_AUTOMATIC_SINGLE_SURFACE_TITLE\n"
+                          "        42self contact\n1,0,2\n0.1\n\n"));
   ASSERT_EQ(m.contacts.size(), 1u);
   EXPECT_EQ(m.contacts[0].id, 42);
   EXPECT_EQ(m.contacts[0].heading, "self contact");

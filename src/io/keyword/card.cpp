@@ -229,11 +229,12 @@ std::string Card::column_hint(std::size_t i) const {
                            !raw.empty() && raw.front() != ' ';
   const bool joined_right = last < line.size() && line[last - 1] != ' ' && line[last] != ' ';
   if (!joined_left && !joined_right) return {};
-  return fmt::format(" (columns {}-{} of this fixed-format card hold {}; a value wider than its "
-                     "{} columns runs into the next field: write the card in free format, with "
-                     "commas between the values, or use the long format, '+' after the keyword "
-                     "or *KEYWORD LONG=Y, with 20 columns per field)",
-                     first, last, quoted(raw), last - first + 1);
+  return fmt::format(
+      " (columns {}-{} of this fixed-format card hold {}; a value wider than its "
+      "{} columns runs into the next field: write the card in free format, with "
+      "commas between the values, or use the long format, '+' after the keyword "
+      "or *KEYWORD LONG=Y, with 20 columns per field)",
+      first, last, quoted(raw), last - first + 1);
 }
 
 double Card::real(std::size_t i, const char* name, double fallback) const {

@@ -134,7 +134,8 @@ struct ReaderContext {
   };
   std::vector<PendingSet> pending_sets;
   int parameter_duplication = 1;
-  std::vector<std::string> include_paths;  // *INCLUDE_PATH folders, as written  // *PARAMETER_DUPLICATION DFLAG (LS-DYNA default 1)
+  std::vector<std::string> include_paths;  // *INCLUDE_PATH folders, as written  //
+                                           // *PARAMETER_DUPLICATION DFLAG (LS-DYNA default 1)
   model::SourceLocation implicit_general_where;
 
   void warn(const model::SourceLocation& where, std::string message) {

@@ -645,11 +645,11 @@ void finish_model(ReaderContext& context) {
       const auto skipped = context.skipped_sections.find(p.secid);
       if (skipped != context.skipped_sections.end()) {
         const auto& s = skipped->second;
-        context.report(kReferenceErrors,
-                       located_error(p.where, "SECID",
-                                     fmt::format("part {} uses section {}, a {} at {}:{}: {}", id,
-                                                 p.secid, s.keyword, s.where.file, s.where.line,
-                                                 s.what)));
+        context.report(
+            kReferenceErrors,
+            located_error(p.where, "SECID",
+                          fmt::format("part {} uses section {}, a {} at {}:{}: {}", id, p.secid,
+                                      s.keyword, s.where.file, s.where.line, s.what)));
       } else {
         context.report(kReferenceErrors,
                        located_error(p.where, "SECID",
@@ -662,21 +662,21 @@ void finish_model(ReaderContext& context) {
       const auto skipped = context.skipped_materials.find(p.mid);
       if (skipped != context.skipped_materials.end()) {
         const auto& s = skipped->second;
-        context.report(kReferenceErrors,
-                       located_error(p.where, "MID",
-                                     fmt::format("part {} uses material {}, a {} at {}:{}, which "
-                                                 "is not supported",
-                                                 id, p.mid, s.keyword, s.where.file,
-                                                 s.where.line)));
-      } else {
         context.report(
             kReferenceErrors,
             located_error(p.where, "MID",
-                          fmt::format("part {} refers to material {}, which is not defined{}", id,
-                                      p.mid,
-                                      skipped_materials ? " (unsupported *MAT keywords were "
-                                                          "skipped; see the warnings)"
-                                                        : "")));
+                          fmt::format("part {} uses material {}, a {} at {}:{}, which "
+                                      "is not supported",
+                                      id, p.mid, s.keyword, s.where.file, s.where.line)));
+      } else {
+        context.report(
+            kReferenceErrors,
+            located_error(
+                p.where, "MID",
+                fmt::format("part {} refers to material {}, which is not defined{}", id, p.mid,
+                            skipped_materials ? " (unsupported *MAT keywords were "
+                                                "skipped; see the warnings)"
+                                              : "")));
       }
     }
     if (p.hgid != 0 && !m.hourglass.count(p.hgid)) {
@@ -754,20 +754,20 @@ void check_runnable(ReaderContext& context) {
   const bool eigen = m.implicit.eigenvalue && m.implicit.neig > 0 &&
                      (!m.implicit.general || m.implicit.imflag == 1);
   if (m.implicit.imflag == 1 && !eigen) {
-    context.report(kModelErrors,
-                   InputError({context.implicit_general_where.file,
-                               context.implicit_general_where.line, "*CONTROL_IMPLICIT_GENERAL", 1,
-                               "IMFLAG"},
-                              "IMFLAG 1 (implicit) is supported only for an eigen analysis: add "
-                              "*CONTROL_IMPLICIT_EIGENVALUE with NEIG > 0"));
+    context.report(
+        kModelErrors,
+        InputError({context.implicit_general_where.file, context.implicit_general_where.line,
+                    "*CONTROL_IMPLICIT_GENERAL", 1, "IMFLAG"},
+                   "IMFLAG 1 (implicit) is supported only for an eigen analysis: add "
+                   "*CONTROL_IMPLICIT_EIGENVALUE with NEIG > 0"));
   }
   if (eigen) return;  // no transient run: no end time or time step needed
   if (m.termination.endtim <= 0.0 && m.termination.endcyc <= 0) {
     const bool present = !context.termination_where.file.empty();
     context.report(kModelErrors,
                    present ? located_error(context.termination_where, "ENDTIM",
-                                          "ENDTIM is not positive (and ENDCYC is 0): nothing "
-                                          "says when the analysis ends")
+                                           "ENDTIM is not positive (and ENDCYC is 0): nothing "
+                                           "says when the analysis ends")
                            : located_error(deck, "",
                                            "the deck has no *CONTROL_TERMINATION: nothing says "
                                            "when the analysis ends (add one with ENDTIM)"));
@@ -779,14 +779,14 @@ void check_runnable(ReaderContext& context) {
         skipped += fmt::format("{}{} ({} block(s))", skipped.empty() ? "" : ", ", keyword, count);
       }
     }
-    context.report(kModelErrors,
-                   located_error(deck, "",
-                                 skipped.empty()
-                                     ? std::string("the model has no elements or rigid bodies to "
-                                                   "simulate")
-                                     : fmt::format("the model has no elements or rigid bodies to "
-                                                   "simulate; skipped element keywords: {}",
-                                                   skipped)));
+    context.report(
+        kModelErrors,
+        located_error(deck, "",
+                      skipped.empty() ? std::string("the model has no elements or rigid bodies to "
+                                                    "simulate")
+                                      : fmt::format("the model has no elements or rigid bodies to "
+                                                    "simulate; skipped element keywords: {}",
+                                                    skipped)));
     return;
   }
   // Without a deformable element nothing gives a stable time step: the user must. Parts

@@ -184,8 +184,9 @@ bool accept_redefinition(const Card& card, const char* field, const std::string&
   const std::string where = fmt::format("parameter {} is defined again", name);
   switch (dflag) {
     case 2:
-      context.warn(card.location(), where + "; the new definition replaces the first "
-                                            "(*PARAMETER_DUPLICATION DFLAG 2)");
+      context.warn(card.location(), where +
+                                        "; the new definition replaces the first "
+                                        "(*PARAMETER_DUPLICATION DFLAG 2)");
       return true;
     case 3:
       context.report(kCardErrors, card.error(field, where + " (*PARAMETER_DUPLICATION DFLAG 3 "
@@ -196,9 +197,10 @@ bool accept_redefinition(const Card& card, const char* field, const std::string&
     case 5:
       return false;
     default:
-      context.warn(card.location(), where + "; the first definition is kept (LS-DYNA's rule; "
-                                            "*PARAMETER_DUPLICATION DFLAG 2 or 4 keeps the new "
-                                            "one)");
+      context.warn(card.location(), where +
+                                        "; the first definition is kept (LS-DYNA's rule; "
+                                        "*PARAMETER_DUPLICATION DFLAG 2 or 4 keeps the new "
+                                        "one)");
       return false;
   }
 }

@@ -215,7 +215,8 @@ void define_curve_function(const Block& block, ReaderContext& context) {
   for (std::size_t i = 0; i < text.size();) {
     if (text[i] == '&') {
       std::size_t j = i + 1;
-      while (j < text.size() && (std::isalnum(static_cast<unsigned char>(text[j])) || text[j] == '_')) {
+      while (j < text.size() &&
+             (std::isalnum(static_cast<unsigned char>(text[j])) || text[j] == '_')) {
         ++j;
       }
       const std::string name = text.substr(i + 1, j - i - 1);
@@ -233,7 +234,8 @@ void define_curve_function(const Block& block, ReaderContext& context) {
     if (std::isalpha(static_cast<unsigned char>(text[i])) || text[i] == '_') {
       std::size_t j = i;
       std::string name;
-      while (j < text.size() && (std::isalnum(static_cast<unsigned char>(text[j])) || text[j] == '_')) {
+      while (j < text.size() &&
+             (std::isalnum(static_cast<unsigned char>(text[j])) || text[j] == '_')) {
         name += static_cast<char>(std::tolower(static_cast<unsigned char>(text[j++])));
       }
       expression += name == "pi" ? "_pi" : name;  // muparser's name for the constant
@@ -246,9 +248,9 @@ void define_curve_function(const Block& block, ReaderContext& context) {
   try {
     c.function = std::make_shared<const model::ArgumentFunction>("curve(time) = " + expression);
   } catch (const std::exception& e) {
-    throw function_card.error("FUNCTION", fmt::format("cannot use '{}': {}",
-                                                      std::string(trim(text)).substr(0, 80),
-                                                      e.what()));
+    throw function_card.error(
+        "FUNCTION",
+        fmt::format("cannot use '{}': {}", std::string(trim(text)).substr(0, 80), e.what()));
   }
   c.function_text = std::string(trim(text));
   if (const auto it = context.model.curves.find(c.id); it != context.model.curves.end()) {

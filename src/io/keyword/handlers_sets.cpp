@@ -88,15 +88,14 @@ void set_general(const Block& block, ReaderContext& context) {
     if (cursor.at_end()) break;
     const Card card = cursor.next(++n, layout, "OPTION E1..E7");
     const std::string option = to_upper(card.text(0));
-    const bool known = nodes ? (option == "ALL" || option == "NODE" || option == "DNODE" ||
-                                option == "PART" || option == "DPART" || option == "BOX" ||
-                                option == "DBOX")
-                             : (option == "ALL" || option == "PART" || option == "DPART");
+    const bool known =
+        nodes ? (option == "ALL" || option == "NODE" || option == "DNODE" || option == "PART" ||
+                 option == "DPART" || option == "BOX" || option == "DBOX")
+              : (option == "ALL" || option == "PART" || option == "DPART");
     if (!known) {
-      throw card.error("OPTION",
-                       fmt::format("'{}' is not supported (supported: {})", option,
-                                   nodes ? "ALL, NODE, DNODE, PART, DPART, BOX, DBOX"
-                                         : "ALL, PART, DPART"));
+      throw card.error("OPTION", fmt::format("'{}' is not supported (supported: {})", option,
+                                             nodes ? "ALL, NODE, DNODE, PART, DPART, BOX, DBOX"
+                                                   : "ALL, PART, DPART"));
     }
     ReaderContext::PendingSet::Rule rule{option, {}, card.location()};
     for (std::size_t i = 1; i < 8 && i < std::max<std::size_t>(card.field_count(), 8); ++i) {
@@ -131,8 +130,7 @@ void set_solid_list(const Block& block, ReaderContext& context) {
       if (id != 0) set.elements.push_back(id);
     }
   }
-  if (const auto it = context.model.solid_sets.find(set.id);
-      it != context.model.solid_sets.end()) {
+  if (const auto it = context.model.solid_sets.find(set.id); it != context.model.solid_sets.end()) {
     throw located_error(set.where, "SID",
                         fmt::format("solid set {} is already defined at {}:{}", set.id,
                                     it->second.where.file, it->second.where.line));
@@ -181,8 +179,8 @@ void finish_sets(ReaderContext& context) {
         for (const model::Id pid : v) {
           if (!m.parts.count(pid)) {
             throw located_error(rule.where, "E1",
-                                fmt::format("{} {}: part {} is not defined", kind_name(pending.kind),
-                                            pending.id, pid));
+                                fmt::format("{} {}: part {} is not defined",
+                                            kind_name(pending.kind), pending.id, pid));
           }
         }
         if (pending.kind == 'P') {
@@ -196,9 +194,9 @@ void finish_sets(ReaderContext& context) {
         for (const model::Id box : v) {
           const auto it = m.boxes.find(box);
           if (it == m.boxes.end()) {
-            throw located_error(rule.where, "E1",
-                                fmt::format("node set {}: box {} is not defined (*DEFINE_BOX)",
-                                            pending.id, box));
+            throw located_error(
+                rule.where, "E1",
+                fmt::format("node set {}: box {} is not defined (*DEFINE_BOX)", pending.id, box));
           }
           for (const auto& node : m.nodes) {
             bool inside = true;

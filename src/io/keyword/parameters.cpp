@@ -83,8 +83,8 @@ std::string ParameterTable::canonical_expression(const std::string& expression) 
   out.reserve(expression.size());
   for (std::size_t i = 0; i < expression.size();) {
     const char c = expression[i];
-    const bool ampersand = c == '&' && i + 1 < expression.size() &&
-                           identifier_start(expression[i + 1]);
+    const bool ampersand =
+        c == '&' && i + 1 < expression.size() && identifier_start(expression[i + 1]);
     if (!ampersand && !identifier_start(c)) {
       // A number such as 1.5e3 keeps its exponent letter.
       if (std::isdigit(static_cast<unsigned char>(c)) || c == '.') {
@@ -113,7 +113,8 @@ std::string ParameterTable::canonical_expression(const std::string& expression) 
     const auto it = by_key_.find(key);
     if (!call && it != by_key_.end()) {
       if (it->second.text) {
-        throw std::runtime_error("parameter '" + name + "' is a text parameter, a number is needed");
+        throw std::runtime_error("parameter '" + name +
+                                 "' is a text parameter, a number is needed");
       }
       out += key;
       continue;

@@ -88,7 +88,8 @@ class DeckReader {
     if (errors.empty()) return;
     // One problem reads best as one line; the heading of the unsupported-physics group says how
     // to go on without them, so that group is always listed.
-    if (errors.size() == 1 && context_.dropped_errors == 0 && errors[0].group != kUnsupportedPhysics) {
+    if (errors.size() == 1 && context_.dropped_errors == 0 &&
+        errors[0].group != kUnsupportedPhysics) {
       throw errors[0].error;
     }
     throw InputErrorList(std::move(errors), context_.dropped_errors);
@@ -206,10 +207,11 @@ class DeckReader {
     std::string read_instead;
     if (entry) {
       std::string accepted;
-      for (const auto& a : entry->options) accepted += fmt::format("{}_{}", accepted.empty() ? "" : ", ", a);
-      read_instead = fmt::format("; {} is read, {}", entry->name,
-                                 accepted.empty() ? "without options"
-                                                  : fmt::format("with the options {}", accepted));
+      for (const auto& a : entry->options)
+        accepted += fmt::format("{}_{}", accepted.empty() ? "" : ", ", a);
+      read_instead = fmt::format(
+          "; {} is read, {}", entry->name,
+          accepted.empty() ? "without options" : fmt::format("with the options {}", accepted));
     }
     const std::string lines = fmt::format("{} data line(s)", block.lines.size());
     if (kind.cls == UnsupportedClass::OutputOnly) {
@@ -227,9 +229,9 @@ class DeckReader {
       context_.model.ignored_physics.push_back({block.location(), message});
       return;
     }
-    context_.report(kUnsupportedPhysics,
-                    block_error(block, 0, "",
-                                fmt::format("not supported: {}{}", kind.what, read_instead)));
+    context_.report(
+        kUnsupportedPhysics,
+        block_error(block, 0, "", fmt::format("not supported: {}{}", kind.what, read_instead)));
   }
 
   // The ID on the first data card of an unsupported *SECTION_ or *MAT_ keyword (after the title
@@ -251,7 +253,7 @@ class DeckReader {
     if (!id || *id <= 0) return;
     auto& skipped = section ? context_.skipped_sections : context_.skipped_materials;
     skipped.try_emplace(*id, ReaderContext::SkippedDefinition{block.keyword, std::string(kind.what),
-                                                             block.location()});
+                                                              block.location()});
   }
 
   void dispatch_impetus(const Block& block_in) {
@@ -302,8 +304,8 @@ class DeckReader {
   void include(const std::string& filename, const Card& card) {
     if (filename.empty()) throw card.error("FILENAME", "the file name is empty");
     const auto found = locate(fs::path(filename));
-    const fs::path looked = fs::path(filename).is_relative() ? current_dir_ / filename
-                                                             : fs::path(filename);
+    const fs::path looked =
+        fs::path(filename).is_relative() ? current_dir_ / filename : fs::path(filename);
     if (!found && file_texts_) {
       throw card.error("FILENAME", fmt::format("included file '{}' is not among the deck files "
                                                "the restart dump holds",
@@ -312,10 +314,12 @@ class DeckReader {
     if (!found) {
       std::string where = fmt::format("'{}'", looked.string());
       if (fs::path(filename).is_relative()) {
-        if (main_dir_ != current_dir_) where += fmt::format(", '{}'", (main_dir_ / filename).string());
+        if (main_dir_ != current_dir_)
+          where += fmt::format(", '{}'", (main_dir_ / filename).string());
         for (const auto& folder : context_.include_paths) {
           const fs::path f(folder);
-          where += fmt::format(", '{}'", ((f.is_absolute() ? f : main_dir_ / f) / filename).string());
+          where +=
+              fmt::format(", '{}'", ((f.is_absolute() ? f : main_dir_ / f) / filename).string());
         }
       }
       throw card.error("FILENAME", fmt::format("included file '{}' does not exist (looked for "
