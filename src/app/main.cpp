@@ -281,6 +281,12 @@ int command_run(const std::string& deck, std::string output_dir, int threads, bo
     throw;
   }
   for (const auto& w : model.warnings) report_warning(summary, w);
+  if (read_options.ignore_unsupported) {
+    summary.ignore_unsupported = true;
+    for (const auto& w : model.ignored_physics) {
+      summary.ignored_unsupported.push_back(rf::app::format_warning(w));
+    }
+  }
   // *CONTROL_IMPLICIT_EIGENVALUE with IMFLAG 1: an eigen analysis instead of a transient run.
   if (rf::modal::deck_requests_eigen_analysis(model)) {
     clear_output_directory(out, rf::app::ResultKind::kEigen, quiet);
@@ -403,6 +409,7 @@ int main(int argc, char** argv) {
   std::string deck, output_dir, dialect = "auto", dump, restart_deck;
   int threads = 0;
   bool quiet = false;
+  bool ignore_unsupported = false;
   std::vector<std::string> assignments;
   double dump_every = 0.0;
 
@@ -415,6 +422,9 @@ int main(int argc, char** argv) {
   run->add_option("--set", assignments, "Override a *PARAMETER: name=value (repeatable)");
   run->add_option("--dialect", dialect, "Input dialect")
       ->check(CLI::IsMember({"auto", "lsdyna", "impetus"}));
+  run->add_flag("--ignore-unsupported", ignore_unsupported,
+                "Run without the unsupported keywords that change the physics (listed in the log "
+                "and run.json) instead of refusing the deck");
   run->add_option("--dump-every", dump_every,
                   "Write a restart dump DIR/d3dump_NNNN.h5 every T of simulated time and at the "
                   "end")
@@ -439,6 +449,8 @@ int main(int argc, char** argv) {
   check->add_option("--set", assignments, "Override a *PARAMETER: name=value (repeatable)");
   check->add_option("--dialect", dialect, "Input dialect")
       ->check(CLI::IsMember({"auto", "lsdyna", "impetus"}));
+  check->add_flag("--ignore-unsupported", ignore_unsupported,
+                  "Accept the deck without the unsupported keywords that change the physics");
 
   std::optional<int> eigen_modes;
   std::string eigen_parts, eigen_solver = "cholmod";
@@ -465,6 +477,8 @@ int main(int argc, char** argv) {
   eigen->add_option("--set", assignments, "Override a *PARAMETER: name=value (repeatable)");
   eigen->add_option("--dialect", dialect, "Input dialect")
       ->check(CLI::IsMember({"auto", "lsdyna", "impetus"}));
+  eigen->add_flag("--ignore-unsupported", ignore_unsupported,
+                  "Analyse the deck without the unsupported keywords that change the physics");
 
   std::string plot_dir;
   auto* plot = app.add_subcommand(
@@ -489,6 +503,8 @@ int main(int argc, char** argv) {
     read_options.warnings_on_error = &g_warnings_before_error;
     read_options.dialect = parse_dialect(dialect);
     read_options.parameter_overrides = parse_overrides(assignments);
+    read_options.ignore_unsupported = ignore_unsupported;
+    read_options.check_runnable = *check || *run;
     if (*check) return command_check(deck, read_options);
     if (*plot) return command_plot(plot_dir, output_dir);
     if (*eigen) {

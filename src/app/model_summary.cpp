@@ -182,7 +182,11 @@ void print_model_summary(const model::Model& model, const solver::Simulation& si
              model.part_sets.size(), model.segment_sets.size());
   fmt::print(out, "curves: {}\n", model.curves.size());
   for (const auto& [id, c] : model.curves) {
-    fmt::print(out, "  curve {}: {} points\n", id, c.abscissa.size());
+    if (c.function) {
+      fmt::print(out, "  curve {}: f(time) = {}\n", id, c.function_text);
+    } else {
+      fmt::print(out, "  curve {}: {} points\n", id, c.abscissa.size());
+    }
   }
   fmt::print(out,
              "SPCs: {}, prescribed motions: {}, nodal loads: {}, body loads: {}, "

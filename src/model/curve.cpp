@@ -1,10 +1,18 @@
 #include "model/curve.hpp"
 
 #include <algorithm>
+#include <array>
+
+#include "model/function.hpp"
 
 namespace rf::model {
 
 double evaluate(const Curve& curve, double t) {
+  if (curve.function) {
+    const double s = (curve.sfa != 0.0 ? t / curve.sfa : t) - curve.offa;
+    const std::array<double, 1> argument{s};
+    return curve.sfo * (*curve.function)(argument, s) + curve.offo;
+  }
   const auto& xs = curve.abscissa;
   const auto& ys = curve.ordinate;
   if (xs.empty()) return curve.offo;

@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace rf {
 
@@ -22,9 +23,31 @@ class InputError : public std::runtime_error {
   const InputErrorContext& context() const { return context_; }
   const std::string& detail() const { return detail_; }
 
+ protected:
+  // For InputErrorList: `what` is already the full text.
+  struct Preformatted {};
+  InputError(Preformatted, InputErrorContext context, const std::string& what);
+
  private:
   InputErrorContext context_;
   std::string detail_;
+};
+
+// Every problem the reader found in one pass, grouped by kind (io::read_deck collects them
+// instead of stopping at the first). what() lists them all, one per line; context() is the
+// first one's.
+class InputErrorList : public InputError {
+ public:
+  struct Entry {
+    std::string group;  // heading of its kind, e.g. "errors in cards"
+    InputError error;
+  };
+  // `dropped`: problems found beyond the cap and not listed.
+  InputErrorList(std::vector<Entry> entries, std::size_t dropped);
+  const std::vector<Entry>& entries() const { return entries_; }
+
+ private:
+  std::vector<Entry> entries_;
 };
 
 // Thrown when the solution breaks down (NaN, negative volume, time-step collapse).

@@ -168,6 +168,8 @@ struct Hourglass {
 
 // Curve with *DEFINE_CURVE scaling already stored separately so that errors and output
 // can refer to the raw points. value(t) = SFO * f(t / SFA - OFFA) + OFFO, as LS-DYNA defines.
+class ArgumentFunction;  // model/function.hpp
+
 struct Curve {
   Id id = 0;
   int sidr = 0;
@@ -177,6 +179,10 @@ struct Curve {
   double offo = 0.0;
   std::vector<double> abscissa;
   std::vector<double> ordinate;
+  // *DEFINE_CURVE_FUNCTION: f(time) instead of points (model/function.hpp), with the same
+  // SFA SFO OFFA OFFO.
+  std::shared_ptr<const ArgumentFunction> function;
+  std::string function_text;
   SourceLocation where;
 };
 
@@ -200,6 +206,13 @@ struct NodeSet {
 struct PartSet {
   Id id = 0;
   std::vector<Id> parts;
+  SourceLocation where;
+};
+
+// *SET_SOLID: solid elements by ID (no keyword consumes them yet; read so that decks keep them).
+struct SolidSet {
+  Id id = 0;
+  std::vector<Id> elements;
   SourceLocation where;
 };
 
@@ -504,7 +517,6 @@ struct PartSwitching {
 // arguments by position (sensor values for *SENSOR_DEFINE_FUNCTION). `evaluator` is compiled when
 // the deck is read (model/function.hpp); when that fails, `compile_error` says why and using the
 // function is an error located at its card (an unused one is only a warning).
-class ArgumentFunction;
 struct DefinedFunction {
   Id id = 0;
   std::string heading;
@@ -687,6 +699,7 @@ struct Model {
   std::map<Id, NodeSet> node_sets;
   std::map<Id, PartSet> part_sets;
   std::map<Id, SegmentSet> segment_sets;
+  std::map<Id, SolidSet> solid_sets;
   std::map<Id, Function> functions;  // IMPETUS *FUNCTION
   std::map<Id, GeometrySeed> geometry_seeds;
   std::vector<POrderChange> p_order_changes;
@@ -731,6 +744,9 @@ struct Model {
   std::map<std::string, double> parameters;     // *PARAMETER values, final
   std::vector<Warning> warnings;                // unknown keywords and other notices
   std::map<std::string, int> unknown_keywords;  // keyword -> occurrences
+  // Keywords that change the physics, skipped because the user passed --ignore-unsupported
+  // (run.json and the log list them).
+  std::vector<Warning> ignored_physics;
 };
 
 }  // namespace rf::model

@@ -80,7 +80,17 @@ void write_run_json(const std::filesystem::path& path, const RunSummary& summary
     fmt::format_to(out, "{}\n    ", i == 0 ? "" : ",");
     append_json_string(json, summary.warnings[i]);
   }
-  fmt::format_to(out, "{}]\n}}\n", summary.warnings.empty() ? "" : "\n  ");
+  fmt::format_to(out, "{}]", summary.warnings.empty() ? "" : "\n  ");
+  if (summary.ignore_unsupported) {
+    fmt::format_to(out,
+                   ",\n  \"ignore_unsupported\": true,\n  \"ignored_unsupported_keywords\": [");
+    for (std::size_t i = 0; i < summary.ignored_unsupported.size(); ++i) {
+      fmt::format_to(out, "{}\n    ", i == 0 ? "" : ",");
+      append_json_string(json, summary.ignored_unsupported[i]);
+    }
+    fmt::format_to(out, "{}]", summary.ignored_unsupported.empty() ? "" : "\n  ");
+  }
+  fmt::format_to(out, "\n}}\n");
 
   std::FILE* file = std::fopen(path.c_str(), "wb");
   if (file == nullptr) {

@@ -293,6 +293,10 @@ struct RunSummary {
   double ns_per_element_cycle = 0.0;
   int threads = 1;
   std::vector<std::string> warnings;
+  // --ignore-unsupported: the physics keywords skipped ("file:line: *KEYWORD ..."); written as
+  // "ignore_unsupported": true and "ignored_unsupported_keywords" only when the flag was given.
+  bool ignore_unsupported = false;
+  std::vector<std::string> ignored_unsupported;
 };
 
 void write_run_json(const std::filesystem::path& path, const RunSummary& summary);

@@ -90,6 +90,9 @@ Restarted restart_from_dump(const RestartOptions& options) {
   read_options.dialect = dialect_of(input.dialect);
   read_options.parameter_overrides = input.overrides;
   read_options.file_texts = &input.files;
+  // The dumped run was accepted as it was (with --ignore-unsupported if it had to be): a
+  // restart continues that model.
+  read_options.ignore_unsupported = true;
   model::Model model = io::read_deck(input.main_deck, read_options);
 
   std::optional<io::RestartDeck> deck;

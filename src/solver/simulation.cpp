@@ -71,12 +71,13 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
   end_time_ = model.termination.endtim;
   end_cycle_ = model.termination.endcyc;
   if (end_time_ <= 0.0 && end_cycle_ <= 0) {
-    throw InputError({},
+    throw InputError({model.files.empty() ? std::string() : model.files.front(), 1, "", 0, ""},
                      "*CONTROL_TERMINATION is missing or ENDTIM is not positive: nothing "
                      "says when the analysis ends");
   }
   if (element_count_ == 0 && rigid_.empty()) {
-    throw InputError({}, "the model has no elements or rigid bodies to simulate");
+    throw InputError({model.files.empty() ? std::string() : model.files.front(), 1, "", 0, ""},
+                     "the model has no elements or rigid bodies to simulate");
   }
   for (std::size_t i = 0; i < state_.nodes.size(); ++i) {
     if (rigid_.is_rigid(static_cast<std::int32_t>(i))) continue;  // moved by its body

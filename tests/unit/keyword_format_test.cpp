@@ -206,25 +206,26 @@ TEST(KeywordFormat, KeywordLongYesSelectsLongFormatGlobally) {
   EXPECT_DOUBLE_EQ(m.nodes[0].x[0], 1.5);
 }
 
-TEST(KeywordFormat, UnknownKeywordWarnsAndIsCounted) {
+// An output-only keyword the reader does not read (docs/keywords.md, "Unsupported keywords").
+TEST(KeywordFormat, UnsupportedOutputKeywordWarnsAndIsCounted) {
   const std::string deck =
       "*NODE\n"
       "1,0,0,0\n"
-      "*CONTACT_TIED_SURFACE_TO_SURFACE\n"
+      "*DATABASE_SBTOUT\n"
       "1,2,3\n"
       "$ comment\n"
-      "*contact_tied_surface_to_surface\n"
+      "*database_sbtout\n"
       "*NODE\n"
       "2,0,0,0\n";
   const Model m = read_deck_text(deck, "c.k");
   EXPECT_EQ(m.nodes.size(), 2u);  // cards of the unknown keyword were skipped
-  ASSERT_EQ(m.unknown_keywords.count("*CONTACT_TIED_SURFACE_TO_SURFACE"), 1u);
-  EXPECT_EQ(m.unknown_keywords.at("*CONTACT_TIED_SURFACE_TO_SURFACE"), 2);
+  ASSERT_EQ(m.unknown_keywords.count("*DATABASE_SBTOUT"), 1u);
+  EXPECT_EQ(m.unknown_keywords.at("*DATABASE_SBTOUT"), 2);
   ASSERT_EQ(m.warnings.size(), 2u);
   EXPECT_EQ(m.warnings[0].where.file, "c.k");
   EXPECT_EQ(m.warnings[0].where.line, 3);
   EXPECT_EQ(m.warnings[1].where.line, 6);
-  EXPECT_EQ(m.warnings[0].where.keyword, "*CONTACT_TIED_SURFACE_TO_SURFACE");
+  EXPECT_EQ(m.warnings[0].where.keyword, "*DATABASE_SBTOUT");
 }
 
 TEST(KeywordFormat, EmptyAndCommentOnlyDecksGiveEmptyModels) {

@@ -71,14 +71,24 @@ TEST(KeywordWall, PenaltyScaleIsIgnoredWithAWarning) {
   EXPECT_EQ(m.warnings[0].where.line, 2);
 }
 
-TEST(KeywordWall, OtherBoxKeywordsAreSkippedWithAWarning) {
-  const rf::model::Model m = rf::io::read_deck_text(
-      "*DEFINE_BOX_ADAPTIVE\n1,0,1,0,1,0,1,3\n*DEFINE_BOX_TITLE\nkept\n2,0,1,0,1,0,1\n", "w.k");
+// *DEFINE_BOX_ADAPTIVE refines the mesh inside the box in LS-DYNA: an unsupported keyword that
+// changes the physics, an error unless the user asks to skip it.
+TEST(KeywordWall, OtherBoxKeywordsAreUnsupportedPhysics) {
+  const std::string deck =
+      "*DEFINE_BOX_ADAPTIVE\n1,0,1,0,1,0,1,3\n*DEFINE_BOX_TITLE\nkept\n2,0,1,0,1,0,1\n";
+  const std::string message = rf::test::input_error_of(deck, "w.k");
+  EXPECT_NE(message.find("w.k:1: *DEFINE_BOX_ADAPTIVE: not supported"), std::string::npos)
+      << message;
+  rf::io::ReadOptions options;
+  options.ignore_unsupported = true;
+  const rf::model::Model m = rf::io::read_deck_text(deck, "w.k", ".", options);
   EXPECT_EQ(m.boxes.count(1), 0u);
   EXPECT_EQ(m.boxes.count(2), 1u);
   ASSERT_EQ(m.warnings.size(), 1u);
-  EXPECT_NE(m.warnings[0].message.find("*DEFINE_BOX_ADAPTIVE is not supported"), std::string::npos);
+  EXPECT_NE(m.warnings[0].message.find("*DEFINE_BOX_ADAPTIVE"), std::string::npos);
+  EXPECT_NE(m.warnings[0].message.find("--ignore-unsupported"), std::string::npos);
   EXPECT_EQ(m.unknown_keywords.count("*DEFINE_BOX_ADAPTIVE"), 1u);
+  ASSERT_EQ(m.ignored_physics.size(), 1u);
 }
 
 struct ErrorCase {
@@ -166,7 +176,8 @@ std::vector<ErrorCase> cases() {
         "rigid wall 3 is already defined at wall.k:3"}},
       {"UnsupportedOption",
        wall("0", "0,0,0,0,0,1", "_FORCES"),
-       {"wall.k:1: *RIGIDWALL_PLANAR_FORCES", "option _FORCES", "_ID, _FINITE, _MOVING"}},
+       {"wall.k:1: *RIGIDWALL_PLANAR_FORCES: not supported: a rigid wall",
+        "*RIGIDWALL_PLANAR is read, with the options _ID, _FINITE, _MOVING"}},
       {"BadNumber", wall("0,0,0,abc"), {"wall.k:2: *RIGIDWALL_PLANAR card 1 field OFFSET", "abc"}},
       {"BoxMaxBelowMin",
        "*DEFINE_BOX\n1,0,1,0,1,2,1\n",

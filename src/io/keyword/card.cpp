@@ -80,6 +80,7 @@ Card::Card(const Block& block, const DataLine& line, int card_number, const Layo
   std::size_t offset = 0;
   for (int width : layout) {
     const auto w = static_cast<std::size_t>(effective_width(width, block.format));
+    columns_.emplace_back(offset + 1, offset + w);
     if (offset >= line.text.size()) {
       fields_.emplace_back();
     } else {
@@ -160,6 +161,33 @@ std::optional<double> Card::impetus_value(std::string_view text, const char* nam
   return negate ? -*value : *value;
 }
 
+bool looks_like_id_card(const Block& block, const DataLine& line) {
+  const std::string_view text = line.text;
+  std::vector<std::string_view> rest;
+  if (const auto comma = text.find(','); comma != std::string_view::npos) {
+    std::string_view tail = text.substr(comma + 1);
+    while (true) {
+      const auto next = tail.find(',');
+      rest.push_back(trim(tail.substr(0, next)));
+      if (next == std::string_view::npos) break;
+      tail.remove_prefix(next + 1);
+    }
+  } else {
+    const std::size_t width = block.format == CardFormat::Long ? 20 : 10;
+    for (std::size_t offset = width; offset < text.size(); offset += width) {
+      rest.push_back(trim(text.substr(offset, width)));
+    }
+  }
+  bool any = false;
+  for (const std::string_view field : rest) {
+    if (field.empty()) continue;
+    any = true;
+    const bool parameter = field.front() == '&' || field.starts_with("-&");
+    if (!parameter && !parse_real(field).value) return true;
+  }
+  return !any;
+}
+
 std::vector<std::string_view> split_impetus_fields(std::string_view line) {
   std::vector<std::string_view> fields;
   int depth = 0;
@@ -189,12 +217,34 @@ std::string strip_parameter_marks(std::string_view expression) {
   return out;
 }
 
+std::string Card::column_hint(std::size_t i) const {
+  if (free_ || i >= columns_.size()) return {};
+  const auto [first, last] = columns_[i];
+  const std::string_view raw =
+      first - 1 < line_.text.size() ? line_.text.substr(first - 1, last - first + 1) : "";
+  // Only when the field touches a neighbour without a blank between: then a value wider than
+  // its column is the likely cause.
+  const std::string_view line = line_.text;
+  const bool joined_left = first > 1 && first - 1 <= line.size() && line[first - 2] != ' ' &&
+                           !raw.empty() && raw.front() != ' ';
+  const bool joined_right = last < line.size() && line[last - 1] != ' ' && line[last] != ' ';
+  if (!joined_left && !joined_right) return {};
+  return fmt::format(
+      " (columns {}-{} of this fixed-format card hold {}; a value wider than its "
+      "{} columns runs into the next field: write the card in free format, with "
+      "commas between the values, or use the long format, '+' after the keyword "
+      "or *KEYWORD LONG=Y, with 20 columns per field)",
+      first, last, quoted(raw), last - first + 1);
+}
+
 double Card::real(std::size_t i, const char* name, double fallback) const {
   const std::string_view t = text(i);
   if (t.empty()) return fallback;
   if (const auto v = substituted(t, name)) return *v;
   const auto parsed = parse_real(t);
-  if (!parsed.value) throw error(name, fmt::format("{} {}", quoted(t), parsed.reason));
+  if (!parsed.value) {
+    throw error(name, fmt::format("{} {}{}", quoted(t), parsed.reason, column_hint(i)));
+  }
   return *parsed.value;
 }
 
@@ -208,7 +258,9 @@ std::int64_t Card::integer(std::size_t i, const char* name, std::int64_t fallbac
     return static_cast<std::int64_t>(*v);
   }
   const auto parsed = parse_integer(t);
-  if (!parsed.value) throw error(name, fmt::format("{} {}", quoted(t), parsed.reason));
+  if (!parsed.value) {
+    throw error(name, fmt::format("{} {}{}", quoted(t), parsed.reason, column_hint(i)));
+  }
   return *parsed.value;
 }
 

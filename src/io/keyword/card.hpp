@@ -89,7 +89,12 @@ class Card {
   DataLine line_;
   int card_number_;
   bool free_;
+  // Fixed format: "columns A-B ..." and how to write a wider value, for a field that does not
+  // parse (a value wider than its column runs into the next field).
+  std::string column_hint(std::size_t i) const;
+
   std::vector<std::string_view> fields_;
+  std::vector<std::pair<std::size_t, std::size_t>> columns_;  // fixed format: 1-based first, last
   const ParameterTable& parameters_;
 };
 
@@ -116,6 +121,11 @@ class CardCursor {
   const ParameterTable& parameters_;
   std::size_t next_ = 0;
 };
+
+// The _ID forms of loads and boundary conditions: LS-PrePost writes an ID card (ID, HEADING)
+// before every data card. Another ID card is recognised by its text after column 10 (or the
+// first comma): blank, or not all numbers (a heading).
+bool looks_like_id_card(const Block& block, const DataLine& line);
 
 // IMPETUS card fields: split at commas that are not inside [ ], ( ) or quotes, trimmed.
 std::vector<std::string_view> split_impetus_fields(std::string_view line);

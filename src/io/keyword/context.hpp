@@ -3,6 +3,7 @@
 
 #include <array>
 #include <functional>
+#include <map>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -15,6 +16,14 @@
 #include "model/model.hpp"
 
 namespace rf::io {
+
+// Headings of the kinds of problems (InputErrorList groups), in the order a user fixes them.
+inline constexpr std::string_view kUnsupportedPhysics =
+    "keywords that change the physics and are not supported (remove them, or run with "
+    "--ignore-unsupported to run without them)";
+inline constexpr std::string_view kCardErrors = "errors in cards";
+inline constexpr std::string_view kReferenceErrors = "references between definitions";
+inline constexpr std::string_view kModelErrors = "the model as a whole";
 
 struct ReaderContext {
   ReaderContext(model::Model& m, ParameterTable& p) : model(m), parameters(p) {}
@@ -86,6 +95,49 @@ struct ReaderContext {
   std::vector<Motion> motions;
   double impetus_ascii_dt = 0.0;  // *OUTPUT dt_ascii
 
+  // Problems found so far (read_deck throws them together once the whole deck is read): a
+  // handler's InputError is caught per keyword block, checks after reading report directly.
+  std::vector<InputErrorList::Entry> errors;
+  std::size_t dropped_errors = 0;  // beyond kMaxReportedErrors
+  static constexpr std::size_t kMaxReportedErrors = 200;
+  void report(std::string_view group, const InputError& error) {
+    if (errors.size() >= kMaxReportedErrors) {
+      ++dropped_errors;
+      return;
+    }
+    errors.push_back({std::string(group), error});
+  }
+
+  // Sections and materials of unsupported keywords by ID, so that a *PART naming one is told
+  // the real cause ("shells are not supported yet").
+  struct SkippedDefinition {
+    std::string keyword;
+    std::string what;
+    model::SourceLocation where;
+  };
+  std::map<model::Id, SkippedDefinition> skipped_sections;
+  std::map<model::Id, SkippedDefinition> skipped_materials;
+  // Where *CONTROL_TERMINATION and *CONTROL_IMPLICIT_GENERAL are (checks of the whole model).
+  model::SourceLocation termination_where;
+  // Sets whose content needs the whole deck (*SET_..._GENERATE ranges, *SET_..._GENERAL rules):
+  // resolved by finish_sets before any reference is checked.
+  struct PendingSet {
+    char kind = 'N';  // 'N' node set, 'P' part set, 'S' solid set
+    model::Id id = 0;
+    model::SourceLocation where;
+    struct Rule {
+      std::string option;  // RANGE (GENERATE), ALL, NODE, DNODE, PART, DPART, BOX, DBOX
+      std::vector<model::Id> values;
+      model::SourceLocation where;
+    };
+    std::vector<Rule> rules;
+  };
+  std::vector<PendingSet> pending_sets;
+  int parameter_duplication = 1;
+  std::vector<std::string> include_paths;  // *INCLUDE_PATH folders, as written  //
+                                           // *PARAMETER_DUPLICATION DFLAG (LS-DYNA default 1)
+  model::SourceLocation implicit_general_where;
+
   void warn(const model::SourceLocation& where, std::string message) {
     model.warnings.push_back({where, std::move(message)});
   }
@@ -127,6 +179,9 @@ std::string reflow_single_line_deck(std::string_view line);
 
 // Cross-reference checks and deferred resolution after every file has been read.
 void finish_model(ReaderContext& context);
+// What `run` would refuse, reported while reading so that `check` finds it too: no end time,
+// no elements, nothing that limits the time step, IMFLAG 1 without an eigen analysis.
+void check_runnable(ReaderContext& context);
 // IMPETUS part of it: generates component meshes, merges nodes, turns *BC_MOTION into
 // constraints and prescribed motions (handlers_impetus.cpp). Runs before finish_model's checks.
 void finish_impetus(ReaderContext& context);

@@ -585,9 +585,14 @@ void finish_model(ReaderContext& context) {
   nodes.reserve(m.nodes.size());
   for (const auto& n : m.nodes) nodes.insert(n.id);
 
-  // Deferred resolution.
+  // Deferred resolution. IMPETUS meshes are generated only from a deck read without errors:
+  // a damaged card can leave sizes that would take gigabytes for nothing.
+  if (!context.errors.empty()) {
+    if (!context.components.empty() || !context.merges.empty() || !context.motions.empty()) return;
+  }
   finish_impetus(context);
   for (const auto& n : m.nodes) nodes.insert(n.id);  // generated meshes
+  handlers::finish_sets(context);
   if (context.d3plot_npltc > 0 && m.termination.endtim > 0.0) {
     m.output.d3plot_dt = m.termination.endtim / context.d3plot_npltc;
   }
@@ -607,19 +612,25 @@ void finish_model(ReaderContext& context) {
     m.initial_velocities[e.velocity_index].exempt_nodes = it->second.nodes;
   }
 
-  // Cross references.
+  // Cross references. Elements and parts are reported all at once (a deck converted from
+  // another solver may have dozens of parts with unsupported sections).
   static const char* const kNodeFields[] = {"N1", "N2", "N3", "N4", "N5", "N6", "N7", "N8"};
+  const std::size_t errors_before = context.errors.size() + context.dropped_errors;
   for (const auto& e : m.solids) {
     if (!m.parts.count(e.pid)) {
-      throw located_error(
-          e.where, "PID",
-          fmt::format("element {} refers to part {}, which is not defined", e.id, e.pid));
+      context.report(kReferenceErrors,
+                     located_error(e.where, "PID",
+                                   fmt::format("element {} refers to part {}, which is not defined",
+                                               e.id, e.pid)));
     }
     for (std::size_t k = 0; k < 8; ++k) {
       if (!nodes.count(e.nodes[k])) {
-        throw located_error(
-            e.where, kNodeFields[k],
-            fmt::format("element {} refers to node {}, which is not defined", e.id, e.nodes[k]));
+        context.report(kReferenceErrors,
+                       located_error(e.where, kNodeFields[k],
+                                     fmt::format("element {} refers to node {}, which is not "
+                                                 "defined",
+                                                 e.id, e.nodes[k])));
+        break;
       }
     }
   }
@@ -631,25 +642,53 @@ void finish_model(ReaderContext& context) {
   }();
   for (const auto& [id, p] : m.parts) {
     if (!m.solid_sections.count(p.secid)) {
-      throw located_error(p.where, "SECID",
-                          fmt::format("part {} refers to section {}, which is not defined by a "
-                                      "*SECTION_SOLID",
-                                      id, p.secid));
+      const auto skipped = context.skipped_sections.find(p.secid);
+      if (skipped != context.skipped_sections.end()) {
+        const auto& s = skipped->second;
+        context.report(
+            kReferenceErrors,
+            located_error(p.where, "SECID",
+                          fmt::format("part {} uses section {}, a {} at {}:{}: {}", id, p.secid,
+                                      s.keyword, s.where.file, s.where.line, s.what)));
+      } else {
+        context.report(kReferenceErrors,
+                       located_error(p.where, "SECID",
+                                     fmt::format("part {} refers to section {}, which is not "
+                                                 "defined (no *SECTION_SOLID has SECID {})",
+                                                 id, p.secid, p.secid)));
+      }
     }
     if (!m.materials.count(p.mid)) {
-      throw located_error(
-          p.where, "MID",
-          fmt::format("part {} refers to material {}, which is not defined{}", id, p.mid,
-                      skipped_materials ? " (unsupported *MAT keywords were skipped; see the "
-                                          "warnings)"
-                                        : ""));
+      const auto skipped = context.skipped_materials.find(p.mid);
+      if (skipped != context.skipped_materials.end()) {
+        const auto& s = skipped->second;
+        context.report(
+            kReferenceErrors,
+            located_error(p.where, "MID",
+                          fmt::format("part {} uses material {}, a {} at {}:{}, which "
+                                      "is not supported",
+                                      id, p.mid, s.keyword, s.where.file, s.where.line)));
+      } else {
+        context.report(
+            kReferenceErrors,
+            located_error(
+                p.where, "MID",
+                fmt::format("part {} refers to material {}, which is not defined{}", id, p.mid,
+                            skipped_materials ? " (unsupported *MAT keywords were "
+                                                "skipped; see the warnings)"
+                                              : "")));
+      }
     }
     if (p.hgid != 0 && !m.hourglass.count(p.hgid)) {
-      throw located_error(
-          p.where, "HGID",
-          fmt::format("part {} refers to *HOURGLASS {}, which is not defined", id, p.hgid));
+      context.report(kReferenceErrors,
+                     located_error(p.where, "HGID",
+                                   fmt::format("part {} refers to *HOURGLASS {}, which is not "
+                                               "defined",
+                                               id, p.hgid)));
     }
   }
+  // The checks below assume parts, materials and nodes are consistent.
+  if (context.errors.size() + context.dropped_errors > errors_before) return;
   for (const auto& [id, set] : m.node_sets) {
     for (Id n : set.nodes) {
       if (!nodes.count(n)) {
@@ -703,6 +742,70 @@ void finish_model(ReaderContext& context) {
   handlers::check_contacts(m);
   finish_switching(m);
   handlers::finish_sensors(context, nodes);
+}
+
+}  // namespace rf::io
+
+namespace rf::io {
+
+void check_runnable(ReaderContext& context) {
+  const model::Model& m = context.model;
+  const model::SourceLocation deck{m.files.empty() ? std::string() : m.files.front(), 1, ""};
+  const bool eigen = m.implicit.eigenvalue && m.implicit.neig > 0 &&
+                     (!m.implicit.general || m.implicit.imflag == 1);
+  if (m.implicit.imflag == 1 && !eigen) {
+    context.report(
+        kModelErrors,
+        InputError({context.implicit_general_where.file, context.implicit_general_where.line,
+                    "*CONTROL_IMPLICIT_GENERAL", 1, "IMFLAG"},
+                   "IMFLAG 1 (implicit) is supported only for an eigen analysis: add "
+                   "*CONTROL_IMPLICIT_EIGENVALUE with NEIG > 0"));
+  }
+  if (eigen) return;  // no transient run: no end time or time step needed
+  if (m.termination.endtim <= 0.0 && m.termination.endcyc <= 0) {
+    const bool present = !context.termination_where.file.empty();
+    context.report(kModelErrors,
+                   present ? located_error(context.termination_where, "ENDTIM",
+                                           "ENDTIM is not positive (and ENDCYC is 0): nothing "
+                                           "says when the analysis ends")
+                           : located_error(deck, "",
+                                           "the deck has no *CONTROL_TERMINATION: nothing says "
+                                           "when the analysis ends (add one with ENDTIM)"));
+  }
+  if (m.solids.empty() && m.nodal_rigid_bodies.empty()) {
+    std::string skipped;
+    for (const auto& [keyword, count] : m.unknown_keywords) {
+      if (keyword.starts_with("*ELEMENT_")) {
+        skipped += fmt::format("{}{} ({} block(s))", skipped.empty() ? "" : ", ", keyword, count);
+      }
+    }
+    context.report(
+        kModelErrors,
+        located_error(deck, "",
+                      skipped.empty() ? std::string("the model has no elements or rigid bodies to "
+                                                    "simulate")
+                                      : fmt::format("the model has no elements or rigid bodies to "
+                                                    "simulate; skipped element keywords: {}",
+                                                    skipped)));
+    return;
+  }
+  // Without a deformable element nothing gives a stable time step: the user must. Parts
+  // switched to rigid by *DEFORMABLE_TO_RIGID are left to the solver's own check.
+  if (m.timestep.dtinit > 0.0 || m.timestep.lctm != 0 || m.timestep.dt_max > 0.0 ||
+      !m.switching.at_start.empty() || !m.switching.automatic.empty() || !m.part_modes.empty()) {
+    return;
+  }
+  for (const auto& e : m.solids) {
+    const auto part = m.parts.find(e.pid);
+    if (part == m.parts.end()) return;  // reported above
+    const auto material = m.materials.find(part->second.mid);
+    if (material == m.materials.end()) return;
+    if (material->second.kind != model::MaterialKind::Rigid) return;
+  }
+  context.report(kModelErrors,
+                 located_error(deck, "",
+                               "the model has no deformable elements, so nothing limits the time "
+                               "step: give DTINIT (or LCTM) on *CONTROL_TIMESTEP"));
 }
 
 }  // namespace rf::io

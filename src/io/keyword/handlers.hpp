@@ -22,10 +22,18 @@ void set_part_list(const Block&, ReaderContext&);
 void set_segment(const Block&, ReaderContext&);
 void change_p_order(const Block&, ReaderContext&);  // extension, see docs/keywords.md
 
+// handlers_sets.cpp
+void set_list_generate(const Block&, ReaderContext&);
+void set_general(const Block&, ReaderContext&);
+void set_solid_list(const Block&, ReaderContext&);
+// After reading: ranges and rules of the sets above become node, part and solid sets.
+void finish_sets(ReaderContext& context);
+
 // handlers_loads.cpp
 void boundary_spc(const Block&, ReaderContext&);
 void boundary_prescribed_motion(const Block&, ReaderContext&);
 void define_curve(const Block&, ReaderContext&);
+void define_curve_function(const Block&, ReaderContext&);
 void initial_velocity(const Block&, ReaderContext&);
 void initial_velocity_node(const Block&, ReaderContext&);
 void initial_velocity_generation(const Block&, ReaderContext&);
@@ -53,6 +61,8 @@ void database_binary_d3plot(const Block&, ReaderContext&);
 void database_history_node(const Block&, ReaderContext&);
 void parameter(const Block&, ReaderContext&);
 void parameter_expression(const Block&, ReaderContext&);
+void parameter_duplication(const Block&, ReaderContext&);
+void include_path(const Block&, ReaderContext&);
 void title(const Block&, ReaderContext&);
 void include(const Block&, ReaderContext&);
 void ignore(const Block&, ReaderContext&);

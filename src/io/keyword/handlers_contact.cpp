@@ -49,7 +49,7 @@ void contact_automatic(const Block& block, ReaderContext& context) {
   contact.id = contact.number;
   contact.kind = kind_of(block.base);
   int n = 1;
-  if (block.has_option("ID")) {
+  if (block.has_option("ID") || block.has_option("TITLE")) {  // the same card
     const Card id_card = cursor.next(n++, Layout{10, 70}, "CID HEADING");
     const model::Id cid = id_card.id(0, "CID");
     if (cid < 0) throw id_card.error("CID", fmt::format("ID {} must not be negative", cid));

@@ -30,6 +30,7 @@ double non_negative(const Card& card, std::size_t i, const char* name, double fa
 void control_termination(const Block& block, ReaderContext& context) {
   CardCursor cursor(block, context.parameters);
   auto& t = context.model.termination;
+  context.termination_where = block.location();
   if (const auto card = single_card(block, cursor)) {
     t.endtim = non_negative(*card, 0, "ENDTIM", 0.0);
     t.endcyc = card->flag(1, "ENDCYC", 0);
@@ -174,7 +175,47 @@ std::pair<char, std::string> split_parameter_name(const Card& card, std::string_
   return {type, parameter};
 }
 
+// A parameter defined again: *PARAMETER_DUPLICATION DFLAG decides (LS-DYNA's default 1 keeps
+// the first definition with a warning). Returns whether the new definition replaces the old.
+bool accept_redefinition(const Card& card, const char* field, const std::string& name,
+                         ReaderContext& context) {
+  if (!context.parameters.contains(name)) return true;
+  const int dflag = context.parameter_duplication;
+  const std::string where = fmt::format("parameter {} is defined again", name);
+  switch (dflag) {
+    case 2:
+      context.warn(card.location(), where +
+                                        "; the new definition replaces the first "
+                                        "(*PARAMETER_DUPLICATION DFLAG 2)");
+      return true;
+    case 3:
+      context.report(kCardErrors, card.error(field, where + " (*PARAMETER_DUPLICATION DFLAG 3 "
+                                                            "makes this an error)"));
+      return false;
+    case 4:
+      return true;
+    case 5:
+      return false;
+    default:
+      context.warn(card.location(), where +
+                                        "; the first definition is kept (LS-DYNA's rule; "
+                                        "*PARAMETER_DUPLICATION DFLAG 2 or 4 keeps the new "
+                                        "one)");
+      return false;
+  }
+}
+
 }  // namespace
+
+void parameter_duplication(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  const Card card = cursor.next(1, kEightByTen, "DFLAG");
+  const int dflag = card.flag(0, "DFLAG", 1);
+  if (dflag < 1 || dflag > 5) {
+    throw card.error("DFLAG", fmt::format("value {} is not 1, 2, 3, 4 or 5", dflag));
+  }
+  context.parameter_duplication = dflag;
+}
 
 void parameter(const Block& block, ReaderContext& context) {
   CardCursor cursor(block, context.parameters);
@@ -189,6 +230,7 @@ void parameter(const Block& block, ReaderContext& context) {
       const std::string_view name_field = card.text(2 * pair);
       if (name_field.empty()) continue;
       const auto [type, name] = split_parameter_name(card, name_field, kNames[pair]);
+      if (!accept_redefinition(card, kNames[pair], name, context)) continue;
       if (type == 'C') {
         context.parameters.define_text(name, std::string(card.text(2 * pair + 1)));
         continue;
@@ -229,6 +271,7 @@ void parameter_expression(const Block& block, ReaderContext& context) {
                                                  std::string(expression.substr(0, 80)), e.what()));
     }
     if (type == 'I') value = std::trunc(value);
+    if (!accept_redefinition(card, "PRMR", name, context)) continue;
     context.parameters.define(name, value);
   }
 }
@@ -250,6 +293,20 @@ void include(const Block& block, ReaderContext& context) {
     context.include(std::string(trim(line.text)), card);
   }
   if (n == 0) throw block_error(block, 1, "FILENAME", "the file name card is missing");
+}
+
+// *INCLUDE_PATH and *INCLUDE_PATH_RELATIVE: folders searched for included files after the
+// including file's folder and the main deck's (relative folders are taken from the main deck's).
+void include_path(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  int n = 0;
+  while (true) {
+    cursor.skip_blank_lines();
+    if (cursor.at_end()) break;
+    const std::string folder = cursor.next_text(++n, "PATH");
+    context.include_paths.push_back(folder);
+  }
+  if (n == 0) throw block_error(block, 1, "PATH", "the folder card is missing");
 }
 
 void ignore(const Block&, ReaderContext&) {}

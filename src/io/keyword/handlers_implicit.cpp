@@ -17,6 +17,7 @@ void control_implicit_general(const Block& block, ReaderContext& context) {
   CardCursor cursor(block, context.parameters);
   auto& c = context.model.implicit;
   c.general = true;
+  context.implicit_general_where = block.location();
   if (const auto card = cursor.next_optional(1, kEightByTen)) {
     c.imflag = card->flag(0, "IMFLAG", 0);
     if (c.imflag != 0 && c.imflag != 1) {

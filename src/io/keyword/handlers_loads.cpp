@@ -1,10 +1,12 @@
 // Boundary conditions, loads, initial conditions and load curves.
 #include <fmt/format.h>
 
+#include <cctype>
 #include <cmath>
 
 #include "io/keyword/handlers.hpp"
 #include "io/keyword/number.hpp"
+#include "model/function.hpp"
 
 namespace rf::io::handlers {
 
@@ -45,6 +47,10 @@ void boundary_spc(const Block& block, ReaderContext& context) {
   while (true) {
     cursor.skip_blank_lines();
     if (cursor.at_end()) break;
+    if (any && block.has_option("ID") && looks_like_id_card(block, *cursor.peek())) {
+      cursor.next(1, Layout{10, 70}, "ID HEADING");  // the next condition's ID card
+      continue;
+    }
     const Card card = cursor.next(n, kEightByTen, "NID CID DOFX DOFY DOFZ DOFRX DOFRY DOFRZ");
     model::Spc spc;
     spc.target = target;
@@ -77,6 +83,10 @@ void boundary_prescribed_motion(const Block& block, ReaderContext& context) {
   while (true) {
     cursor.skip_blank_lines();
     if (cursor.at_end()) break;
+    if (any && block.has_option("ID") && looks_like_id_card(block, *cursor.peek())) {
+      cursor.next(1, Layout{10, 70}, "ID HEADING");  // the next condition's ID card
+      continue;
+    }
     const Card card = cursor.next(n, kEightByTen, "NID DOF VAD LCID SF VID DEATH BIRTH");
     model::PrescribedMotion m;
     m.target = target;
@@ -160,6 +170,89 @@ void define_curve(const Block& block, ReaderContext& context) {
     c.ordinate.push_back(o);
   }
   if (c.abscissa.empty()) throw head.error("LCID", "the curve has no points");
+  if (const auto it = context.model.curves.find(c.id); it != context.model.curves.end()) {
+    throw head.error("LCID", fmt::format("curve {} is already defined at {}:{}", c.id,
+                                         it->second.where.file, it->second.where.line));
+  }
+  context.model.curves.emplace(c.id, std::move(c));
+}
+
+// *DEFINE_CURVE_FUNCTION: the card of *DEFINE_CURVE, then an expression of TIME (muparser with
+// C's <math.h> names, case-insensitive, "&name" parameters substituted) on the following lines.
+void define_curve_function(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  int n = 1;
+  if (block.has_option("TITLE")) {
+    cursor.next_text(1, "title");
+    n = 2;
+  }
+  const Card head = cursor.next(n, kEightByTen, "LCID SIDR SFA SFO OFFA OFFO");
+  model::Curve c;
+  c.id = head.id(0, "LCID");
+  if (c.id <= 0) throw head.error("LCID", "a positive curve ID is required");
+  c.sidr = head.flag(1, "SIDR", 0);
+  if (c.sidr < 0 || c.sidr > 2) {
+    throw head.error("SIDR", fmt::format("value {} is not 0, 1 or 2", c.sidr));
+  }
+  c.sfa = head.real(2, "SFA", 1.0);
+  c.sfo = head.real(3, "SFO", 1.0);
+  if (c.sfa == 0.0) c.sfa = 1.0;
+  if (c.sfo == 0.0) c.sfo = 1.0;
+  c.offa = head.real(4, "OFFA", 0.0);
+  c.offo = head.real(5, "OFFO", 0.0);
+  c.where = head.location();
+  cursor.skip_blank_lines();
+  const DataLine* first = cursor.peek();
+  const Card function_card = cursor.next(n + 1, Layout{80}, "FUNCTION");
+  std::string text;
+  for (const DataLine* line = first; line; line = cursor.peek()) {
+    if (line != first) cursor.next(n + 1, Layout{80}, "FUNCTION");
+    text += std::string(trim(line->text));
+    text += ' ';
+  }
+  // Parameters as "&name" become their values; names are case-insensitive like LS-DYNA's.
+  std::string expression;
+  for (std::size_t i = 0; i < text.size();) {
+    if (text[i] == '&') {
+      std::size_t j = i + 1;
+      while (j < text.size() &&
+             (std::isalnum(static_cast<unsigned char>(text[j])) || text[j] == '_')) {
+        ++j;
+      }
+      const std::string name = text.substr(i + 1, j - i - 1);
+      const auto value = context.parameters.find(name);
+      if (!value) {
+        throw function_card.error("FUNCTION",
+                                  fmt::format("parameter '{}' is not defined (define it with "
+                                              "*PARAMETER before it is used)",
+                                              name));
+      }
+      expression += fmt::format("({:.17g})", *value);
+      i = j;
+      continue;
+    }
+    if (std::isalpha(static_cast<unsigned char>(text[i])) || text[i] == '_') {
+      std::size_t j = i;
+      std::string name;
+      while (j < text.size() &&
+             (std::isalnum(static_cast<unsigned char>(text[j])) || text[j] == '_')) {
+        name += static_cast<char>(std::tolower(static_cast<unsigned char>(text[j++])));
+      }
+      expression += name == "pi" ? "_pi" : name;  // muparser's name for the constant
+      i = j;
+      continue;
+    }
+    expression += text[i];
+    ++i;
+  }
+  try {
+    c.function = std::make_shared<const model::ArgumentFunction>("curve(time) = " + expression);
+  } catch (const std::exception& e) {
+    throw function_card.error(
+        "FUNCTION",
+        fmt::format("cannot use '{}': {}", std::string(trim(text)).substr(0, 80), e.what()));
+  }
+  c.function_text = std::string(trim(text));
   if (const auto it = context.model.curves.find(c.id); it != context.model.curves.end()) {
     throw head.error("LCID", fmt::format("curve {} is already defined at {}:{}", c.id,
                                          it->second.where.file, it->second.where.line));

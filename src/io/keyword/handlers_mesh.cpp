@@ -87,12 +87,16 @@ void element_solid(const Block& block, ReaderContext& context) {
     if (!nodes_on_first) second.emplace(cursor.next(2, layout, "N1..N8"));
     const Card& nodes = second ? *second : first;
     const std::size_t offset = second ? 0 : 2;
+    // Four nodes and N5..N8 blank: a tetrahedron written without repeated nodes, stored as
+    // LS-DYNA's degenerate hexahedron N1 N2 N3 N4 N4 N4 N4 N4.
+    bool tetrahedron = true;
+    for (std::size_t k = 4; k < 8; ++k) tetrahedron &= nodes.id(offset + k, kNodeFields[k]) == 0;
     for (std::size_t k = 0; k < 8; ++k) {
-      e.nodes[k] = nodes.id(offset + k, kNodeFields[k]);
+      e.nodes[k] = tetrahedron && k >= 4 ? e.nodes[3] : nodes.id(offset + k, kNodeFields[k]);
       if (e.nodes[k] <= 0) {
         throw nodes.error(kNodeFields[k],
-                          "an 8-node solid needs 8 positive node IDs (repeat node IDs for "
-                          "wedges, pyramids and tetrahedra)");
+                          "a solid needs 8 positive node IDs (repeat node IDs for wedges and "
+                          "pyramids), or 4 with N5..N8 blank for a tetrahedron");
       }
     }
     if (second) {

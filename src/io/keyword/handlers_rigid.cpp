@@ -372,6 +372,10 @@ void boundary_prescribed_motion_rigid(const Block& block, ReaderContext& context
   while (true) {
     cursor.skip_blank_lines();
     if (cursor.at_end()) break;
+    if (any && block.has_option("ID") && looks_like_id_card(block, *cursor.peek())) {
+      cursor.next(1, Layout{10, 70}, "ID HEADING");  // the next motion's ID card
+      continue;
+    }
     const Card card = cursor.next(n, kEightByTen, "PID DOF VAD LCID SF VID DEATH BIRTH");
     model::RigidPrescribedMotion m;
     m.pid = positive_id(card, 0, "PID", "part");

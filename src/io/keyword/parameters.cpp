@@ -65,16 +65,84 @@ bool ParameterTable::contains(std::string_view name) const {
   return by_key_.count(to_upper(name)) > 0;
 }
 
-double ParameterTable::evaluate(const std::string& expression) const {
+namespace {
+bool identifier_start(char c) {
+  return std::isalpha(static_cast<unsigned char>(c)) || c == '_';
+}
+bool identifier_char(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+}
+}  // namespace
+
+// LS-DYNA: parameter names in expressions are case-insensitive and may be written bare or as
+// "&name". Each name is rewritten to its upper-case key (the only spelling defined to the
+// parser), so "TEnd/100" finds tEnd. A name that is neither a parameter, a constant nor a
+// function call is reported by name rather than by the parser's position message.
+std::string ParameterTable::canonical_expression(const std::string& expression) const {
+  std::string out;
+  out.reserve(expression.size());
+  for (std::size_t i = 0; i < expression.size();) {
+    const char c = expression[i];
+    const bool ampersand =
+        c == '&' && i + 1 < expression.size() && identifier_start(expression[i + 1]);
+    if (!ampersand && !identifier_start(c)) {
+      // A number such as 1.5e3 keeps its exponent letter.
+      if (std::isdigit(static_cast<unsigned char>(c)) || c == '.') {
+        while (i < expression.size() &&
+               (identifier_char(expression[i]) || expression[i] == '.' ||
+                ((expression[i] == '+' || expression[i] == '-') && i > 0 &&
+                 (expression[i - 1] == 'e' || expression[i - 1] == 'E')))) {
+          out += expression[i++];
+        }
+        continue;
+      }
+      out += c;
+      ++i;
+      continue;
+    }
+    if (ampersand) ++i;
+    const std::size_t start = i;
+    while (i < expression.size() && identifier_char(expression[i])) ++i;
+    const std::string name = expression.substr(start, i - start);
+    std::size_t next = i;
+    while (next < expression.size() && std::isspace(static_cast<unsigned char>(expression[next]))) {
+      ++next;
+    }
+    const bool call = next < expression.size() && expression[next] == '(';
+    const std::string key = to_upper(name);
+    const auto it = by_key_.find(key);
+    if (!call && it != by_key_.end()) {
+      if (it->second.text) {
+        throw std::runtime_error("parameter '" + name +
+                                 "' is a text parameter, a number is needed");
+      }
+      out += key;
+      continue;
+    }
+    if (!call && key != "PI" && key != "_PI" && key != "_E") {
+      throw std::runtime_error("'" + name +
+                               "' is not a defined parameter (define it with *PARAMETER or "
+                               "*PARAMETER_EXPRESSION before this expression)");
+    }
+    out += key == "PI" ? std::string("pi") : name;
+  }
+  return out;
+}
+
+double ParameterTable::evaluate(const std::string& expression_in) const {
   try {
     mu::Parser parser;
     if (impetus_) model::define_impetus_intrinsics(parser);
     parser.DefineConst("pi", std::numbers::pi);
     parser.DefineConst("PI", std::numbers::pi);
+    const std::string expression = impetus_ ? expression_in : canonical_expression(expression_in);
     for (const auto& [key, entry] : by_key_) {
       if (entry.text) continue;
-      // Deck names are case-insensitive but muparser's are not: offer the name as written
-      // plus its upper- and lower-case spellings.
+      if (!impetus_) {
+        if (key != "PI" && is_identifier(key)) parser.DefineConst(key, entry.value);
+        continue;
+      }
+      // IMPETUS: the name as written plus its upper- and lower-case spellings.
       std::string lower = key;
       for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
       std::set<std::string> spellings{entry.name, key, lower};

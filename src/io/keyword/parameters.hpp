@@ -22,7 +22,8 @@ class ParameterTable {
   bool contains(std::string_view name) const;
 
   // Evaluates an expression with every numeric parameter defined so far as a variable and
-  // pi available. Throws std::runtime_error with muparser's reason on failure.
+  // pi available. LS-DYNA names are case-insensitive, bare or "&name". Throws
+  // std::runtime_error naming an unknown parameter, or with muparser's reason.
   double evaluate(const std::string& expression) const;
   // IMPETUS decks: expressions use IMPETUS's intrinsic functions (trigonometry in degrees).
   void use_impetus_intrinsics(bool on) { impetus_ = on; }
@@ -33,6 +34,7 @@ class ParameterTable {
   std::map<std::string, double> unused_overrides() const;
 
  private:
+  std::string canonical_expression(const std::string& expression) const;
   struct Entry {
     std::string name;  // as written
     double value = 0.0;

@@ -5,10 +5,12 @@
 #include <fmt/format.h>
 
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <system_error>
 
 #include "io/keyword/context.hpp"
+#include "io/keyword/keyword_classes.hpp"
 #include "io/keyword/number.hpp"
 
 namespace rf::io {
@@ -28,7 +30,9 @@ class DeckReader {
         context_(model, parameters_),
         dialect_(options.dialect),
         file_texts_(options.file_texts),
-        record_files_(options.record_files) {
+        record_files_(options.record_files),
+        ignore_unsupported_(options.ignore_unsupported),
+        check_runnable_(options.check_runnable) {
     context_.include = [this](const std::string& filename, const Card& card) {
       include(filename, card);
     };
@@ -42,6 +46,7 @@ class DeckReader {
     const fs::path saved_dir = current_dir_;
     context_.current_file_index = file_index;
     current_dir_ = base_dir;
+    if (file_index == 0) main_dir_ = base_dir;
     if (dialect_ == Dialect::Auto) {
       const DialectGuess guess = detect_dialect(text);
       dialect_ = guess.dialect;
@@ -62,12 +67,32 @@ class DeckReader {
   }
 
   void finish() {
-    finish_model(context_);
+    try {
+      finish_model(context_);
+    } catch (const InputErrorList&) {
+      throw;
+    } catch (const InputError& e) {
+      context_.report(kReferenceErrors, e);
+    } catch (const std::exception&) {
+      // Definitions left half-read by an error already reported can trip the checks; those
+      // errors are the ones to show.
+      if (context_.errors.empty()) throw;
+    }
+    if (check_runnable_) check_runnable(context_);
     context_.model.parameters = parameters_.values();
     for (const auto& [name, value] : parameters_.unused_overrides()) {
       context_.warn({}, fmt::format("parameter override {}={} matches no *PARAMETER in the deck",
                                     name, value));
     }
+    auto& errors = context_.errors;
+    if (errors.empty()) return;
+    // One problem reads best as one line; the heading of the unsupported-physics group says how
+    // to go on without them, so that group is always listed.
+    if (errors.size() == 1 && context_.dropped_errors == 0 &&
+        errors[0].group != kUnsupportedPhysics) {
+      throw errors[0].error;
+    }
+    throw InputErrorList(std::move(errors), context_.dropped_errors);
   }
 
   // Marks a real file as being read, for include recursion checks.
@@ -148,32 +173,87 @@ class DeckReader {
   void dispatch(const Block& block_in) {
     std::vector<std::string> options;
     const KeywordEntry* entry = find_keyword(block_in.keyword, options);
-    if (!entry) {
-      auto& count = context_.model.unknown_keywords[block_in.keyword];
-      ++count;
-      context_.warn(block_in.location(),
-                    fmt::format("keyword {} is not supported; its {} data line(s) were skipped",
-                                block_in.keyword, block_in.lines.size()));
+    // A registered keyword with an option it does not take is a different keyword
+    // (*MAT_ELASTIC_PLASTIC_THERMAL is not *MAT_ELASTIC): classified by its full name.
+    bool accepted = entry != nullptr;
+    for (const auto& option : options) {
+      bool known = false;
+      for (const auto& a : entry->options) known |= (a == option);
+      accepted &= known;
+    }
+    if (!accepted) {
+      unsupported(block_in, entry);
       return;
     }
     Block block = block_in;
     block.base = std::string(entry->name);
     block.options = options;
-    for (const auto& option : options) {
-      bool known = false;
-      for (const auto& accepted : entry->options) known |= (accepted == option);
-      if (!known) {
-        std::string supported;
-        for (const auto& accepted : entry->options) {
-          if (!supported.empty()) supported += ", ";
-          supported += fmt::format("_{}", accepted);
-        }
-        throw block_error(block, 0, "",
-                          fmt::format("option _{} of {} is not supported (supported options: {})",
-                                      option, block.base, supported.empty() ? "none" : supported));
-      }
+    try {
+      entry->handler(block, context_);
+    } catch (const InputErrorList&) {
+      throw;
+    } catch (const InputError& e) {
+      // The rest of the deck is still read, so that every problem is reported in one pass.
+      context_.report(kCardErrors, e);
     }
-    entry->handler(block, context_);
+  }
+
+  // A keyword the reader does not read: output-only ones are warnings, anything else changes
+  // the physics and is an error unless the user asked to skip it (keyword_classes.hpp).
+  void unsupported(const Block& block, const KeywordEntry* entry) {
+    ++context_.model.unknown_keywords[block.keyword];
+    const UnsupportedKind kind = classify_unsupported(block.keyword);
+    remember_skipped_definition(block, kind);
+    std::string read_instead;
+    if (entry) {
+      std::string accepted;
+      for (const auto& a : entry->options)
+        accepted += fmt::format("{}_{}", accepted.empty() ? "" : ", ", a);
+      read_instead = fmt::format(
+          "; {} is read, {}", entry->name,
+          accepted.empty() ? "without options" : fmt::format("with the options {}", accepted));
+    }
+    const std::string lines = fmt::format("{} data line(s)", block.lines.size());
+    if (kind.cls == UnsupportedClass::OutputOnly) {
+      context_.warn(block.location(), fmt::format("keyword {} ({}) is not supported; its {} were "
+                                                  "skipped{}",
+                                                  block.keyword, kind.what, lines, read_instead));
+      return;
+    }
+    if (ignore_unsupported_) {
+      const std::string message = fmt::format(
+          "keyword {} ({}) changes the physics and is not supported; its {} were skipped "
+          "because of --ignore-unsupported{}",
+          block.keyword, kind.what, lines, read_instead);
+      context_.warn(block.location(), message);
+      context_.model.ignored_physics.push_back({block.location(), message});
+      return;
+    }
+    context_.report(
+        kUnsupportedPhysics,
+        block_error(block, 0, "", fmt::format("not supported: {}{}", kind.what, read_instead)));
+  }
+
+  // The ID on the first data card of an unsupported *SECTION_ or *MAT_ keyword (after the title
+  // card of the _TITLE form), so that a *PART naming it can say why it is missing.
+  void remember_skipped_definition(const Block& block, const UnsupportedKind& kind) {
+    const bool section = block.keyword.starts_with("*SECTION_");
+    const bool material = block.keyword.starts_with("*MAT_");
+    if (!section && !material) return;
+    const bool titled = block.keyword.find("_TITLE") != std::string::npos;
+    std::size_t index = titled ? 1 : 0;
+    while (index < block.lines.size() && trim(block.lines[index].text).empty()) ++index;
+    if (index >= block.lines.size()) return;
+    const std::string_view text = block.lines[index].text;
+    const auto comma = text.find(',');
+    const std::size_t width = block.format == CardFormat::Long ? 20 : 10;
+    const std::string_view field =
+        trim(comma != std::string_view::npos ? text.substr(0, comma) : text.substr(0, width));
+    const auto id = parse_integer(field).value;
+    if (!id || *id <= 0) return;
+    auto& skipped = section ? context_.skipped_sections : context_.skipped_materials;
+    skipped.try_emplace(*id, ReaderContext::SkippedDefinition{block.keyword, std::string(kind.what),
+                                                              block.location()});
   }
 
   void dispatch_impetus(const Block& block_in) {
@@ -187,28 +267,67 @@ class DeckReader {
     }
     Block block = block_in;
     block.base = std::string(entry->name);
-    entry->handler(block, context_);
+    try {
+      entry->handler(block, context_);
+    } catch (const InputErrorList&) {
+      throw;
+    } catch (const InputError& e) {
+      context_.report(kCardErrors, e);
+    }
+  }
+
+  // Where an included file is: the including file's folder, then the main deck's, then the
+  // *INCLUDE_PATH folders (relative ones taken from the main deck's folder), in that order.
+  std::optional<fs::path> locate(const fs::path& name) const {
+    std::vector<fs::path> candidates;
+    if (name.is_absolute()) {
+      candidates.push_back(name);
+    } else {
+      candidates.push_back(current_dir_ / name);
+      candidates.push_back(main_dir_ / name);
+      for (const auto& folder : context_.include_paths) {
+        const fs::path f(folder);
+        candidates.push_back((f.is_absolute() ? f : main_dir_ / f) / name);
+      }
+    }
+    for (const auto& candidate : candidates) {
+      if (file_texts_) {
+        if (file_texts_->count(candidate.string())) return candidate;
+        continue;
+      }
+      std::error_code ec;
+      if (fs::is_regular_file(candidate, ec)) return candidate;
+    }
+    return std::nullopt;
   }
 
   void include(const std::string& filename, const Card& card) {
     if (filename.empty()) throw card.error("FILENAME", "the file name is empty");
-    fs::path path(filename);
-    if (path.is_relative()) path = current_dir_ / path;
-    const std::string* stored_text = nullptr;
-    std::error_code ec;
-    if (file_texts_) {
-      const auto it = file_texts_->find(path.string());
-      if (it == file_texts_->end()) {
-        throw card.error("FILENAME", fmt::format("included file '{}' is not among the deck files "
-                                                 "the restart dump holds",
-                                                 filename));
-      }
-      stored_text = &it->second;
-    } else if (!fs::is_regular_file(path, ec)) {
-      throw card.error("FILENAME", fmt::format("included file '{}' does not exist (looked for "
-                                               "'{}')",
-                                               filename, path.string()));
+    const auto found = locate(fs::path(filename));
+    const fs::path looked =
+        fs::path(filename).is_relative() ? current_dir_ / filename : fs::path(filename);
+    if (!found && file_texts_) {
+      throw card.error("FILENAME", fmt::format("included file '{}' is not among the deck files "
+                                               "the restart dump holds",
+                                               filename));
     }
+    if (!found) {
+      std::string where = fmt::format("'{}'", looked.string());
+      if (fs::path(filename).is_relative()) {
+        if (main_dir_ != current_dir_)
+          where += fmt::format(", '{}'", (main_dir_ / filename).string());
+        for (const auto& folder : context_.include_paths) {
+          const fs::path f(folder);
+          where +=
+              fmt::format(", '{}'", ((f.is_absolute() ? f : main_dir_ / f) / filename).string());
+        }
+      }
+      throw card.error("FILENAME", fmt::format("included file '{}' does not exist (looked for "
+                                               "{})",
+                                               filename, where));
+    }
+    const fs::path path = *found;
+    const std::string* stored_text = file_texts_ ? &file_texts_->at(path.string()) : nullptr;
     const fs::path canon = canonical(path);
     for (const auto& open : open_files_) {
       if (open == canon) {
@@ -241,9 +360,12 @@ class DeckReader {
   Dialect dialect_ = Dialect::Auto;  // decided by the main deck, kept for its includes
   CardFormat global_format_ = CardFormat::Standard;
   fs::path current_dir_;
+  fs::path main_dir_;  // the main deck's folder
   std::vector<fs::path> open_files_;
   const std::map<std::string, std::string>* file_texts_ = nullptr;
   std::map<std::string, std::string>* record_files_ = nullptr;
+  bool ignore_unsupported_ = false;
+  bool check_runnable_ = false;
 };
 
 }  // namespace

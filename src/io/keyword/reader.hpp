@@ -1,5 +1,6 @@
 // Keyword deck reader: LS-DYNA dialect (fixed-width and free format) today; the IMPETUS
-// dialect plugs in beside it. Produces a model::Model or throws rf::InputError.
+// dialect plugs in beside it. Produces a model::Model or throws rf::InputError (a single
+// problem) or rf::InputErrorList (every problem found, grouped by kind).
 #pragma once
 
 #include <filesystem>
@@ -28,6 +29,12 @@ struct ReadOptions {
   // (the model that held them is gone): a misspelt *MAT keyword's warning explains the "material
   // is not defined" error that follows, so the CLI prints them first.
   std::vector<model::Warning>* warnings_on_error = nullptr;
+  // Skip unsupported keywords that change the physics (warnings, model.ignored_physics)
+  // instead of refusing the deck (CLI --ignore-unsupported).
+  bool ignore_unsupported = false;
+  // Also refuse what `run` would refuse (no *CONTROL_TERMINATION, no elements, nothing that
+  // limits the time step, IMFLAG 1 without an eigen analysis): `check` and `run` set it.
+  bool check_runnable = false;
 };
 
 // Reads a deck file and everything it includes (paths relative to the including file).
