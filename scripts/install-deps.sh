@@ -15,6 +15,8 @@ PACKAGES=(
   libsuitesparse-dev # CHOLMOD sparse Cholesky (eigen analysis)
   libgtest-dev       # unit and verification tests
   libbenchmark-dev   # kernel benchmarks
+  python3            # result read-back tests (tests/python: standard library only)
+  python3-paraview   # pvpython: ParaView's LS-DYNA reader opens our d3plot in a test
 )
 
 missing=()

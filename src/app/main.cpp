@@ -163,7 +163,7 @@ int run_to_termination(rf::solver::Simulation& sim, const fs::path& out,
                   dumper->written().back().filename().string().c_str(), dumper->seconds());
     }
     std::printf(
-        "results in %s/ (glstat.csv, d3plot.pvd, run.json); open d3plot.pvd in "
+        "results in %s/ (glstat.csv, frames.pvd, d3plot, run.json); open frames.pvd in "
         "ParaView\n",
         fs::absolute(out).lexically_normal().string().c_str());
   }
