@@ -48,8 +48,7 @@ void write_mode_fields(const std::filesystem::path& directory, const model::Mode
       hi[c] = std::max(hi[c], p[c]);
     }
   }
-  const double diagonal =
-      n == 0 ? 0.0 : std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+  const double diagonal = n == 0 ? 0.0 : std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
   for (std::size_t k = 0; k < modes.mode_count(); ++k) {
     const double* phi = modes.shape(k);
     double largest = 0.0;

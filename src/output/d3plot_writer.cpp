@@ -24,9 +24,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kGlobalCount = 6;     // NGLBV: KE, IE, TE, vx, vy, vz
-constexpr int kSolidValues = 7;     // NV3D: 6 stresses + effective plastic strain
-constexpr int kIntegrationFlag = 3; // MAXINT (shell integration points; no shells written)
+constexpr int kGlobalCount = 6;      // NGLBV: KE, IE, TE, vx, vy, vz
+constexpr int kSolidValues = 7;      // NV3D: 6 stresses + effective plastic strain
+constexpr int kIntegrationFlag = 3;  // MAXINT (shell integration points; no shells written)
 
 // One 4-byte word as the database stores it: integers as int32, reals as float32.
 float int_word(std::int64_t value) {
@@ -41,7 +41,8 @@ void write_words(const fs::path& path, const char* mode, std::int64_t offset,
                  const std::vector<float>& words) {
   std::FILE* file = std::fopen(path.c_str(), mode);
   if (file == nullptr) {
-    throw std::runtime_error(fmt::format("cannot open output file '{}' for writing", path.string()));
+    throw std::runtime_error(
+        fmt::format("cannot open output file '{}' for writing", path.string()));
   }
   bool ok = std::fseek(file, static_cast<long>(offset), SEEK_SET) == 0;
   ok = ok && std::fwrite(words.data(), sizeof(float), words.size(), file) == words.size();
@@ -66,10 +67,9 @@ void for_each_written_solid(const solver::State& state, const Visit& visit) {
       for (int k = 0; k < p; ++k)
         for (int j = 0; j < p; ++j)
           for (int i = 0; i < p; ++i) {
-            const std::int32_t sub[8] = {at(i, j, k),         at(i + 1, j, k),
-                                         at(i + 1, j + 1, k), at(i, j + 1, k),
-                                         at(i, j, k + 1),     at(i + 1, j, k + 1),
-                                         at(i + 1, j + 1, k + 1), at(i, j + 1, k + 1)};
+            const std::int32_t sub[8] = {
+                at(i, j, k),     at(i + 1, j, k),     at(i + 1, j + 1, k),     at(i, j + 1, k),
+                at(i, j, k + 1), at(i + 1, j, k + 1), at(i + 1, j + 1, k + 1), at(i, j + 1, k + 1)};
             visit(block, e, sub);
           }
     }
@@ -89,13 +89,12 @@ std::string D3plotWriter::member_name(int k) {
 D3plotWriter::D3plotWriter(fs::path directory, std::string title, std::int64_t family_bytes)
     : directory_(std::move(directory)), title_(std::move(title)), family_bytes_(family_bytes) {}
 
+// d3plot holds the control words and the geometry only; the states follow in d3plot01,
+// d3plot02, ... ParaView 5.11's reader loses its place in the geometry when the root file also
+// holds states (it reads the control words as element materials and crashes).
 std::pair<int, std::int64_t> D3plotWriter::position_of(std::int64_t index) const {
-  if (index < layout_.first_states) {
-    return {0, 4 * (layout_.header_words + index * layout_.state_words)};
-  }
-  const std::int64_t later = index - layout_.first_states;
-  return {static_cast<int>(1 + later / layout_.later_states),
-          4 * (later % layout_.later_states) * layout_.state_words};
+  return {static_cast<int>(1 + index / layout_.states_per_member),
+          4 * (index % layout_.states_per_member) * layout_.state_words};
 }
 
 void D3plotWriter::write_header(const solver::State& state) {
@@ -117,13 +116,13 @@ void D3plotWriter::write_header(const solver::State& state) {
   std::vector<float> connectivity;
   std::vector<float> solid_ids;
   element_count_ = 0;
-  for_each_written_solid(state, [&](const element::HexBlock& block, std::size_t e,
-                                    const std::int32_t* n) {
-    for (int k = 0; k < 8; ++k) connectivity.push_back(int_word(n[k] + 1));
-    connectivity.push_back(int_word(material_number.at(block.part_id)));
-    solid_ids.push_back(int_word(block.element_id[e]));
-    ++element_count_;
-  });
+  for_each_written_solid(state,
+                         [&](const element::HexBlock& block, std::size_t e, const std::int32_t* n) {
+                           for (int k = 0; k < 8; ++k) connectivity.push_back(int_word(n[k] + 1));
+                           connectivity.push_back(int_word(material_number.at(block.part_id)));
+                           solid_ids.push_back(int_word(block.element_id[e]));
+                           ++element_count_;
+                         });
 
   const std::int64_t narbs = 16 + node_count + element_count_ + 3 * materials;
   std::vector<float> words(64, int_word(0));
@@ -135,24 +134,24 @@ void D3plotWriter::write_header(const solver::State& state) {
     std::memcpy(&words[13], "RFLX", 4);  // release
   }
   auto set = [&](int word, std::int64_t value) { words[word] = int_word(value); };
-  set(10, 0);  // RUNTIME: 0, so that a run's files are the same byte for byte every time
-  set(11, 1);  // FILETYPE: d3plot
+  set(10, 0);          // RUNTIME: 0, so that a run's files are the same byte for byte every time
+  set(11, 1);          // FILETYPE: d3plot
   words[14] = 960.0f;  // VERSION
   // NDIM 4: 3-D with unpacked connectivity and no material-type section. (NDIM 5 adds a list
-  // of material types that only matters for rigid shells, which have no state data; ParaView
-  // 5.11's reader takes its materials for extra rigid-body parts and crashes on them.)
+  // of material types that only matters for rigid shells, which have no state data; ParaView's
+  // reader would list those materials once more, as empty rigid-body parts.)
   set(15, 4);
   set(16, node_count);
   set(17, 6);  // ICODE: finite-element code
   set(18, kGlobalCount);
-  set(19, 0);  // IT: no temperatures
-  set(20, 1);  // IU: coordinates
-  set(21, 1);  // IV: velocities
-  set(22, 1);  // IA: accelerations
-  set(23, element_count_);  // NEL8
-  set(24, materials);       // NUMMAT8
-  set(27, kSolidValues);    // NV3D
-  set(30, 6);               // NV1D (no beams)
+  set(19, 0);                            // IT: no temperatures
+  set(20, 1);                            // IU: coordinates
+  set(21, 1);                            // IV: velocities
+  set(22, 1);                            // IA: accelerations
+  set(23, element_count_);               // NEL8
+  set(24, materials);                    // NUMMAT8
+  set(27, kSolidValues);                 // NV3D
+  set(30, 6);                            // NV1D (no beams)
   set(36, -(10000 + kIntegrationFlag));  // MAXINT < -10000: one deletion flag per element
   set(39, narbs);
   for (int k = 43; k <= 46; ++k) set(k, 1000);  // IOSHL: stresses and plastic strain present
@@ -170,10 +169,22 @@ void D3plotWriter::write_header(const solver::State& state) {
   const std::int64_t node_ids_at = static_cast<std::int64_t>(words.size()) + 16;
   const std::int64_t solid_ids_at = node_ids_at + node_count;
   const std::int64_t materials_at = solid_ids_at + element_count_;
-  const std::int64_t header_ids[16] = {-node_ids_at,  solid_ids_at, materials_at, materials_at,
-                                       materials_at,  node_count,   element_count_, 0,
-                                       0,             0,            materials_at, materials_at + materials,
-                                       materials_at + 2 * materials, materials, 0, materials};
+  const std::int64_t header_ids[16] = {-node_ids_at,
+                                       solid_ids_at,
+                                       materials_at,
+                                       materials_at,
+                                       materials_at,
+                                       node_count,
+                                       element_count_,
+                                       0,
+                                       0,
+                                       0,
+                                       materials_at,
+                                       materials_at + materials,
+                                       materials_at + 2 * materials,
+                                       materials,
+                                       0,
+                                       materials};
   std::int64_t rigid_materials = 0;
   for (const auto& [pid, rigid] : rigid_of_part) rigid_materials += rigid ? 1 : 0;
   for (int k = 0; k < 16; ++k) words.push_back(int_word(k == 14 ? rigid_materials : header_ids[k]));
@@ -188,12 +199,9 @@ void D3plotWriter::write_header(const solver::State& state) {
   }
 
   layout_.header_words = static_cast<std::int64_t>(words.size());
-  layout_.state_words =
-      1 + kGlobalCount + 9 * node_count + (kSolidValues + 1) * element_count_;
+  layout_.state_words = 1 + kGlobalCount + 9 * node_count + (kSolidValues + 1) * element_count_;
   const std::int64_t family_words = family_bytes_ / 4;
-  layout_.first_states =
-      std::max<std::int64_t>(1, (family_words - layout_.header_words - 1) / layout_.state_words);
-  layout_.later_states = std::max<std::int64_t>(1, (family_words - 1) / layout_.state_words);
+  layout_.states_per_member = std::max<std::int64_t>(1, (family_words - 1) / layout_.state_words);
 
   if (resume_states_ >= 0 && cut_back_to(resume_states_)) {
     states_ = resume_states_;
@@ -217,8 +225,9 @@ bool D3plotWriter::cut_back_to(std::int64_t states) {
   std::error_code ec;
   // The member that ends before state `states`: it must hold everything up to there.
   const int last = offset > 0 ? member : member - 1;
-  const std::int64_t needed =
-      offset > 0 ? offset : position_of(states - 1).second + 4 * layout_.state_words;
+  const std::int64_t needed = offset > 0  ? offset
+                              : last == 0 ? 4 * layout_.header_words
+                                          : 4 * layout_.states_per_member * layout_.state_words;
   const fs::path path = directory_ / member_name(last);
   const auto size = fs::file_size(path, ec);
   if (ec || static_cast<std::int64_t>(size) < needed) return false;
@@ -248,14 +257,14 @@ void D3plotWriter::write_state(const solver::State& state, const D3plotGlobals& 
     }
   }
   std::int64_t written = 0;
-  for_each_written_solid(state, [&](const element::HexBlock& block, std::size_t e,
-                                    const std::int32_t*) {
-    double mean[6];
-    element_mean_stress(block, e, mean);
-    for (double s : mean) buffer_.push_back(static_cast<float>(s));
-    buffer_.push_back(static_cast<float>(d3plot_effective_plastic_strain(block, e)));
-    ++written;
-  });
+  for_each_written_solid(
+      state, [&](const element::HexBlock& block, std::size_t e, const std::int32_t*) {
+        double mean[6];
+        element_mean_stress(block, e, mean);
+        for (double s : mean) buffer_.push_back(static_cast<float>(s));
+        buffer_.push_back(static_cast<float>(d3plot_effective_plastic_strain(block, e)));
+        ++written;
+      });
   if (written != element_count_) {
     throw std::runtime_error("d3plot: the number of solids changed during the run");
   }

@@ -1,9 +1,10 @@
 // LS-DYNA binary result database ("d3plot"), so that LS-PrePost, ParaView's LS-DYNA reader and
 // lasso-python open RigidFlex results. Layout (docs/output.md#d3plot): the database of the
 // LS-DYNA manual ("LS-DYNA Database Binary Output Files"), 4-byte words in host byte order,
-// written as a file family d3plot, d3plot01, d3plot02, ...:
-//   control words (64) | node coordinates | solid connectivity +
-//   material | user IDs (NARBS) | state 0 | state 1 | ... | end-of-file marker -999999.0
+// written as a file family:
+//   d3plot:   control words (64) | node coordinates | solid connectivity + material |
+//             user IDs (NARBS) | end-of-file marker -999999.0
+//   d3plot01, d3plot02, ...: state | state | ... | end-of-file marker -999999.0
 // Each state: time, 6 global values, current coordinates, velocities, accelerations of every
 // node, 7 values per solid (6 stresses + effective plastic strain) and one deletion flag per
 // solid (1 = active).
@@ -32,8 +33,8 @@ double d3plot_effective_plastic_strain(const element::HexBlock& block, std::size
 
 class D3plotWriter {
  public:
-  // `family_bytes`: largest size of one file of the family (a state is never split; the first
-  // file holds at least the geometry and one state).
+  // `family_bytes`: largest size of one state file of the family (a state is never split; a
+  // member holds at least one state).
   D3plotWriter(std::filesystem::path directory, std::string title,
                std::int64_t family_bytes = kDefaultFamilyBytes);
 
@@ -58,8 +59,7 @@ class D3plotWriter {
   struct Layout {
     std::int64_t header_words = 0;  // control words through user IDs
     std::int64_t state_words = 0;
-    std::int64_t first_states = 1;  // states in d3plot
-    std::int64_t later_states = 1;  // states in each later member
+    std::int64_t states_per_member = 1;  // in d3plot01, d3plot02, ... (d3plot: none)
   };
   void write_header(const solver::State& state);
   // Member and byte offset where state number `index` (0-based) starts.

@@ -208,7 +208,9 @@ void element_mean_stress(const element::HexBlock& block, std::size_t e, double o
   for (int c = 0; c < 6; ++c) out[c] /= static_cast<double>(points);
 }
 
-double pressure_of(const double* s) { return -(s[0] + s[1] + s[2]) / 3.0; }
+double pressure_of(const double* s) {
+  return -(s[0] + s[1] + s[2]) / 3.0;
+}
 
 std::array<double, 3> principal_stresses(const double* s) {
   // Eigenvalues of the symmetric Cauchy tensor (Voigt xx,yy,zz,xy,yz,zx); Eigen returns them
@@ -256,7 +258,9 @@ FieldWriter::FieldWriter(const std::filesystem::path& directory, std::string ste
   }
 }
 
-void FieldWriter::write_frame(const solver::State& state) { write_frame(state, FrameOptions{}); }
+void FieldWriter::write_frame(const solver::State& state) {
+  write_frame(state, FrameOptions{});
+}
 
 void FieldWriter::write_frame(const solver::State& state, const FrameOptions& options) {
   const solver::NodalState& nodes = state.nodes;
@@ -475,8 +479,8 @@ void FieldWriter::write_frame(const solver::State& state, const FrameOptions& op
 
 std::string FieldWriter::walls_file_of(const std::string& frame_file) {
   const auto underscore = frame_file.rfind('_');
-  return "walls" + (underscore == std::string::npos ? "_" + frame_file
-                                                    : frame_file.substr(underscore));
+  return "walls" +
+         (underscore == std::string::npos ? "_" + frame_file : frame_file.substr(underscore));
 }
 
 // Walls are a handful of quadrilaterals: ASCII VTU, readable by eye.
@@ -492,31 +496,38 @@ void FieldWriter::write_walls(const std::vector<WallPatch>& walls, double time,
                  "format=\"ascii\">{:.17g}</DataArray>\n    </FieldData>\n"
                  "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n",
                  byte_order_name(), time, 4 * walls.size(), walls.size());
-  fmt::format_to(out, "      <CellData Scalars=\"normal_force\">\n"
-                      "        <DataArray type=\"Int64\" Name=\"wall_id\" format=\"ascii\">");
+  fmt::format_to(out,
+                 "      <CellData Scalars=\"normal_force\">\n"
+                 "        <DataArray type=\"Int64\" Name=\"wall_id\" format=\"ascii\">");
   for (const WallPatch& w : walls) fmt::format_to(out, " {}", w.id);
-  fmt::format_to(out, "</DataArray>\n        <DataArray type=\"Float64\" Name=\"normal_force\" "
-                      "format=\"ascii\">");
+  fmt::format_to(out,
+                 "</DataArray>\n        <DataArray type=\"Float64\" Name=\"normal_force\" "
+                 "format=\"ascii\">");
   for (const WallPatch& w : walls) fmt::format_to(out, " {:.17g}", w.normal_force);
-  fmt::format_to(out, "</DataArray>\n      </CellData>\n      <Points>\n"
-                      "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" "
-                      "format=\"ascii\">");
+  fmt::format_to(out,
+                 "</DataArray>\n      </CellData>\n      <Points>\n"
+                 "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" "
+                 "format=\"ascii\">");
   for (const WallPatch& w : walls) {
-    for (const auto& c : w.corners) fmt::format_to(out, " {:.17g} {:.17g} {:.17g}", c[0], c[1], c[2]);
+    for (const auto& c : w.corners)
+      fmt::format_to(out, " {:.17g} {:.17g} {:.17g}", c[0], c[1], c[2]);
   }
-  fmt::format_to(out, "</DataArray>\n      </Points>\n      <Cells>\n"
-                      "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">");
+  fmt::format_to(out,
+                 "</DataArray>\n      </Points>\n      <Cells>\n"
+                 "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">");
   for (std::size_t k = 0; k < 4 * walls.size(); ++k) fmt::format_to(out, " {}", k);
-  fmt::format_to(out, "</DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" "
-                      "format=\"ascii\">");
+  fmt::format_to(out,
+                 "</DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" "
+                 "format=\"ascii\">");
   for (std::size_t k = 1; k <= walls.size(); ++k) fmt::format_to(out, " {}", 4 * k);
-  fmt::format_to(out, "</DataArray>\n        <DataArray type=\"UInt8\" Name=\"types\" "
-                      "format=\"ascii\">");
+  fmt::format_to(out,
+                 "</DataArray>\n        <DataArray type=\"UInt8\" Name=\"types\" "
+                 "format=\"ascii\">");
   for (std::size_t k = 0; k < walls.size(); ++k) fmt::format_to(out, " 9");  // VTK_QUAD
-  fmt::format_to(out, "</DataArray>\n      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n"
-                      "</VTKFile>\n");
-  write_atomically(directory_ / file,
-                   [&](OutputFile& f) { f.write(xml.data(), xml.size()); });
+  fmt::format_to(out,
+                 "</DataArray>\n      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n"
+                 "</VTKFile>\n");
+  write_atomically(directory_ / file, [&](OutputFile& f) { f.write(xml.data(), xml.size()); });
 }
 
 void FieldWriter::write_walls_collection() const {

@@ -27,8 +27,8 @@ PartHistories::PartHistories(const State& state, const RigidSystem& rigid) {
   hourglass_.assign(parts_.size(), 0.0);
 }
 
-void PartHistories::add_step_work(const State& state, const RigidSystem& rigid,
-                                  const Vec3Array& vp, double dt_avg) {
+void PartHistories::add_step_work(const State& state, const RigidSystem& rigid, const Vec3Array& vp,
+                                  double dt_avg) {
   const NodalState& nodes = state.nodes;
   const std::int64_t n = static_cast<std::int64_t>(nodes.size());
   displacement_.resize(nodes.size());
@@ -48,8 +48,7 @@ void PartHistories::add_step_work(const State& state, const RigidSystem& rigid,
       const Eigen::Vector3d arm(nodes.x.x[i] - body.state.previous_centre.x(),
                                 nodes.x.y[i] - body.state.previous_centre.y(),
                                 nodes.x.z[i] - body.state.previous_centre.z());
-      const Eigen::Vector3d d =
-          dt_avg * (body.mid_velocity + body.mid_angular_velocity.cross(arm));
+      const Eigen::Vector3d d = dt_avg * (body.mid_velocity + body.mid_angular_velocity.cross(arm));
       dx = d.x();
       dy = d.y();
       dz = d.z();

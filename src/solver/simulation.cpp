@@ -182,10 +182,9 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
       for (std::size_t k = 0; k < model.output.history_solids.size(); ++k) {
         const auto it = where.find(model.output.history_solids[k]);
         if (it == where.end()) {
-          throw InputError(
-              model::context_of(model.output.history_solid_where[k], "EID"),
-              fmt::format("*DATABASE_HISTORY_SOLID: solid element {} does not exist",
-                          model.output.history_solids[k]));
+          throw InputError(model::context_of(model.output.history_solid_where[k], "EID"),
+                           fmt::format("*DATABASE_HISTORY_SOLID: solid element {} does not exist",
+                                       model.output.history_solids[k]));
         }
         elout_solids_.push_back(it->second);
       }

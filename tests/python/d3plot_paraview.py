@@ -1,81 +1,106 @@
 """Opens a RigidFlex d3plot with ParaView's own LS-DYNA reader (vtkLSDynaReader, through pvpython)
-and compares what ParaView shows with the VTU frames of the same run: time values, current
-coordinates and velocities of every node (by user node ID), and the 6 stresses and part of every
-solid (by user element ID).
+and compares what ParaView shows with the VTU frames of the same run: the time values, and per
+time step the current coordinates and velocities of every node and the 6 stresses of every solid.
+
+Nodes are matched by their reference position (the reader's undeformed points), not by the
+reader's UserID array: ParaView 5.11 reads the 4-byte node IDs of the file as 8-byte values.
+Each stress ParaView shows must equal a distinct solid's stress in the frame (an element of order
+p counts p^3 times: it is written as its p^3 sub-hexahedra).
 
 Usage: pvpython d3plot_paraview.py OUTPUT_DIR   (a directory with d3plot and frames.pvd)
 """
+import math
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from rigidflex_results import read_pvd, read_vtu  # noqa: E402
 
-from paraview import servermanager  # noqa: E402
-from paraview.simple import LSDynaReader, MergeBlocks  # noqa: E402
+from vtkmodules.vtkIOLSDyna import vtkLSDynaReader  # noqa: E402
 
 
 def main():
     out = sys.argv[1]
     frames = read_pvd(os.path.join(out, "frames.pvd"))
-    reader = LSDynaReader(FileName=os.path.join(out, "d3plot"))
-    reader.UpdatePipelineInformation()
-    times = list(reader.TimestepValues)
+    reader = vtkLSDynaReader()
+    reader.SetFileName(os.path.join(out, "d3plot"))
+    reader.SetDeformedMesh(0)  # points = reference coordinates; current ones as an array
+    reader.UpdateInformation()
     failures = []
-    if len(times) != len(frames):
-        failures.append("ParaView sees %d time steps, frames.pvd lists %d" % (len(times), len(frames)))
-    merged = MergeBlocks(Input=reader)
-    for t, (frame_time, name) in zip(times, frames):
-        if abs(t - frame_time) > 1e-6 * max(abs(frame_time), 1e-30):
-            failures.append("time %r, frame time %r" % (t, frame_time))
-        merged.UpdatePipeline(t)
-        data = servermanager.Fetch(merged)
+    steps = reader.GetNumberOfTimeSteps()
+    if steps != len(frames):
+        failures.append("ParaView sees %d time steps, frames.pvd lists %d" % (steps, len(frames)))
+    first = read_vtu(os.path.join(out, frames[0][1]))
+    reference = first["points"]
+    size = max(abs(c) for p in reference for c in p)
+    parts_in_frames = sorted(set(first["cell_data"]["part_id"]))
+    if reader.GetNumberOfPartArrays() != len(parts_in_frames):
+        failures.append("ParaView lists %d parts, the frames %d" % (reader.GetNumberOfPartArrays(), len(parts_in_frames)))
+    for step in range(min(steps, len(frames))):
+        t, name = frames[step]
+        if abs(reader.GetTimeValue(step) - t) > 1e-6 * max(abs(t), 1e-30):
+            failures.append("step %d: time %r, frame time %r" % (step, reader.GetTimeValue(step), t))
+        reader.SetTimeStep(step)
+        reader.Update()
+        data = reader.GetOutput()
         f = read_vtu(os.path.join(out, name))
-        index = {nid: i for i, nid in enumerate(f["point_data"]["node_id"])}
-        pd, cd = data.GetPointData(), data.GetCellData()
-        ids = pd.GetArray("UserID")
-        vel = pd.GetArray("Velocity")
-        if ids is None or vel is None:
-            names = [pd.GetArrayName(k) for k in range(pd.GetNumberOfArrays())]
-            failures.append("point arrays UserID/Velocity missing (have %r)" % names)
-            break
-        scale = max(abs(c) for p in f["points"] for c in p)
         vscale = max([abs(c) for p in f["point_data"]["velocity"] for c in p] + [1e-30])
-        for k in range(data.GetNumberOfPoints()):
-            i = index[int(ids.GetValue(k))]
-            p = data.GetPoint(k)
-            v = vel.GetTuple3(k)
-            if any(abs(p[c] - f["points"][i][c]) > 2e-6 * scale for c in range(3)):
-                failures.append("t=%g node %d: ParaView point %r, frame %r" % (t, ids.GetValue(k), p, f["points"][i]))
-                break
-            if any(abs(v[c] - f["point_data"]["velocity"][i][c]) > 2e-6 * vscale for c in range(3)):
-                failures.append("t=%g node %d: ParaView velocity %r, frame %r" % (t, ids.GetValue(k), v, f["point_data"]["velocity"][i]))
-                break
-        cell_index = {eid: c for c, eid in enumerate(f["cell_data"]["element_id"])}
-        eids = cd.GetArray("UserID")
-        stress = cd.GetArray("Stress")
-        if eids is None or stress is None:
-            names = [cd.GetArrayName(k) for k in range(cd.GetNumberOfArrays())]
-            failures.append("cell arrays UserID/Stress missing (have %r)" % names)
-            break
         sscale = max([abs(c) for s in f["cell_data"]["stress"] for c in s] + [1e-30])
-        seen = set()
-        for k in range(data.GetNumberOfCells()):
-            eid = int(eids.GetValue(k))
-            seen.add(eid)
-            s = stress.GetTuple(k)
-            expected = f["cell_data"]["stress"][cell_index[eid]]
-            if any(abs(s[c] - expected[c]) > 2e-6 * sscale for c in range(6)):
-                failures.append("t=%g element %d: ParaView stress %r, frame %r" % (t, eid, s, expected))
+        seen_points = 0
+        paraview_stresses = []
+        for b in range(data.GetNumberOfBlocks()):
+            grid = data.GetBlock(b)
+            if grid is None:
+                continue
+            current = grid.GetPointData().GetArray("Deflected Coordinates")
+            velocity = grid.GetPointData().GetArray("Velocity")
+            stress = grid.GetCellData().GetArray("Stress")
+            if current is None or velocity is None or stress is None:
+                failures.append("step %d: arrays Deflected Coordinates/Velocity/Stress missing" % step)
                 break
-        if seen != set(cell_index):
-            failures.append("t=%g: ParaView shows elements %r, the frame %r" % (t, sorted(seen), sorted(cell_index)))
+            for k in range(grid.GetNumberOfPoints()):
+                p = grid.GetPoint(k)
+                i = min(range(len(reference)), key=lambda j: math.dist(reference[j], p))
+                if math.dist(reference[i], p) > 1e-6 * size:
+                    failures.append("step %d: ParaView point %r is no node of the frames" % (step, p))
+                    break
+                x, v = current.GetTuple3(k), velocity.GetTuple3(k)
+                if any(abs(x[c] - f["points"][i][c]) > 2e-6 * size for c in range(3)):
+                    failures.append("step %d node %d: ParaView position %r, frame %r" % (step, i, x, f["points"][i]))
+                    break
+                if any(abs(v[c] - f["point_data"]["velocity"][i][c]) > 2e-6 * vscale for c in range(3)):
+                    failures.append("step %d node %d: ParaView velocity %r, frame %r" % (step, i, v, f["point_data"]["velocity"][i]))
+                    break
+                seen_points += 1
+            paraview_stresses += [stress.GetTuple(k) for k in range(grid.GetNumberOfCells())]
+        expected = []
+        offsets = [0] + list(f["offsets"])
+        for c, s in enumerate(f["cell_data"]["stress"]):
+            count = 1
+            if f["types"][c] == 72:  # Lagrange hexahedron: (p+1)^3 nodes, p^3 sub-hexahedra
+                p = round((offsets[c + 1] - offsets[c]) ** (1.0 / 3.0)) - 1
+                count = p ** 3
+            expected += [s] * count
+        if len(expected) != len(paraview_stresses):
+            failures.append("step %d: ParaView shows %d solids, expected %d" % (step, len(paraview_stresses), len(expected)))
+        else:
+            # Pair each ParaView stress with the closest unused frame stress (mirror-symmetric
+            # elements differ only in the sign of shear components, so sorting would mix them).
+            unused = [tuple(s) for s in expected]
+            for a in paraview_stresses:
+                k = min(range(len(unused)), key=lambda j: max(abs(a[c] - unused[j][c]) for c in range(6)))
+                e = unused.pop(k)
+                if any(abs(a[c] - e[c]) > 2e-6 * sscale for c in range(6)):
+                    failures.append("step %d: ParaView stress %r, frame %r" % (step, a, e))
+                    break
+        if seen_points == 0:
+            failures.append("step %d: ParaView shows no points" % step)
     if failures:
         print("ParaView's LS-DYNA reader disagrees with the frames:")
-        for f in failures[:20]:
-            print("  " + f)
+        for line in failures[:20]:
+            print("  " + line)
         return 1
-    print("ParaView's LS-DYNA reader reads %d states that match the frames" % len(times))
+    print("ParaView's LS-DYNA reader reads %d states that match the frames" % steps)
     return 0
 
 

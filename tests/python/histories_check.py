@@ -47,6 +47,7 @@ def column_deck(path):
     lines += ["%d,0,1,1,1,1,1,1" % n for n in (1, 2, 3, 4)]
     lines += ["*DEFINE_CURVE", "99", "0.0,0.0", "2.0e-3,1.0", "1.0,1.0",
               "*LOAD_BODY_Z", "99,%g" % ACC, "*CONTROL_TERMINATION", "2.5e-3",
+              "*CONTROL_TIMESTEP", "0.0,0.5",
               "*DATABASE_GLSTAT", "1.0e-4", "*DATABASE_BINARY_D3PLOT", "2.5e-4",
               "*DATABASE_MATSUM", "1.0e-4", "*DATABASE_SPCFORC", "1.0e-4",
               "*DATABASE_ELOUT", "5.0e-5", "*DATABASE_HISTORY_SOLID", "1", "*END"]
