@@ -583,8 +583,8 @@ struct OutputControl {
   double matsum_dt = 0.0;  // 0: about 1000 rows per run
   bool spcforc = false;    // *DATABASE_SPCFORC present
   double spcforc_dt = 0.0;
-  double elout_dt = 0.0;             // *DATABASE_ELOUT DT; 0: about 1000 rows per run
-  std::vector<Id> history_solids;    // *DATABASE_HISTORY_SOLID element IDs, in deck order
+  double elout_dt = 0.0;           // *DATABASE_ELOUT DT; 0: about 1000 rows per run
+  std::vector<Id> history_solids;  // *DATABASE_HISTORY_SOLID element IDs, in deck order
   std::vector<SourceLocation> history_solid_where;  // the card of each
 };
 

@@ -46,12 +46,12 @@ class PartHistories {
   std::vector<double>& hourglass() { return hourglass_; }
 
  private:
-  std::vector<model::Id> parts_;          // ascending part IDs (then nodal rigid body PIDs)
-  std::vector<int> part_of_block_;        // hex block -> index into parts_
-  std::vector<int> owner_of_node_;        // node -> index into parts_ (-1: no element)
-  std::vector<double> internal_work_;     // per part, hourglass included
-  std::vector<double> hourglass_;         // per part
-  Vec3Array displacement_;                // scratch: the step's work displacement per node
+  std::vector<model::Id> parts_;       // ascending part IDs (then nodal rigid body PIDs)
+  std::vector<int> part_of_block_;     // hex block -> index into parts_
+  std::vector<int> owner_of_node_;     // node -> index into parts_ (-1: no element)
+  std::vector<double> internal_work_;  // per part, hourglass included
+  std::vector<double> hourglass_;      // per part
+  Vec3Array displacement_;             // scratch: the step's work displacement per node
 };
 
 // Reaction force of a constrained node (SPC, *NODE TC, prescribed motion) at the output time t^n:
