@@ -45,7 +45,7 @@ def end_face(rigidflex, update_type, workdir):
     rows = (out / "glstat.csv").read_text().strip().splitlines()
     header, final = rows[0].split(","), rows[-1].split(",")
     run["energy_ratio"] = float(final[header.index("energy_ratio")])
-    last = sorted(out.glob("d3plot_*.vtu"))[-1]
+    last = sorted(out.glob("frames_*.vtu"))[-1]
     a = read_vtu_arrays(last)
     pts, disp = a["Points"], a["displacement"]
     face = []

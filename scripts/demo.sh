@@ -14,6 +14,7 @@ echo
 echo "Results: $out (log: d3hsp.txt)"
 echo "  ParaView: File > Open > bar_impact_out/$frames, Apply; the points are the deformed"
 echo "  positions (no Warp By Vector needed): colour by displacement or effective_stress"
+echo "  LS-PrePost or ParaView's LS-DYNA reader: bar_impact_out/d3plot"
 echo "  Energies and momenta: bar_impact_out/glstat.csv; node histories: bar_impact_out/nodout.csv"
 # Pictures: PNG plots of the histories (matplotlib) and the last frame coloured by effective
 # stress (pvpython under xvfb-run); each is skipped with a note when its package is missing.

@@ -15,8 +15,9 @@ PACKAGES=(
   libsuitesparse-dev # CHOLMOD sparse Cholesky (eigen analysis)
   libgtest-dev       # unit and verification tests
   libbenchmark-dev   # kernel benchmarks
+  python3            # result read-back tests (tests/python: standard library only)
   python3-matplotlib # scripts/rigidflex-plot.py (PNG plots of a run; its test skips without it)
-  python3-paraview   # scripts/rigidflex-render.py (pvpython: the last frame as a PNG)
+  python3-paraview   # pvpython: the last frame as a PNG, ParaView's LS-DYNA reader on our d3plot
   xvfb xauth         # xvfb-run: an X display for pvpython on a headless machine
 )
 

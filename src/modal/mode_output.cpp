@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -36,15 +37,35 @@ void write_mode_fields(const std::filesystem::path& directory, const model::Mode
     throw std::runtime_error("modes.vtu: the mode set does not belong to this model and parts");
   }
   output::FieldWriter writer(directory, "modes");
+  // Drawn size: the largest nodal displacement of every mode is 10 % of the bounding-box
+  // diagonal of the reference mesh (mass-normalised shapes have arbitrary, often huge or tiny,
+  // lengths). `displacement` keeps the true shape; the factor is field data `mode_scale`.
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (std::size_t i = 0; i < n; ++i) {
+    const double p[3] = {state.nodes.x0.x[i], state.nodes.x0.y[i], state.nodes.x0.z[i]};
+    for (int c = 0; c < 3; ++c) {
+      lo[c] = std::min(lo[c], p[c]);
+      hi[c] = std::max(hi[c], p[c]);
+    }
+  }
+  const double diagonal = n == 0 ? 0.0 : std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
   for (std::size_t k = 0; k < modes.mode_count(); ++k) {
     const double* phi = modes.shape(k);
+    double largest = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      largest = std::max(largest, std::hypot(phi[3 * i], phi[3 * i + 1], phi[3 * i + 2]));
+    }
+    output::FrameOptions options;
+    options.scale_name = "mode_scale";
+    options.point_displacement_scale =
+        largest > 0.0 && diagonal > 0.0 ? mode_display_fraction * diagonal / largest : 1.0;
     for (std::size_t i = 0; i < n; ++i) {
       state.nodes.x.x[i] = state.nodes.x0.x[i] + phi[3 * i];
       state.nodes.x.y[i] = state.nodes.x0.y[i] + phi[3 * i + 1];
       state.nodes.x.z[i] = state.nodes.x0.z[i] + phi[3 * i + 2];
     }
     state.time = static_cast<double>(k + 1);
-    writer.write_frame(state);
+    writer.write_frame(state, options);
   }
 }
 

@@ -656,6 +656,14 @@ struct OutputControl {
   bool rbdout = false;     // true when *DATABASE_RBDOUT is present
   double rwforc_dt = 0.0;  // *DATABASE_RWFORC DT; 0: about 1000 rows per run
   double rcforc_dt = 0.0;  // *DATABASE_RCFORC DT; 0: about 1000 rows per run
+  // Per-part and per-element histories (docs/output.md): written only when the keyword is there.
+  bool matsum = false;     // *DATABASE_MATSUM present
+  double matsum_dt = 0.0;  // 0: about 1000 rows per run
+  bool spcforc = false;    // *DATABASE_SPCFORC present
+  double spcforc_dt = 0.0;
+  double elout_dt = 0.0;           // *DATABASE_ELOUT DT; 0: about 1000 rows per run
+  std::vector<Id> history_solids;  // *DATABASE_HISTORY_SOLID element IDs, in deck order
+  std::vector<SourceLocation> history_solid_where;  // the card of each
 };
 
 // *CONTROL_IMPLICIT_GENERAL and *CONTROL_IMPLICIT_EIGENVALUE (docs/eigen.md): with IMFLAG 1 and

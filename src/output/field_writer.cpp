@@ -1,5 +1,5 @@
-// d3plot frames as VTK XML UnstructuredGrid (.vtu) with appended raw binary data, plus a
-// .pvd collection so ParaView sees one time series.
+// Result frames as VTK XML UnstructuredGrid (.vtu) with appended raw binary data, plus a
+// .pvd collection so ParaView sees one time series (frames.pvd; modes.pvd for eigen analyses).
 //
 // Appended raw layout (header_type="UInt64"): after the XML, `<AppendedData encoding="raw">_`
 // is followed by one block per DataArray: a little/big-endian (host order, declared in
@@ -8,6 +8,7 @@
 // round trip) and several times smaller and faster to write than ASCII.
 #include <fmt/format.h>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -195,6 +196,32 @@ VtkCell vtk_cell_from_solid(const std::int32_t* n) {
   return cell;  // other degeneracies: keep the repeated nodes, VTK still draws something
 }
 
+void element_mean_stress(const element::HexBlock& block, std::size_t e, double out[6]) {
+  const std::size_t points = static_cast<std::size_t>(block.points_per_element());
+  for (int c = 0; c < 6; ++c) out[c] = 0.0;
+  // Before the first force evaluation a block may have no stress storage: report zero.
+  if (block.stress.size() < 6 * points * block.size()) return;
+  const double* s = &block.stress[6 * points * e];
+  for (std::size_t p = 0; p < points; ++p) {
+    for (int c = 0; c < 6; ++c) out[c] += s[6 * p + c];
+  }
+  for (int c = 0; c < 6; ++c) out[c] /= static_cast<double>(points);
+}
+
+double pressure_of(const double* s) {
+  return -(s[0] + s[1] + s[2]) / 3.0;
+}
+
+std::array<double, 3> principal_stresses(const double* s) {
+  // Eigenvalues of the symmetric Cauchy tensor (Voigt xx,yy,zz,xy,yz,zx); Eigen returns them
+  // in increasing order, we list the largest (most tensile) first.
+  Eigen::Matrix3d t;
+  t << s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2];
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(t, Eigen::EigenvaluesOnly);
+  const Eigen::Vector3d e = solver.eigenvalues();
+  return {e[2], e[1], e[0]};
+}
+
 int vtk_lagrange_hex_index(int i, int j, int k, int p) {
   const bool ib = i == 0 || i == p;
   const bool jb = j == 0 || j == p;
@@ -232,20 +259,32 @@ FieldWriter::FieldWriter(const std::filesystem::path& directory, std::string ste
 }
 
 void FieldWriter::write_frame(const solver::State& state) {
+  write_frame(state, FrameOptions{});
+}
+
+void FieldWriter::write_frame(const solver::State& state, const FrameOptions& options) {
   const solver::NodalState& nodes = state.nodes;
   const std::size_t node_count = nodes.size();
+  const double scale = options.point_displacement_scale;
 
   // Point data, interleaved xyz as VTK stores it.
   std::vector<double> points(3 * node_count), displacement(3 * node_count),
       velocity(3 * node_count);
   std::vector<std::int64_t> node_id(node_count);
   for (std::size_t i = 0; i < node_count; ++i) {
-    points[3 * i + 0] = nodes.x.x[i];
-    points[3 * i + 1] = nodes.x.y[i];
-    points[3 * i + 2] = nodes.x.z[i];
     displacement[3 * i + 0] = nodes.x.x[i] - nodes.x0.x[i];
     displacement[3 * i + 1] = nodes.x.y[i] - nodes.x0.y[i];
     displacement[3 * i + 2] = nodes.x.z[i] - nodes.x0.z[i];
+    if (scale == 1.0) {
+      // Frames: exactly the current coordinates (no round-off from x0 + (x - x0)).
+      points[3 * i + 0] = nodes.x.x[i];
+      points[3 * i + 1] = nodes.x.y[i];
+      points[3 * i + 2] = nodes.x.z[i];
+    } else {
+      points[3 * i + 0] = nodes.x0.x[i] + scale * displacement[3 * i + 0];
+      points[3 * i + 1] = nodes.x0.y[i] + scale * displacement[3 * i + 1];
+      points[3 * i + 2] = nodes.x0.z[i] + scale * displacement[3 * i + 2];
+    }
     velocity[3 * i + 0] = nodes.v.x[i];
     velocity[3 * i + 1] = nodes.v.y[i];
     velocity[3 * i + 2] = nodes.v.z[i];
@@ -257,7 +296,7 @@ void FieldWriter::write_frame(const solver::State& state) {
 
   std::vector<std::int64_t> connectivity, offsets, part_id, element_id;
   std::vector<std::uint8_t> types;
-  std::vector<double> stress, effective_stress;
+  std::vector<double> stress, effective_stress, pressure, principal;
   connectivity.reserve(8 * cell_count);
   offsets.reserve(cell_count);
   types.reserve(cell_count);
@@ -265,11 +304,10 @@ void FieldWriter::write_frame(const solver::State& state) {
   element_id.reserve(cell_count);
   stress.reserve(6 * cell_count);
   effective_stress.reserve(cell_count);
+  pressure.reserve(cell_count);
+  principal.reserve(3 * cell_count);
 
   for (const element::HexBlock& block : state.hex_blocks) {
-    const std::size_t points_per_element = static_cast<std::size_t>(block.points_per_element());
-    // Before the first force evaluation a block may have no stress storage: report zero.
-    const bool has_stress = block.stress.size() >= 6 * points_per_element * block.size();
     const int p = block.order;
     const std::size_t npe = static_cast<std::size_t>(block.nodes_per_element());
     std::vector<std::int32_t> lagrange(npe);
@@ -309,16 +347,13 @@ void FieldWriter::write_frame(const solver::State& state) {
       part_id.push_back(block.part_id);
       element_id.push_back(block.element_id[e]);
 
-      double mean[6] = {0, 0, 0, 0, 0, 0};
-      if (has_stress) {
-        const double* s = &block.stress[6 * points_per_element * e];
-        for (std::size_t p = 0; p < points_per_element; ++p) {
-          for (int c = 0; c < 6; ++c) mean[c] += s[6 * p + c];
-        }
-        for (double& value : mean) value /= static_cast<double>(points_per_element);
-      }
+      double mean[6];
+      element_mean_stress(block, e, mean);
       stress.insert(stress.end(), mean, mean + 6);
       effective_stress.push_back(von_mises(mean));
+      pressure.push_back(pressure_of(mean));
+      const std::array<double, 3> sp = principal_stresses(mean);
+      principal.insert(principal.end(), sp.begin(), sp.end());
     }
   }
 
@@ -372,10 +407,23 @@ void FieldWriter::write_frame(const solver::State& state) {
       {"effective_stress", "Float64", 1, effective_stress.data(), bytes_of(effective_stress)},
       {"part_id", "Int64", 1, part_id.data(), bytes_of(part_id)},
       {"element_id", "Int64", 1, element_id.data(), bytes_of(element_id)},
+      {"pressure", "Float64", 1, pressure.data(), bytes_of(pressure)},
+      {"principal_stress",
+       "Float64",
+       3,
+       principal.data(),
+       bytes_of(principal),
+       0,
+       {"max", "mid", "min"}},
       {"connectivity", "Int64", 1, connectivity.data(), bytes_of(connectivity)},
       {"offsets", "Int64", 1, offsets.data(), bytes_of(offsets)},
       {"types", "UInt8", 1, types.data(), bytes_of(types)},
+      {options.scale_name, "Float64", 1, &scale, sizeof(double)},
   };
+  // The scale is field data of mode shapes only.
+  if (options.scale_name.empty()) arrays.pop_back();
+  // Material history (effective plastic strain, back stress, ...) follows as cell arrays.
+  const std::size_t first_history = arrays.size();
   for (const HistoryCells& cells : history) {
     AppendedArray a{cells.name, "Float64", cells.components, cells.values.data(),
                     bytes_of(cells.values)};
@@ -387,7 +435,23 @@ void FieldWriter::write_frame(const solver::State& state) {
     a.offset = offset;
     offset += sizeof(std::uint64_t) + a.bytes;
   }
-  enum { kTime, kPoints, kDisp, kVel, kNodeId, kStress, kEff, kPart, kElem, kConn, kOff, kType };
+  enum {
+    kTime,
+    kPoints,
+    kDisp,
+    kVel,
+    kNodeId,
+    kStress,
+    kEff,
+    kPart,
+    kElem,
+    kPressure,
+    kPrincipal,
+    kConn,
+    kOff,
+    kType,
+    kScale
+  };
 
   fmt::memory_buffer xml;
   auto out = std::back_inserter(xml);
@@ -403,6 +467,12 @@ void FieldWriter::write_frame(const solver::State& state) {
                  "      <DataArray type=\"Float64\" Name=\"TimeValue\" NumberOfTuples=\"1\" "
                  "format=\"appended\" offset=\"{}\"/>\n",
                  arrays[kTime].offset);
+  if (!options.scale_name.empty()) {
+    fmt::format_to(out,
+                   "      <DataArray type=\"Float64\" Name=\"{}\" NumberOfTuples=\"1\" "
+                   "format=\"appended\" offset=\"{}\"/>\n",
+                   options.scale_name, arrays[kScale].offset);
+  }
   fmt::format_to(out, "    </FieldData>\n");
   fmt::format_to(out, "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", node_count,
                  cell_count);
@@ -410,8 +480,9 @@ void FieldWriter::write_frame(const solver::State& state) {
   for (int i : {kDisp, kVel, kNodeId}) append_data_array(xml, arrays[i], "        ");
   fmt::format_to(out, "      </PointData>\n");
   fmt::format_to(out, "      <CellData Scalars=\"effective_stress\">\n");
-  for (int i : {kStress, kEff, kPart, kElem}) append_data_array(xml, arrays[i], "        ");
-  for (std::size_t i = kType + 1; i < arrays.size(); ++i)
+  for (int i : {kStress, kEff, kPart, kElem, kPressure, kPrincipal})
+    append_data_array(xml, arrays[i], "        ");
+  for (std::size_t i = first_history; i < arrays.size(); ++i)
     append_data_array(xml, arrays[i], "        ");
   fmt::format_to(out, "      </CellData>\n");
   fmt::format_to(out, "      <Points>\n");
@@ -437,9 +508,85 @@ void FieldWriter::write_frame(const solver::State& state) {
     file.write(kTail.data(), kTail.size());
   });
 
+  if (options.walls != nullptr) {
+    walls_ = true;
+    write_walls(*options.walls, state.time, walls_file_of(file_name));
+  }
   times_.push_back(state.time);
   files_.push_back(file_name);
   write_collection();
+  if (walls_) write_walls_collection();
+}
+
+std::string FieldWriter::walls_file_of(const std::string& frame_file) {
+  const auto underscore = frame_file.rfind('_');
+  return "walls" +
+         (underscore == std::string::npos ? "_" + frame_file : frame_file.substr(underscore));
+}
+
+// Walls are a handful of quadrilaterals: ASCII VTU, readable by eye.
+void FieldWriter::write_walls(const std::vector<WallPatch>& walls, double time,
+                              const std::string& file) {
+  fmt::memory_buffer xml;
+  auto out = std::back_inserter(xml);
+  fmt::format_to(out,
+                 "<?xml version=\"1.0\"?>\n"
+                 "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"{}\" "
+                 "header_type=\"UInt64\">\n  <UnstructuredGrid>\n    <FieldData>\n"
+                 "      <DataArray type=\"Float64\" Name=\"TimeValue\" NumberOfTuples=\"1\" "
+                 "format=\"ascii\">{:.17g}</DataArray>\n    </FieldData>\n"
+                 "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n",
+                 byte_order_name(), time, 4 * walls.size(), walls.size());
+  fmt::format_to(out,
+                 "      <CellData Scalars=\"normal_force\">\n"
+                 "        <DataArray type=\"Int64\" Name=\"wall_id\" format=\"ascii\">");
+  for (const WallPatch& w : walls) fmt::format_to(out, " {}", w.id);
+  fmt::format_to(out,
+                 "</DataArray>\n        <DataArray type=\"Float64\" Name=\"normal_force\" "
+                 "format=\"ascii\">");
+  for (const WallPatch& w : walls) fmt::format_to(out, " {:.17g}", w.normal_force);
+  fmt::format_to(out,
+                 "</DataArray>\n      </CellData>\n      <Points>\n"
+                 "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" "
+                 "format=\"ascii\">");
+  for (const WallPatch& w : walls) {
+    for (const auto& c : w.corners)
+      fmt::format_to(out, " {:.17g} {:.17g} {:.17g}", c[0], c[1], c[2]);
+  }
+  fmt::format_to(out,
+                 "</DataArray>\n      </Points>\n      <Cells>\n"
+                 "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">");
+  for (std::size_t k = 0; k < 4 * walls.size(); ++k) fmt::format_to(out, " {}", k);
+  fmt::format_to(out,
+                 "</DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" "
+                 "format=\"ascii\">");
+  for (std::size_t k = 1; k <= walls.size(); ++k) fmt::format_to(out, " {}", 4 * k);
+  fmt::format_to(out,
+                 "</DataArray>\n        <DataArray type=\"UInt8\" Name=\"types\" "
+                 "format=\"ascii\">");
+  for (std::size_t k = 0; k < walls.size(); ++k) fmt::format_to(out, " 9");  // VTK_QUAD
+  fmt::format_to(out,
+                 "</DataArray>\n      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n"
+                 "</VTKFile>\n");
+  write_atomically(directory_ / file, [&](OutputFile& f) { f.write(xml.data(), xml.size()); });
+}
+
+void FieldWriter::write_walls_collection() const {
+  fmt::memory_buffer xml;
+  auto out = std::back_inserter(xml);
+  fmt::format_to(out,
+                 "<?xml version=\"1.0\"?>\n"
+                 "<VTKFile type=\"Collection\" version=\"1.0\" byte_order=\"{}\" "
+                 "header_type=\"UInt64\">\n"
+                 "  <Collection>\n",
+                 byte_order_name());
+  for (std::size_t i = 0; i < times_.size(); ++i) {
+    fmt::format_to(out, "    <DataSet timestep=\"{:.17g}\" group=\"\" part=\"0\" file=\"{}\"/>\n",
+                   times_[i], xml_attribute(walls_file_of(files_[i])));
+  }
+  fmt::format_to(out, "  </Collection>\n</VTKFile>\n");
+  write_atomically(directory_ / "walls.pvd",
+                   [&](OutputFile& file) { file.write(xml.data(), xml.size()); });
 }
 
 void FieldWriter::resume(std::vector<double> times, std::vector<std::string> files) {

@@ -82,6 +82,9 @@ struct CsvContinuation {
   std::int64_t rwforc = -1;    // rwforc.csv
   std::int64_t rcforc = -1;    // rcforc.csv
   std::int64_t modal = -1;     // modal.csv
+  std::int64_t matsum = -1;    // matsum.csv
+  std::int64_t spcforc = -1;   // spcforc.csv
+  std::int64_t elout = -1;     // elout.csv
 };
 
 // Column headers, exactly as written (docs/output.md).
@@ -258,15 +261,44 @@ VtkCell vtk_cell_from_solid(const std::int32_t* conn8);
 
 // Von Mises stress of a Voigt stress (xx,yy,zz,xy,yz,zx).
 double von_mises(const double* voigt6);
+// Cauchy stress of element e of a block for output: the mean over its integration points
+// (zero before the first force evaluation, when the block has no stress storage yet).
+void element_mean_stress(const element::HexBlock& block, std::size_t e, double out[6]);
+// Pressure -(xx + yy + zz) / 3 (positive in compression, as LS-DYNA).
+double pressure_of(const double* voigt6);
+// Principal stresses of a Voigt stress, largest first.
+std::array<double, 3> principal_stresses(const double* voigt6);
 
-// d3plot.pvd + d3plot_NNNN.vtu (VTK XML UnstructuredGrid, appended raw binary, Float64/Int64)
+// A rigid wall drawn in walls_NNNN.vtu: a quadrilateral patch of its plane (corners in order
+// around the patch) and the force it applied at the frame's time.
+struct WallPatch {
+  std::int64_t id = 0;
+  std::array<std::array<double, 3>, 4> corners{};
+  double normal_force = 0.0;
+};
+
+// How a frame shows its nodes. Frames of a run: the points are the current coordinates x
+// (scale 1). Mode shapes: the points are x0 + scale (x - x0), so that a shape stored with its
+// true (mass-normalised) size is drawn at a visible size; the scale is written as field data
+// `scale_name` so that Warp By Vector with -scale on `displacement` recovers x0.
+struct FrameOptions {
+  double point_displacement_scale = 1.0;
+  std::string scale_name;  // empty: no field data for the scale
+  // Rigid walls: written as walls_NNNN.vtu beside frame NNNN (and listed in walls.pvd) when
+  // not null.
+  const std::vector<WallPatch>* walls = nullptr;
+};
+
+// frames.pvd + frames_NNNN.vtu (VTK XML UnstructuredGrid, appended raw binary, Float64/Int64)
 // per frame: point data displacement, velocity, node_id; cell data stress (6 components, Voigt
 // xx,yy,zz,xy,yz,zx, mean over integration points), effective_stress (von Mises), part_id,
-// element_id. Creates the directory if needed.
+// element_id, pressure, principal_stress. Creates the directory if needed. (Until issue 20 the
+// series was called d3plot.pvd; that name now belongs to the LS-DYNA binary database.)
 class FieldWriter {
  public:
-  explicit FieldWriter(const std::filesystem::path& directory, std::string stem = "d3plot");
+  explicit FieldWriter(const std::filesystem::path& directory, std::string stem = "frames");
   void write_frame(const solver::State& state);
+  void write_frame(const solver::State& state, const FrameOptions& options);
   // Writes/refreshes the .pvd collection; called after every frame so a crashed run is readable.
   void write_collection() const;
   int frames() const { return static_cast<int>(times_.size()); }
@@ -274,8 +306,14 @@ class FieldWriter {
   const std::vector<double>& frame_times() const { return times_; }
   const std::vector<std::string>& frame_files() const { return files_; }
   void resume(std::vector<double> times, std::vector<std::string> files);
+  // Name of the walls file that goes with frame file `frame_file` (frames_0003.vtu ->
+  // walls_0003.vtu).
+  static std::string walls_file_of(const std::string& frame_file);
 
  private:
+  void write_walls(const std::vector<WallPatch>& walls, double time, const std::string& file);
+  void write_walls_collection() const;
+  bool walls_ = false;  // a walls series is written (set by the first frame with walls)
   std::filesystem::path directory_;
   std::string stem_;
   std::vector<double> times_;

@@ -10,6 +10,7 @@
 #include "io/keyword/restart_deck.hpp"
 #include "model/error.hpp"
 #include "model/error_context.hpp"
+#include "output/d3plot_writer.hpp"
 #include "restart/simulation_access.hpp"
 
 namespace rf::restart {
@@ -149,16 +150,41 @@ Restarted restart_from_dump(const RestartOptions& options) {
         continue_csv(dump_dir, result.output_directory, same, "modal.csv",
                      output.get_int("modal_bytes"), result.warnings);
   }
+  // Per-part and per-element histories (absent in dumps of older versions).
+  const std::pair<const char*, std::int64_t*> histories[] = {
+      {"matsum", &sim_options.continuation.matsum},
+      {"spcforc", &sim_options.continuation.spcforc},
+      {"elout", &sim_options.continuation.elout}};
+  for (const auto& [name, target] : histories) {
+    const std::string attribute = std::string(name) + "_bytes";
+    if (!output.has_attribute(attribute)) continue;
+    *target = continue_csv(dump_dir, result.output_directory, same, std::string(name) + ".csv",
+                           output.get_int(attribute), result.warnings);
+  }
   if (!same && options.write_fields) {
-    // Earlier frames, so that the new directory's d3plot.pvd is complete.
+    // The LS-DYNA d3plot family; the restart cuts it back to the dump's states.
+    for (int k = 0; k < 100; ++k) {
+      const std::string name = output::D3plotWriter::member_name(k);
+      std::error_code ec;
+      if (!fs::exists(dump_dir / name, ec)) break;
+      fs::copy_file(dump_dir / name, result.output_directory / name,
+                    fs::copy_options::overwrite_existing, ec);
+    }
+    // Earlier frames, so that the new directory's frames.pvd is complete.
     for (const std::string& name : SimulationAccess::read_frames(output).files) {
       std::error_code ec;
+      // Rigid walls drawn beside the frame (walls_NNNN.vtu), when the model has walls.
+      const std::string walls = output::FieldWriter::walls_file_of(name);
+      if (fs::exists(dump_dir / walls, ec)) {
+        fs::copy_file(dump_dir / walls, result.output_directory / walls,
+                      fs::copy_options::overwrite_existing, ec);
+      }
       fs::copy_file(dump_dir / name, result.output_directory / name,
                     fs::copy_options::overwrite_existing, ec);
       if (ec) {
         result.warnings.push_back(
             {{},
-             fmt::format("frame {} of the dumped run could not be copied ({}); d3plot.pvd "
+             fmt::format("frame {} of the dumped run could not be copied ({}); frames.pvd "
                          "lists it all the same",
                          (dump_dir / name).string(), ec.message())});
       }

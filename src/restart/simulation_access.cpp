@@ -115,6 +115,22 @@ void SimulationAccess::write_output(Simulation& s, const Group& g) {
   g.set("rcforc_bytes", s.rcforc_ ? s.rcforc_->flushed_size() : std::int64_t{-1});
   write_schedule(g, "rcforc", s.rcforc_schedule_.interval, s.rcforc_schedule_.next,
                  s.rcforc_schedule_.last_cycle);
+  // Per-part and per-element histories (issue 20): sizes, schedules, per-part work so far.
+  g.set("matsum_bytes", s.matsum_csv_ ? s.matsum_csv_->flushed_size() : std::int64_t{-1});
+  g.set("spcforc_bytes", s.spcforc_csv_ ? s.spcforc_csv_->flushed_size() : std::int64_t{-1});
+  g.set("elout_bytes", s.elout_csv_ ? s.elout_csv_->flushed_size() : std::int64_t{-1});
+  write_schedule(g, "matsum", s.matsum_schedule_.interval, s.matsum_schedule_.next,
+                 s.matsum_schedule_.last_cycle);
+  write_schedule(g, "spcforc", s.spcforc_schedule_.interval, s.spcforc_schedule_.next,
+                 s.spcforc_schedule_.last_cycle);
+  write_schedule(g, "elout", s.elout_schedule_.interval, s.elout_schedule_.next,
+                 s.elout_schedule_.last_cycle);
+  if (s.part_histories_) {
+    const auto& work = s.part_histories_->internal_work();
+    const auto& hourglass = s.part_histories_->hourglass();
+    g.write("part_internal_work", std::span<const double>(work.data(), work.size()));
+    g.write("part_hourglass", std::span<const double>(hourglass.data(), hourglass.size()));
+  }
   write_schedule(g, "glstat", s.glstat_schedule_.interval, s.glstat_schedule_.next,
                  s.glstat_schedule_.last_cycle);
   write_schedule(g, "nodout", s.nodout_schedule_.interval, s.nodout_schedule_.next,
@@ -144,9 +160,33 @@ void SimulationAccess::read_output(Simulation& s, const Group& g) {
   read_schedule(g, "d3plot", s.d3plot_schedule_);
   read_schedule(g, "rwforc", s.rwforc_schedule_);
   if (g.has_attribute("rcforc_bytes")) read_schedule(g, "rcforc", s.rcforc_schedule_);
+  if (g.has_attribute("matsum_bytes")) {
+    read_schedule(g, "matsum", s.matsum_schedule_);
+    read_schedule(g, "spcforc", s.spcforc_schedule_);
+    read_schedule(g, "elout", s.elout_schedule_);
+  }
+  if (s.part_histories_) {
+    if (!g.has_attribute("matsum_bytes") || g.get_int("matsum_bytes") < 0) {
+      g.fail("matsum_bytes",
+             "the dumped run wrote no matsum.csv, so the parts' energies so far are unknown; "
+             "add *DATABASE_MATSUM before the run, not at the restart");
+    }
+    auto& work = s.part_histories_->internal_work();
+    auto& hourglass = s.part_histories_->hourglass();
+    const auto dumped_work = g.read_doubles("part_internal_work");
+    const auto dumped_hourglass = g.read_doubles("part_hourglass");
+    if (dumped_work.size() != work.size() || dumped_hourglass.size() != hourglass.size()) {
+      g.fail("part_internal_work", "the number of parts differs from the dumped run's");
+    }
+    work.assign(dumped_work.begin(), dumped_work.end());
+    hourglass.assign(dumped_hourglass.begin(), dumped_hourglass.end());
+  }
   if (s.fields_) {
     const auto frames = read_frames(g);
     s.fields_->resume(frames.times, frames.files);
+    // The d3plot database has one state per frame (frames written by an older version without
+    // a d3plot: the writer starts a new family).
+    if (s.d3plot_) s.d3plot_->resume(static_cast<std::int64_t>(frames.times.size()));
   }
 }
 

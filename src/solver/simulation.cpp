@@ -8,7 +8,9 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 
+#include "contact/wall_drawing.hpp"
 #include "element/kernels.hpp"
 #include "model/curve.hpp"
 #include "model/error.hpp"
@@ -164,9 +166,43 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
       rcforc_ = std::make_unique<output::RcforcWriter>(options_.output_directory / "rcforc.csv",
                                                        options_.continuation.rcforc);
     }
+    if (model.output.matsum) {
+      part_histories_ = std::make_unique<PartHistories>(state_, rigid_);
+      matsum_schedule_.interval = default_interval(model.output.matsum_dt, span, 1000.0);
+      matsum_csv_ = std::make_unique<output::CsvFile>(options_.output_directory / "matsum.csv",
+                                                      std::string(output::kMatsumHeader),
+                                                      options_.continuation.matsum);
+    }
+    if (model.output.spcforc) {
+      spcforc_schedule_.interval = default_interval(model.output.spcforc_dt, span, 1000.0);
+      spcforc_csv_ = std::make_unique<output::CsvFile>(options_.output_directory / "spcforc.csv",
+                                                       std::string(output::kSpcforcHeader),
+                                                       options_.continuation.spcforc);
+    }
+    if (!model.output.history_solids.empty()) {
+      std::map<model::Id, output::HistorySolid> where;
+      for (std::size_t b = 0; b < state_.hex_blocks.size(); ++b) {
+        const auto& ids = state_.hex_blocks[b].element_id;
+        for (std::size_t e = 0; e < ids.size(); ++e) where[ids[e]] = {b, e};
+      }
+      for (std::size_t k = 0; k < model.output.history_solids.size(); ++k) {
+        const auto it = where.find(model.output.history_solids[k]);
+        if (it == where.end()) {
+          throw InputError(model::context_of(model.output.history_solid_where[k], "EID"),
+                           fmt::format("*DATABASE_HISTORY_SOLID: solid element {} does not exist",
+                                       model.output.history_solids[k]));
+        }
+        elout_solids_.push_back(it->second);
+      }
+      elout_schedule_.interval = default_interval(model.output.elout_dt, span, 1000.0);
+      elout_csv_ = std::make_unique<output::CsvFile>(options_.output_directory / "elout.csv",
+                                                     std::string(output::kEloutHeader),
+                                                     options_.continuation.elout);
+    }
     if (options_.write_fields) {
       d3plot_schedule_.interval = default_interval(model.output.d3plot_dt, span, 20.0);
       fields_ = std::make_unique<output::FieldWriter>(options_.output_directory);
+      d3plot_ = std::make_unique<output::D3plotWriter>(options_.output_directory, model.title);
     }
   }
   if (model.switching.flagged) {
@@ -639,6 +675,7 @@ void Simulation::update_velocities() {
   energy_.kinetic = sums[0];
   energy_.internal_work +=
       sums[1] + rigid_sums.modal_damping_loss - rigid_sums.modal_stiffening_work;
+  if (part_histories_) part_histories_->add_step_work(state_, rigid_, vp, dt_avg);  // matsum
   energy_.external_work +=
       sums[2] - sums[9] + reaction_work + rigid_sums.external_work + rigid_sums.modal_inertia_work;
   energy_.contact_energy -= sums[9];
@@ -783,10 +820,47 @@ void Simulation::write_output_if_due(bool force) {
     rcforc_->write(rcforc_rows_);
     rcforc_schedule_.mark_written(t, cycle);
   }
+  if (matsum_csv_ && wanted(matsum_schedule_)) {
+    matsum_csv_->write_text(output::matsum_text(t, part_histories_->summaries(state_, rigid_)));
+    matsum_schedule_.mark_written(t, cycle);
+  }
+  if (spcforc_csv_ && wanted(spcforc_schedule_)) {
+    spcforc_csv_->write_text(output::spcforc_text(
+        t, constraint_reactions(state_, boundary_, rigid_, v_previous_, dt_average_),
+        state_.nodes.id));
+    spcforc_schedule_.mark_written(t, cycle);
+  }
+  if (elout_csv_ && wanted(elout_schedule_)) {
+    elout_csv_->write_text(output::elout_text(t, state_, elout_solids_));
+    elout_schedule_.mark_written(t, cycle);
+  }
   if (fields_ && wanted(d3plot_schedule_)) {
-    fields_->write_frame(state_);
+    if (walls_.empty()) {
+      fields_->write_frame(state_);
+    } else {  // the walls drawn beside the frame (walls.pvd)
+      const std::vector<output::WallPatch> patches = contact::wall_patches(walls_, state_);
+      output::FrameOptions frame;
+      frame.walls = &patches;
+      fields_->write_frame(state_, frame);
+    }
+    if (d3plot_) d3plot_->write_state(state_, d3plot_globals());
     d3plot_schedule_.mark_written(t, cycle);
   }
+}
+
+output::D3plotGlobals Simulation::d3plot_globals() const {
+  output::D3plotGlobals g;
+  g.kinetic_energy = energy_.kinetic;
+  g.internal_energy = energy_.internal();
+  g.total_energy = energy_.total();
+  double mass = 0.0;
+  // Nodes of rigid bodies count through their bodies (as in the momentum).
+  for (std::size_t i = 0; i < state_.nodes.size(); ++i) {
+    if (!rigid_.is_rigid(static_cast<std::int32_t>(i))) mass += state_.nodes.mass[i];
+  }
+  for (const auto& body : rigid_.bodies) mass += body.state.mass;
+  for (int k = 0; k < 3; ++k) g.velocity[k] = mass > 0.0 ? energy_.momentum[k] / mass : 0.0;
+  return g;
 }
 
 void Simulation::write_output_now() {
@@ -810,10 +884,12 @@ void Simulation::update_positions() {
 void Simulation::compute_internal_forces() {
   const element::NodalView view = view_of(state_.nodes);
   element_dt_ = std::numeric_limits<double>::infinity();
-  for (auto& block : state_.hex_blocks) {
+  for (std::size_t b = 0; b < state_.hex_blocks.size(); ++b) {
+    element::HexBlock& block = state_.hex_blocks[b];
     if (block.rigid) continue;  // moved by its body; no stress, no step limit
     const element::KernelResult r = element::compute_block_forces(block, view, state_.dt);
     energy_.hourglass += r.hourglass_work;
+    if (part_histories_) part_histories_->add_hourglass(b, r.hourglass_work);
     if (r.failed && breakdown_message_.empty()) {
       breakdown_message_ = fmt::format(
           "element {} of part {} has non-positive volume {:.6g} (or a non-finite force) at "

@@ -14,12 +14,15 @@
 #include "contact/rigid_wall.hpp"
 #include "model/model.hpp"
 #include "model/restart_switch.hpp"
+#include "output/d3plot_writer.hpp"
+#include "output/history_writers.hpp"
 #include "output/modal_writer.hpp"
 #include "output/writers.hpp"
 #include "solver/boundary.hpp"
 #include "solver/build_state.hpp"
 #include "solver/flexible_bodies.hpp"
 #include "solver/joints.hpp"
+#include "solver/part_histories.hpp"
 #include "solver/rigid_bodies.hpp"
 #include "solver/state.hpp"
 #include "switching/part_switching.hpp"
@@ -103,7 +106,7 @@ struct PhaseTimes {
 
 struct SimulationOptions {
   std::filesystem::path output_directory;  // empty: no files written
-  bool write_fields = true;                // d3plot VTU frames
+  bool write_fields = true;                // VTU frames (frames.pvd) and the binary d3plot
   // Restart (restart/restart.hpp): the state is read from a dump afterwards, so the constructor
   // does not initialise it, and the CSV files are continued from the sizes they had at the dump
   // (negative: start the file anew).
@@ -184,6 +187,7 @@ class Simulation {
   // options_.mode_loader, else the modes.h5 reader (*PART_MODES).
   ModeLoader mode_loader() const;
   void write_output_now();
+  output::D3plotGlobals d3plot_globals() const;  // the 6 global values of a d3plot state
   bool end_reached() const;
   // Dumps read and write every member below (restart/simulation_access.hpp).
   friend struct restart::SimulationAccess;
@@ -241,6 +245,12 @@ class Simulation {
   OutputSchedule rcforc_schedule_;
   std::vector<output::RcforcRow> rcforc_rows_;
   std::unique_ptr<output::FieldWriter> fields_;
+  std::unique_ptr<output::D3plotWriter> d3plot_;  // LS-DYNA binary states, at the frame times
+  // *DATABASE_MATSUM, *DATABASE_SPCFORC, *DATABASE_HISTORY_SOLID (+ *DATABASE_ELOUT).
+  std::unique_ptr<PartHistories> part_histories_;
+  std::unique_ptr<output::CsvFile> matsum_csv_, spcforc_csv_, elout_csv_;
+  OutputSchedule matsum_schedule_, spcforc_schedule_, elout_schedule_;
+  std::vector<output::HistorySolid> elout_solids_;
   std::vector<double> reduction_scratch_;
 
   // Part switching (empty unless the deck has *DEFORMABLE_TO_RIGID*).

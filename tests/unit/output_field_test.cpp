@@ -323,6 +323,32 @@ TEST(OutputField, VonMises) {
   EXPECT_DOUBLE_EQ(von_mises(hydrostatic), 0.0);
 }
 
+// Cell arrays `pressure` and `principal_stress`: analytic eigenvalues of known tensors.
+TEST(OutputField, PressureAndPrincipalStresses) {
+  const double diagonal[6] = {1.0, 2.0, 3.0, 0, 0, 0};
+  EXPECT_DOUBLE_EQ(pressure_of(diagonal), -2.0);
+  auto p = principal_stresses(diagonal);
+  EXPECT_NEAR(p[0], 3.0, 1e-14);
+  EXPECT_NEAR(p[1], 2.0, 1e-14);
+  EXPECT_NEAR(p[2], 1.0, 1e-14);
+  // Pure shear tau in xy: principal +tau, 0, -tau; no pressure.
+  const double shear[6] = {0, 0, 0, 5.0, 0, 0};
+  EXPECT_DOUBLE_EQ(pressure_of(shear), 0.0);
+  p = principal_stresses(shear);
+  EXPECT_NEAR(p[0], 5.0, 1e-14);
+  EXPECT_NEAR(p[1], 0.0, 1e-14);
+  EXPECT_NEAR(p[2], -5.0, 1e-14);
+  // diag(4, -1, 7) rotated by 30 degrees about z: sxx = 4 c^2 - s^2, syy = 4 s^2 - c^2,
+  // sxy = 5 c s; the eigenvalues stay 7, 4, -1.
+  const double c = std::cos(M_PI / 6), s = std::sin(M_PI / 6);
+  const double rotated[6] = {4 * c * c - s * s, 4 * s * s - c * c, 7.0, 5 * c * s, 0, 0};
+  p = principal_stresses(rotated);
+  EXPECT_NEAR(p[0], 7.0, 1e-13);
+  EXPECT_NEAR(p[1], 4.0, 1e-13);
+  EXPECT_NEAR(p[2], -1.0, 1e-13);
+  EXPECT_NEAR(pressure_of(rotated), -10.0 / 3.0, 1e-14);
+}
+
 TEST(OutputField, VtuDecodesToTheStateAndCellsAreValid) {
   const auto dir = fresh_directory("field_single");
   const solver::State state = make_state();
@@ -330,7 +356,7 @@ TEST(OutputField, VtuDecodesToTheStateAndCellsAreValid) {
   writer.write_frame(state);
   ASSERT_EQ(writer.frames(), 1);
 
-  const std::string file = read_file(dir / "d3plot_0000.vtu");
+  const std::string file = read_file(dir / "frames_0000.vtu");
   XmlDocument doc;
   ASSERT_NO_THROW(doc = XmlReader(file).read());
   const XmlElement& root = doc.root;
@@ -443,7 +469,7 @@ TEST(OutputField, CollectionListsEveryFrame) {
     writer.write_frame(state);
 
     // The collection is already complete after every frame (a crashed run stays readable).
-    const std::string pvd = read_file(dir / "d3plot.pvd");
+    const std::string pvd = read_file(dir / "frames.pvd");
     XmlDocument doc;
     ASSERT_NO_THROW(doc = XmlReader(pvd).read());
     EXPECT_EQ(doc.root.attributes.at("type"), "Collection");
@@ -454,7 +480,7 @@ TEST(OutputField, CollectionListsEveryFrame) {
       EXPECT_EQ(data_set.name, "DataSet");
       EXPECT_EQ(std::strtod(data_set.attributes.at("timestep").c_str(), nullptr), times[f]);
       char expected_name[32];
-      std::snprintf(expected_name, sizeof expected_name, "d3plot_%04d.vtu", f);
+      std::snprintf(expected_name, sizeof expected_name, "frames_%04d.vtu", f);
       EXPECT_EQ(data_set.attributes.at("file"), expected_name);
       EXPECT_TRUE(std::filesystem::exists(dir / expected_name));
     }
@@ -462,7 +488,7 @@ TEST(OutputField, CollectionListsEveryFrame) {
   EXPECT_EQ(writer.frames(), 3);
 
   // Frame 2 holds frame 2's coordinates.
-  const std::string file = read_file(dir / "d3plot_0002.vtu");
+  const std::string file = read_file(dir / "frames_0002.vtu");
   const XmlDocument doc = XmlReader(file).read();
   const auto points = decode<double>(
       file, doc,
@@ -535,7 +561,7 @@ TEST(OutputFieldLagrange, HigherOrderBlockIsWrittenAsLagrangeCells) {
   const auto dir = fresh_directory("field_lagrange");
   FieldWriter writer(dir);
   writer.write_frame(state);
-  const std::string file = read_file(dir / "d3plot_0000.vtu");
+  const std::string file = read_file(dir / "frames_0000.vtu");
   XmlDocument doc = XmlReader(file).read();
   const XmlElement& piece = doc.root.child("UnstructuredGrid").child("Piece");
   const XmlElement& cells = piece.child("Cells");

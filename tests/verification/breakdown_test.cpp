@@ -47,7 +47,7 @@ TEST(Breakdown, UnstableStepStopsWithMessageAndWritesLastState) {
   }
   EXPECT_GE(rows, 3);
   EXPECT_EQ(std::stod(last.substr(0, last.find(','))), sim.state().time);
-  EXPECT_TRUE(std::filesystem::exists(dir / "d3plot.pvd"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "frames.pvd"));
   std::filesystem::remove_all(dir);
 }
 

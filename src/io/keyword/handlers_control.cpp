@@ -105,6 +105,14 @@ void database_ascii(const Block& block, ReaderContext& context) {
     context.model.output.rwforc_dt = dt;
   } else if (block.base == "*DATABASE_RCFORC") {
     context.model.output.rcforc_dt = dt;
+  } else if (block.base == "*DATABASE_MATSUM") {
+    context.model.output.matsum_dt = dt;
+    context.model.output.matsum = true;
+  } else if (block.base == "*DATABASE_SPCFORC") {
+    context.model.output.spcforc_dt = dt;
+    context.model.output.spcforc = true;
+  } else if (block.base == "*DATABASE_ELOUT") {
+    context.model.output.elout_dt = dt;
   } else {
     context.model.output.nodout_dt = dt;
   }
@@ -145,6 +153,25 @@ void database_history_node(const Block& block, ReaderContext& context) {
         context.model.output.history_nodes.push_back(id);
         context.history_nodes.push_back({id, card.location()});
       }
+    }
+  }
+}
+
+// Solid elements whose stresses go to elout.csv (the IDs are checked against the mesh when the
+// run starts).
+void database_history_solid(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  int n = 0;
+  while (true) {
+    cursor.skip_blank_lines();
+    if (cursor.at_end()) break;
+    const Card card = cursor.next(++n, kEightByTen, "EID");
+    for (std::size_t i = 0; i < card.field_count(); ++i) {
+      const model::Id id = card.id(i, "EID");
+      if (id < 0) throw card.error("EID", fmt::format("ID {} must not be negative", id));
+      if (id == 0) continue;
+      context.model.output.history_solids.push_back(id);
+      context.model.output.history_solid_where.push_back(card.location());
     }
   }
 }

@@ -1,0 +1,283 @@
+// LS-DYNA binary d3plot database (see d3plot_writer.hpp and docs/output.md#d3plot).
+//
+// Word numbers of the control section follow the LS-DYNA manual's "d3plot" description
+// (Appendix "LS-DYNA Database Binary Output Files"); the reader that has to agree is ParaView's
+// vtkLSDynaReader, which checks the version word 14 to lie in (900, 1000) to detect the word size
+// and byte order, and LS-PrePost.
+#include "output/d3plot_writer.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <bit>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <stdexcept>
+#include <system_error>
+
+#include "output/writers.hpp"
+
+namespace rf::output {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kGlobalCount = 6;      // NGLBV: KE, IE, TE, vx, vy, vz
+constexpr int kSolidValues = 7;      // NV3D: 6 stresses + effective plastic strain
+constexpr int kIntegrationFlag = 3;  // MAXINT (shell integration points; no shells written)
+
+// One 4-byte word as the database stores it: integers as int32, reals as float32.
+float int_word(std::int64_t value) {
+  if (value > INT32_MAX || value < INT32_MIN) {
+    throw std::runtime_error(
+        fmt::format("d3plot: the value {} does not fit a 4-byte integer word", value));
+  }
+  return std::bit_cast<float>(static_cast<std::int32_t>(value));
+}
+
+void write_words(const fs::path& path, const char* mode, std::int64_t offset,
+                 const std::vector<float>& words) {
+  std::FILE* file = std::fopen(path.c_str(), mode);
+  if (file == nullptr) {
+    throw std::runtime_error(
+        fmt::format("cannot open output file '{}' for writing", path.string()));
+  }
+  bool ok = std::fseek(file, static_cast<long>(offset), SEEK_SET) == 0;
+  ok = ok && std::fwrite(words.data(), sizeof(float), words.size(), file) == words.size();
+  ok = (std::fclose(file) == 0) && ok;
+  if (!ok) throw std::runtime_error(fmt::format("cannot write to output file '{}'", path.string()));
+}
+
+// The solids as written: 8 dense node indices and the block they come from. Elements of order
+// p > 1 become their p^3 sub-hexahedra between neighbouring tensor nodes.
+template <class Visit>
+void for_each_written_solid(const solver::State& state, const Visit& visit) {
+  for (const element::HexBlock& block : state.hex_blocks) {
+    const int p = block.order;
+    const std::size_t npe = static_cast<std::size_t>(block.nodes_per_element());
+    for (std::size_t e = 0; e < block.size(); ++e) {
+      const std::int32_t* c = &block.conn[npe * e];
+      if (p <= 1) {
+        visit(block, e, c);
+        continue;
+      }
+      auto at = [&](int i, int j, int k) { return c[i + (p + 1) * (j + (p + 1) * k)]; };
+      for (int k = 0; k < p; ++k)
+        for (int j = 0; j < p; ++j)
+          for (int i = 0; i < p; ++i) {
+            const std::int32_t sub[8] = {
+                at(i, j, k),     at(i + 1, j, k),     at(i + 1, j + 1, k),     at(i, j + 1, k),
+                at(i, j, k + 1), at(i + 1, j, k + 1), at(i + 1, j + 1, k + 1), at(i, j + 1, k + 1)};
+            visit(block, e, sub);
+          }
+    }
+  }
+}
+
+}  // namespace
+
+double d3plot_effective_plastic_strain(const element::HexBlock&, std::size_t) {
+  return 0.0;  // no plastic material yet (issue 17 fills this in)
+}
+
+std::string D3plotWriter::member_name(int k) {
+  return k == 0 ? std::string("d3plot") : fmt::format("d3plot{:02d}", k);
+}
+
+D3plotWriter::D3plotWriter(fs::path directory, std::string title, std::int64_t family_bytes)
+    : directory_(std::move(directory)), title_(std::move(title)), family_bytes_(family_bytes) {}
+
+// d3plot holds the control words and the geometry only; the states follow in d3plot01,
+// d3plot02, ... ParaView 5.11's reader loses its place in the geometry when the root file also
+// holds states (it reads the control words as element materials and crashes).
+std::pair<int, std::int64_t> D3plotWriter::position_of(std::int64_t index) const {
+  return {static_cast<int>(1 + index / layout_.states_per_member),
+          4 * (index % layout_.states_per_member) * layout_.state_words};
+}
+
+void D3plotWriter::write_header(const solver::State& state) {
+  const solver::NodalState& nodes = state.nodes;
+  const std::int64_t node_count = static_cast<std::int64_t>(nodes.size());
+
+  // Materials: the part IDs in ascending order; a solid's material number is its position + 1.
+  std::map<model::Id, bool> rigid_of_part;
+  for (const element::HexBlock& block : state.hex_blocks) {
+    rigid_of_part[block.part_id] = rigid_of_part[block.part_id] || block.rigid;
+  }
+  std::map<model::Id, std::int64_t> material_number;
+  for (const auto& [pid, rigid] : rigid_of_part) {
+    const auto next = static_cast<std::int64_t>(material_number.size()) + 1;
+    material_number[pid] = next;
+  }
+  const std::int64_t materials = static_cast<std::int64_t>(material_number.size());
+
+  std::vector<float> connectivity;
+  std::vector<float> solid_ids;
+  element_count_ = 0;
+  for_each_written_solid(state,
+                         [&](const element::HexBlock& block, std::size_t e, const std::int32_t* n) {
+                           for (int k = 0; k < 8; ++k) connectivity.push_back(int_word(n[k] + 1));
+                           connectivity.push_back(int_word(material_number.at(block.part_id)));
+                           solid_ids.push_back(int_word(block.element_id[e]));
+                           ++element_count_;
+                         });
+
+  const std::int64_t narbs = 16 + node_count + element_count_ + 3 * materials;
+  std::vector<float> words(64, int_word(0));
+  {
+    char title[40];
+    std::memset(title, ' ', sizeof title);
+    std::memcpy(title, title_.data(), std::min<std::size_t>(title_.size(), sizeof title));
+    std::memcpy(words.data(), title, sizeof title);
+    std::memcpy(&words[13], "RFLX", 4);  // release
+  }
+  auto set = [&](int word, std::int64_t value) { words[word] = int_word(value); };
+  set(10, 0);          // RUNTIME: 0, so that a run's files are the same byte for byte every time
+  set(11, 1);          // FILETYPE: d3plot
+  words[14] = 960.0f;  // VERSION
+  // NDIM 4: 3-D with unpacked connectivity and no material-type section. (NDIM 5 adds a list
+  // of material types that only matters for rigid shells, which have no state data; ParaView's
+  // reader would list those materials once more, as empty rigid-body parts.)
+  set(15, 4);
+  set(16, node_count);
+  set(17, 6);  // ICODE: finite-element code
+  set(18, kGlobalCount);
+  set(19, 0);                            // IT: no temperatures
+  set(20, 1);                            // IU: coordinates
+  set(21, 1);                            // IV: velocities
+  set(22, 1);                            // IA: accelerations
+  set(23, element_count_);               // NEL8
+  set(24, materials);                    // NUMMAT8
+  set(27, kSolidValues);                 // NV3D
+  set(30, 6);                            // NV1D (no beams)
+  set(36, -(10000 + kIntegrationFlag));  // MAXINT < -10000: one deletion flag per element
+  set(39, narbs);
+  for (int k = 43; k <= 46; ++k) set(k, 1000);  // IOSHL: stresses and plastic strain present
+  set(51, materials);                           // NMMAT
+
+  // Geometry: reference coordinates, then the solids.
+  for (std::int64_t i = 0; i < node_count; ++i) {
+    words.push_back(static_cast<float>(nodes.x0.x[i]));
+    words.push_back(static_cast<float>(nodes.x0.y[i]));
+    words.push_back(static_cast<float>(nodes.x0.z[i]));
+  }
+  words.insert(words.end(), connectivity.begin(), connectivity.end());
+  // User IDs. Pointers are word addresses in the file; NSORT < 0 says that the material lists
+  // follow the element IDs.
+  const std::int64_t node_ids_at = static_cast<std::int64_t>(words.size()) + 16;
+  const std::int64_t solid_ids_at = node_ids_at + node_count;
+  const std::int64_t materials_at = solid_ids_at + element_count_;
+  const std::int64_t header_ids[16] = {-node_ids_at,
+                                       solid_ids_at,
+                                       materials_at,
+                                       materials_at,
+                                       materials_at,
+                                       node_count,
+                                       element_count_,
+                                       0,
+                                       0,
+                                       0,
+                                       materials_at,
+                                       materials_at + materials,
+                                       materials_at + 2 * materials,
+                                       materials,
+                                       0,
+                                       materials};
+  std::int64_t rigid_materials = 0;
+  for (const auto& [pid, rigid] : rigid_of_part) rigid_materials += rigid ? 1 : 0;
+  for (int k = 0; k < 16; ++k) words.push_back(int_word(k == 14 ? rigid_materials : header_ids[k]));
+  for (std::int64_t i = 0; i < node_count; ++i) words.push_back(int_word(nodes.id[i]));
+  words.insert(words.end(), solid_ids.begin(), solid_ids.end());
+  for (int list = 0; list < 3; ++list) {
+    // Ordered IDs, unordered IDs (the same: we number in ascending order), and the
+    // cross-reference from the unordered to the ordered list.
+    for (const auto& [pid, number] : material_number) {
+      words.push_back(int_word(list == 2 ? number : pid));
+    }
+  }
+
+  layout_.header_words = static_cast<std::int64_t>(words.size());
+  layout_.state_words = 1 + kGlobalCount + 9 * node_count + (kSolidValues + 1) * element_count_;
+  const std::int64_t family_words = family_bytes_ / 4;
+  layout_.states_per_member = std::max<std::int64_t>(1, (family_words - 1) / layout_.state_words);
+
+  if (resume_states_ >= 0 && cut_back_to(resume_states_)) {
+    states_ = resume_states_;
+  } else {
+    // A new family: first remove members an earlier run left here (a reader would take them
+    // for states of this run).
+    for (int k = 0; k < 100; ++k) {
+      std::error_code ec;
+      fs::remove(directory_ / member_name(k), ec);
+    }
+    words.push_back(kEndOfFile);
+    write_words(directory_ / member_name(0), "wb", 0, words);
+    states_ = 0;
+  }
+  resume_states_ = -1;
+  header_written_ = true;
+}
+
+bool D3plotWriter::cut_back_to(std::int64_t states) {
+  const auto [member, offset] = position_of(states);
+  std::error_code ec;
+  // The member that ends before state `states`: it must hold everything up to there.
+  const int last = offset > 0 ? member : member - 1;
+  const std::int64_t needed = offset > 0  ? offset
+                              : last == 0 ? 4 * layout_.header_words
+                                          : 4 * layout_.states_per_member * layout_.state_words;
+  const fs::path path = directory_ / member_name(last);
+  const auto size = fs::file_size(path, ec);
+  if (ec || static_cast<std::int64_t>(size) < needed) return false;
+  fs::resize_file(path, static_cast<std::uintmax_t>(needed), ec);
+  if (ec) return false;
+  write_words(path, "r+b", needed, {kEndOfFile});
+  for (int k = last + 1; k < 100; ++k) fs::remove(directory_ / member_name(k), ec);
+  return true;
+}
+
+void D3plotWriter::write_state(const solver::State& state, const D3plotGlobals& globals) {
+  if (!header_written_) write_header(state);
+  const solver::NodalState& nodes = state.nodes;
+  const std::size_t node_count = nodes.size();
+  buffer_.clear();
+  buffer_.reserve(static_cast<std::size_t>(layout_.state_words) + 1);
+  buffer_.push_back(static_cast<float>(state.time));
+  buffer_.push_back(static_cast<float>(globals.kinetic_energy));
+  buffer_.push_back(static_cast<float>(globals.internal_energy));
+  buffer_.push_back(static_cast<float>(globals.total_energy));
+  for (double v : globals.velocity) buffer_.push_back(static_cast<float>(v));
+  for (const solver::Vec3Array* field : {&nodes.x, &nodes.v, &nodes.a}) {
+    for (std::size_t i = 0; i < node_count; ++i) {
+      buffer_.push_back(static_cast<float>(field->x[i]));
+      buffer_.push_back(static_cast<float>(field->y[i]));
+      buffer_.push_back(static_cast<float>(field->z[i]));
+    }
+  }
+  std::int64_t written = 0;
+  for_each_written_solid(
+      state, [&](const element::HexBlock& block, std::size_t e, const std::int32_t*) {
+        double mean[6];
+        element_mean_stress(block, e, mean);
+        for (double s : mean) buffer_.push_back(static_cast<float>(s));
+        buffer_.push_back(static_cast<float>(d3plot_effective_plastic_strain(block, e)));
+        ++written;
+      });
+  if (written != element_count_) {
+    throw std::runtime_error("d3plot: the number of solids changed during the run");
+  }
+  // Deletion flags (MDLOPT 2): 1 = active. No element is eroded yet.
+  buffer_.insert(buffer_.end(), static_cast<std::size_t>(element_count_), 1.0f);
+  if (static_cast<std::int64_t>(buffer_.size()) != layout_.state_words) {
+    throw std::logic_error("d3plot: state size differs from the layout");
+  }
+  buffer_.push_back(kEndOfFile);
+
+  const auto [member, offset] = position_of(states_);
+  write_words(directory_ / member_name(member), offset == 0 ? "wb" : "r+b", offset, buffer_);
+  ++states_;
+}
+
+}  // namespace rf::output

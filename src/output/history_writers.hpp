@@ -1,0 +1,37 @@
+// matsum.csv, spcforc.csv and elout.csv (docs/output.md): per-part energies and momenta,
+// reaction forces of constrained nodes, stresses of selected solid elements.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "output/writers.hpp"
+#include "solver/part_histories.hpp"
+
+namespace rf::output {
+
+inline constexpr std::string_view kMatsumHeader =
+    "time,part,internal_energy,kinetic_energy,hourglass_energy,momentum_x,momentum_y,momentum_z,"
+    "rigid_velocity_x,rigid_velocity_y,rigid_velocity_z";
+inline constexpr std::string_view kSpcforcHeader = "time,node,force_x,force_y,force_z";
+inline constexpr std::string_view kEloutHeader =
+    "time,element,part,sxx,syy,szz,sxy,syz,szx,effective_stress,pressure,"
+    "effective_plastic_strain";
+
+// One output time of matsum.csv: a row per part.
+std::string matsum_text(double time, const std::vector<solver::PartSummary>& parts);
+// One output time of spcforc.csv: a row per constrained node (user IDs from `node_ids`).
+std::string spcforc_text(double time, const std::vector<solver::NodeReaction>& reactions,
+                         const std::vector<model::Id>& node_ids);
+
+// An element of *DATABASE_HISTORY_SOLID: where it lives in the state.
+struct HistorySolid {
+  std::size_t block = 0;
+  std::size_t element = 0;
+};
+// One output time of elout.csv: a row per history solid (mean stress over its points).
+std::string elout_text(double time, const solver::State& state,
+                       const std::vector<HistorySolid>& solids);
+
+}  // namespace rf::output

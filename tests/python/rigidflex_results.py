@@ -1,0 +1,156 @@
+"""Readers for RigidFlex result files, written from the published formats only (no RigidFlex code):
+
+- the LS-DYNA binary d3plot database (LS-DYNA manual, "LS-DYNA Database Binary Output Files":
+  64 control words, material types, geometry, user IDs, then states up to the -999999.0 marker),
+- VTK XML UnstructuredGrid files with appended raw data (VTK file-format documentation),
+- the .pvd collection and the CSV files.
+
+Standard library only (struct, xml.etree), so the checks run wherever python3 does.
+"""
+import csv
+import os
+import re
+import struct
+import xml.etree.ElementTree as ET
+
+EOF_MARKER = -999999.0
+
+
+def _family(path):
+    """d3plot, d3plot01, d3plot02, ... in order."""
+    files = [path]
+    k = 1
+    while os.path.exists("%s%02d" % (path, k)):
+        files.append("%s%02d" % (path, k))
+        k += 1
+    return files
+
+
+class D3plot:
+    def __init__(self, path):
+        members = [open(f, "rb").read() for f in _family(path)]
+        first = members[0]
+        assert len(first) % 4 == 0, "d3plot: size is not a whole number of 4-byte words"
+        version = struct.unpack_from("<f", first, 14 * 4)[0]
+        assert 900.0 < version < 1000.0, "d3plot: version word %r, not a 4-byte little-endian file" % version
+        self.title = first[:40].decode("ascii").rstrip()
+        c = struct.unpack_from("<64i", first, 0)
+        self.control = c
+        self.ndim, self.numnp, self.icode, self.nglbv = c[15], c[16], c[17], c[18]
+        self.it, self.iu, self.iv, self.ia = c[19], c[20], c[21], c[22]
+        self.nel8, self.nummat8, self.nv3d = c[23], c[24], c[27]
+        self.nel2, self.nel4, self.nelt = c[28], c[31], c[40]
+        self.maxint, self.narbs, self.nmmat = c[36], c[39], c[51]
+        assert self.ndim in (4, 5), "NDIM %d" % self.ndim
+        assert self.nel2 == 0 and self.nel4 == 0 and self.nelt == 0, "only solids expected"
+        pos = 64
+        words = lambda fmt, n: struct.unpack_from("<%d%s" % (n, fmt), first, 4 * pos)
+        self.material_types = []
+        if self.ndim == 5:
+            numrbe, nummat = words("i", 2)
+            pos += 2
+            self.material_types = list(words("i", nummat))
+            pos += nummat
+        xyz = words("f", 3 * self.numnp)
+        self.x0 = [xyz[3 * i:3 * i + 3] for i in range(self.numnp)]
+        pos += 3 * self.numnp
+        conn = words("i", 9 * self.nel8)
+        self.solids = [conn[9 * e:9 * e + 8] for e in range(self.nel8)]  # 1-based node numbers
+        self.solid_material = [conn[9 * e + 8] for e in range(self.nel8)]
+        pos += 9 * self.nel8
+        self.node_ids = list(range(1, self.numnp + 1))
+        self.solid_ids = list(range(1, self.nel8 + 1))
+        self.part_ids = list(range(1, self.nmmat + 1))
+        if self.narbs > 0:
+            start = pos
+            head = words("i", 10)
+            pos += 10
+            nsort = head[0]
+            if nsort < 0:
+                pos += 6
+            self.node_ids = list(words("i", self.numnp))
+            pos += self.numnp
+            self.solid_ids = list(words("i", self.nel8))
+            pos += self.nel8
+            if nsort < 0:
+                self.part_ids = list(words("i", self.nmmat))  # ordered user IDs
+                pos += 3 * self.nmmat
+            assert pos - start == self.narbs, "NARBS %d, user-ID section %d words" % (self.narbs, pos - start)
+        self.deletion = self.maxint < -10000
+        self.state_words = (1 + self.nglbv + (self.it + 3 * (self.iu + self.iv + self.ia)) * self.numnp
+                            + self.nv3d * self.nel8 + (self.nel8 if self.deletion else 0))
+        self.states = []
+        blobs = [(first, 4 * pos)] + [(m, 0) for m in members[1:]]
+        for blob, at in blobs:
+            while True:
+                assert at + 4 <= len(blob), "d3plot member ends without the end-of-file marker"
+                t = struct.unpack_from("<f", blob, at)[0]
+                if t == EOF_MARKER:
+                    assert at + 4 == len(blob), "data after the end-of-file marker"
+                    break
+                assert at + 4 * self.state_words <= len(blob), "d3plot: a state is cut short"
+                self.states.append(self._state(blob, at))
+                at += 4 * self.state_words
+
+    def _state(self, blob, at):
+        v = struct.unpack_from("<%df" % self.state_words, blob, at)
+        s = {"time": v[0], "globals": v[1:1 + self.nglbv]}
+        p = 1 + self.nglbv + self.it * self.numnp
+        for name, flag in (("coordinates", self.iu), ("velocity", self.iv), ("acceleration", self.ia)):
+            if flag:
+                s[name] = [v[p + 3 * i:p + 3 * i + 3] for i in range(self.numnp)]
+                p += 3 * self.numnp
+        s["solid"] = [v[p + self.nv3d * e:p + self.nv3d * (e + 1)] for e in range(self.nel8)]
+        p += self.nv3d * self.nel8
+        if self.deletion:
+            s["alive"] = list(v[p:p + self.nel8])
+        return s
+
+
+_TYPES = {"Float64": "d", "Float32": "f", "Int64": "q", "Int32": "i", "UInt8": "B", "UInt64": "Q"}
+
+
+def read_vtu(path):
+    """{'points', 'point_data', 'cell_data', 'field_data', 'connectivity', 'offsets', 'types'}."""
+    raw = open(path, "rb").read()
+    marker = raw.index(b"<AppendedData")
+    underscore = raw.index(b"_", marker)
+    xml_text = raw[:marker].decode() + "</VTKFile>"
+    root = ET.fromstring(xml_text)
+    assert root.get("header_type") == "UInt64" and root.get("byte_order") == "LittleEndian"
+    data = raw[underscore + 1:]
+
+    def array(a):
+        offset = int(a.get("offset"))
+        nbytes = struct.unpack_from("<Q", data, offset)[0]
+        code = _TYPES[a.get("type")]
+        count = nbytes // struct.calcsize(code)
+        values = struct.unpack_from("<%d%s" % (count, code), data, offset + 8)
+        k = int(a.get("NumberOfComponents", "1"))
+        return [values[i:i + k] for i in range(0, count, k)] if k > 1 else list(values)
+
+    out = {"point_data": {}, "cell_data": {}, "field_data": {}}
+    for a in root.iter("DataArray"):
+        pass
+    grid = root.find("UnstructuredGrid")
+    for a in grid.find("FieldData") or []:
+        out["field_data"][a.get("Name")] = array(a)
+    piece = grid.find("Piece")
+    out["points"] = array(piece.find("Points").find("DataArray"))
+    for a in piece.find("PointData"):
+        out["point_data"][a.get("Name")] = array(a)
+    for a in piece.find("CellData"):
+        out["cell_data"][a.get("Name")] = array(a)
+    for a in piece.find("Cells"):
+        out[a.get("Name")] = array(a)
+    return out
+
+
+def read_pvd(path):
+    root = ET.parse(path).getroot()
+    return [(float(d.get("timestep")), d.get("file")) for d in root.iter("DataSet")]
+
+
+def read_csv(path):
+    with open(path) as f:
+        return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
