@@ -78,8 +78,16 @@ void for_each_written_solid(const solver::State& state, const Visit& visit) {
 
 }  // namespace
 
-double d3plot_effective_plastic_strain(const element::HexBlock&, std::size_t) {
-  return 0.0;  // no plastic material yet (issue 17 fills this in)
+double d3plot_effective_plastic_strain(const element::HexBlock& block, std::size_t e) {
+  // The material's history field (docs/materials.md), mean over the element's stress points as
+  // in the VTU cell array; 0 for materials without plastic strain.
+  const material::HistoryArray* h = element::find_history(block, "effective_plastic_strain");
+  if (!h || h->field.components != 1) return 0.0;
+  const std::size_t points = static_cast<std::size_t>(block.points_per_element());
+  if (h->values.size() < (e + 1) * points) return 0.0;
+  double sum = 0.0;
+  for (std::size_t q = 0; q < points; ++q) sum += h->values[e * points + q];
+  return sum / static_cast<double>(points);
 }
 
 std::string D3plotWriter::member_name(int k) {
