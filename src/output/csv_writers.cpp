@@ -3,6 +3,8 @@
 // solver held; conservation checks downstream can then work at round-off level.
 #include <fmt/format.h>
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <stdexcept>
 #include <system_error>
@@ -42,8 +44,8 @@ CsvFile::CsvFile(const std::filesystem::path& path, const std::string& header,
   }
   file_ = std::fopen(path.c_str(), continue_at >= 0 ? "ab" : "wb");
   if (file_ == nullptr) {
-    throw std::runtime_error(
-        fmt::format("cannot open output file '{}' for writing", path.string()));
+    throw std::runtime_error(fmt::format("cannot open output file '{}' for writing: {}",
+                                         path.string(), std::strerror(errno)));
   }
   // Full buffering with a big buffer: rows are small and many.
   std::setvbuf(file_, nullptr, _IOFBF, kCsvBufferBytes);
@@ -78,7 +80,8 @@ void CsvFile::write_text(std::string_view text) {
     throw std::runtime_error("write to a CSV file that is not open");
   }
   if (!text.empty() && std::fwrite(text.data(), 1, text.size(), file_) != text.size()) {
-    throw std::runtime_error(fmt::format("cannot write to output file '{}'", path_.string()));
+    throw std::runtime_error(
+        fmt::format("cannot write to output file '{}': {}", path_.string(), std::strerror(errno)));
   }
 }
 
@@ -89,7 +92,8 @@ void CsvFile::write_line(const std::string& line) {
 
 void CsvFile::flush() {
   if (file_ != nullptr && std::fflush(file_) != 0) {
-    throw std::runtime_error(fmt::format("cannot write to output file '{}'", path_.string()));
+    throw std::runtime_error(
+        fmt::format("cannot write to output file '{}': {}", path_.string(), std::strerror(errno)));
   }
 }
 
