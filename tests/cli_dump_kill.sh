@@ -10,10 +10,10 @@ make_cube=$2
 work=$3
 rm -rf "$work"
 mkdir -p "$work"
-python3 "$make_cube" 14 1 1 4000 >"$work/cube.k"
+python3 "$make_cube" 14 1 1 600 >"$work/cube.k"
 for attempt in 1 2 3 4 5; do
   out="$work/out$attempt"
-  OMP_NUM_THREADS=1 "$rigidflex" run "$work/cube.k" -o "$out" --quiet --dump-every 1e-6 &
+  OMP_NUM_THREADS=1 "$rigidflex" run "$work/cube.k" -o "$out" --quiet --dump-every 1e-5 &
   pid=$!
   caught=0
   # Builtin tests only, so the poll is fast next to a dump (about a megabyte, fsynced).
@@ -31,7 +31,7 @@ for attempt in 1 2 3 4 5; do
       echo "note: the partial dump was gone before the kill landed"
     fi
     # The restart must not take the partial file for a dump; d3dump_0002.h5 is whole.
-    if ! OMP_NUM_THREADS=1 "$rigidflex" restart "$out/d3dump_0002.h5" --quiet; then
+    if ! OMP_NUM_THREADS=1 "$rigidflex" restart "$out/d3dump_0002.h5" --quiet --dump-every 1; then
       echo "restart from the previous dump failed"
       exit 1
     fi

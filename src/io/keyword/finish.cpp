@@ -513,7 +513,10 @@ void finish_switching(const model::Model& m) {
 // *PART_MODES: the part must be a rigid body's lead part, ANSID a node set, and the
 // damping ranges may not overlap.
 void finish_part_modes(const model::Model& m) {
-  for (const auto& [pid, modes] : m.part_modes) {
+  for (const auto& entry : m.part_modes) {
+    // Not a structured binding: clang 14 (the fuzz build) cannot capture one in a lambda.
+    const Id pid = entry.first;
+    const auto& modes = entry.second;
     if (!m.parts.count(pid)) {
       throw located_error(modes.where, "PID", fmt::format("part {} is not defined", pid));
     }
