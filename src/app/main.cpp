@@ -10,7 +10,10 @@
 #include <CLI/CLI.hpp>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <optional>
@@ -24,6 +27,7 @@
 #include "io/keyword/reader.hpp"
 #include "modal/eigen_analysis.hpp"
 #include "model/error.hpp"
+#include "output/output_directory.hpp"
 #include "output/writers.hpp"
 #include "restart/dumper.hpp"
 #include "restart/restart.hpp"
@@ -60,6 +64,10 @@ std::map<std::string, double> parse_overrides(const std::vector<std::string>& as
     const double v = std::strtod(value.c_str(), &end);
     if (end == value.c_str() || *end != '\0') {
       throw rf::InputError({}, fmt::format("--set {}: '{}' is not a number", name, value));
+    }
+    // strtod reads "nan" and "inf" (and overflows to inf): a parameter reaches the physics.
+    if (!std::isfinite(v)) {
+      throw rf::InputError({}, fmt::format("--set {}: '{}' is not a finite number", name, value));
     }
     out[name] = v;
   }
@@ -182,7 +190,12 @@ int run_to_termination(rf::solver::Simulation& sim, const fs::path& out,
   } catch (const std::exception& e) {
     summary.status = "error termination";
     summary.message = e.what();
-    finish();
+    try {
+      finish();
+    } catch (const std::exception& also) {
+      // The run's own error is the one to report; run.json is left absent.
+      std::fprintf(stderr, "error: %s\n", also.what());
+    }
     throw;
   }
   if (const int signal = sim.interrupt_signal(); signal != 0) {
@@ -221,6 +234,16 @@ int run_to_termination(rf::solver::Simulation& sim, const fs::path& out,
                 frames.empty() ? "" : fmt::format("; open {} in ParaView", frames).c_str());
   }
   return 0;
+}
+
+// run.json for a run that failed: a failure to write it (the disk that made the run fail, say)
+// is reported but does not hide the run's own error.
+void write_run_json_after_error(const fs::path& path, const rf::output::RunSummary& summary) {
+  try {
+    rf::output::write_run_json(path, summary);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+  }
 }
 
 // Warnings are printed whatever --quiet says (it hides progress only).
@@ -262,7 +285,7 @@ int command_run(const std::string& deck, std::string output_dir, int threads, bo
   if (threads > 0) omp_set_num_threads(threads);
   if (output_dir.empty()) output_dir = fs::path(deck).stem().string() + "_out";
   const fs::path out = output_dir;
-  fs::create_directories(out);
+  rf::output::prepare_output_directory(out);
 
   rf::output::RunSummary summary;
   summary.threads = omp_get_max_threads();
@@ -277,7 +300,7 @@ int command_run(const std::string& deck, std::string output_dir, int threads, bo
   } catch (const rf::InputError& e) {
     summary.status = "error termination";
     summary.message = e.what();
-    rf::output::write_run_json(out / "run.json", summary);
+    write_run_json_after_error(out / "run.json", summary);
     throw;
   }
   for (const auto& w : model.warnings) report_warning(summary, w);
@@ -312,7 +335,7 @@ int command_run(const std::string& deck, std::string output_dir, int threads, bo
   } catch (const std::exception& e) {
     summary.status = "error termination";
     summary.message = e.what();
-    rf::output::write_run_json(out / "run.json", summary);
+    write_run_json_after_error(out / "run.json", summary);
     throw;
   }
   for (const auto& w : sim->warnings()) report_warning(summary, w);
@@ -399,9 +422,34 @@ int command_plot(const std::string& directory, const std::string& output_dir) {
   throw std::runtime_error("cannot start python3 for the plot script");
 }
 
+// libgomp's default lets a thread that waits at a barrier spin (up to ~300000 iterations)
+// before it sleeps. On a machine that also runs other jobs, spinning threads take the cores the
+// working threads need: with --threads equal to the cores a run was measured 12-26x slower than
+// on one thread (issue 22, docs/performance.md), while with waiting threads asleep at once
+// (OMP_WAIT_POLICY=passive) it was faster than one thread. libgomp reads OMP_WAIT_POLICY and
+// GOMP_SPINCOUNT once, when it is loaded, before main, so the program sets the passive policy
+// and re-executes itself, unless the user chose a policy (either variable set) or set
+// RIGIDFLEX_OMP_DEFAULTS=0. docs/cli.md.
+void use_robust_openmp_wait_policy(char** argv) {
+  const auto set = [](const char* name) {
+    const char* v = std::getenv(name);
+    return v != nullptr && *v != '\0';
+  };
+  if (set("OMP_WAIT_POLICY") || set("GOMP_SPINCOUNT")) return;
+  if (const char* v = std::getenv("RIGIDFLEX_OMP_DEFAULTS"); v != nullptr && std::strcmp(v, "0") == 0) {
+    return;
+  }
+  // Once only: the re-executed program finds OMP_WAIT_POLICY set.
+  if (setenv("OMP_WAIT_POLICY", "passive", 1) != 0) return;
+  execv("/proc/self/exe", argv);
+  // No /proc (or exec refused): carry on with libgomp's default policy.
+  unsetenv("OMP_WAIT_POLICY");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  use_robust_openmp_wait_policy(argv);
   CLI::App app{"RigidFlex: explicit finite-element dynamics with rigid/deformable switching"};
   app.set_version_flag("--version", std::string(RIGIDFLEX_VERSION));
   app.require_subcommand(1);

@@ -5,7 +5,7 @@
 #include <unistd.h>
 
 #include <cerrno>
-
+#include <cstring>
 #include <filesystem>
 #include <stdexcept>
 #include <system_error>
@@ -48,8 +48,8 @@ CsvFile::CsvFile(const std::filesystem::path& path, const std::string& header,
   }
   file_ = std::fopen(path.c_str(), continue_at >= 0 ? "ab" : "wb");
   if (file_ == nullptr) {
-    throw std::runtime_error(
-        fmt::format("cannot open output file '{}' for writing", path.string()));
+    throw std::runtime_error(fmt::format("cannot open output file '{}' for writing: {}",
+                                         path.string(), std::strerror(errno)));
   }
   // Our own buffer instead of stdio's: stdio writes whenever its buffer is full, in the middle of
   // a row, and a process killed then leaves a cut row. Ours holds whole rows only and goes to
@@ -114,7 +114,8 @@ void CsvFile::flush_pending() {
     const ssize_t n = ::write(fd, pending_.data() + done, pending_.size() - done);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) {
-      throw std::runtime_error(fmt::format("cannot write to output file '{}'", path_.string()));
+      throw std::runtime_error(fmt::format("cannot write to output file '{}': {}", path_.string(),
+                                           n < 0 ? std::strerror(errno) : "nothing was written"));
     }
     done += static_cast<std::size_t>(n);
   }

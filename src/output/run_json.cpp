@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "output/output_directory.hpp"
 #include "output/writers.hpp"
 
 namespace rf::output {
@@ -92,16 +93,9 @@ void write_run_json(const std::filesystem::path& path, const RunSummary& summary
   }
   fmt::format_to(out, "\n}}\n");
 
-  std::FILE* file = std::fopen(path.c_str(), "wb");
-  if (file == nullptr) {
-    throw std::runtime_error(
-        fmt::format("cannot open output file '{}' for writing", path.string()));
-  }
-  const bool written = std::fwrite(json.data(), 1, json.size(), file) == json.size();
-  const bool closed = std::fclose(file) == 0;
-  if (!written || !closed) {
-    throw std::runtime_error(fmt::format("cannot write to output file '{}'", path.string()));
-  }
+  // Atomically and, in the CLI, last: a run.json that exists is complete and says how the run
+  // ended (docs/output.md).
+  write_file_atomically(path, std::string_view(json.data(), json.size()));
 }
 
 }  // namespace rf::output

@@ -10,6 +10,7 @@
 #include <system_error>
 
 #include "model/error.hpp"
+#include "output/output_directory.hpp"
 #include "restart/simulation_access.hpp"
 
 namespace rf::restart {
@@ -846,36 +847,47 @@ void write_restart_dump(solver::Simulation& sim, const std::filesystem::path& pa
   if (dumper == nullptr) throw std::logic_error("write_restart_dump: restart dumps not enabled");
   const model::Model& model = SimulationAccess::model(sim);
   solver::State& state = SimulationAccess::state(sim);
+  // Written under a temporary name and renamed: a dump interrupted by a full disk, an error or
+  // kill -9 leaves the previous dumps as they were (tests/cli_dump_kill.sh); fsync before the
+  // rename so that the new name never points at data still in the page cache.
   std::filesystem::path partial = path;
   partial += ".partial";
-  {
-    io::h5::File file = io::h5::File::create(partial);
+  try {
     {
-      const Group root = file.root();
-      root.set("format", std::string(kDumpFormat));
-      root.set("dump_version", kDumpVersion);
-      root.set("rigidflex_version", std::string(RIGIDFLEX_VERSION));
-      root.set("time", state.time);
-      root.set("cycle", state.cycle);
-      root.set("threads", static_cast<std::int64_t>(omp_get_max_threads()));
-      write_model_input(root.create_group("model"), dumper->input());
-      write_nodes(root.create_group("nodes"), state.nodes, SimulationAccess::v_previous(sim));
-      write_hex_blocks(root.create_group("blocks"), state.hex_blocks);
-      write_rigid_system(root.create_group("rigid"), SimulationAccess::rigid(sim), model);
-      write_boundary(root.create_group("boundary"), SimulationAccess::boundary(sim), model);
-      SimulationAccess::write_members(sim, root.create_group("simulation"));
-      SimulationAccess::write_output(sim, root.create_group("output"));
-      SimulationAccess::write_features(sim, root.create_group("features"));
-      write_dump_schedule(root.create_group("dumps"), dumper->schedule());
+      io::h5::File file = io::h5::File::create(partial);
+      {
+        const Group root = file.root();
+        root.set("format", std::string(kDumpFormat));
+        root.set("dump_version", kDumpVersion);
+        root.set("rigidflex_version", std::string(RIGIDFLEX_VERSION));
+        root.set("time", state.time);
+        root.set("cycle", state.cycle);
+        root.set("threads", static_cast<std::int64_t>(omp_get_max_threads()));
+        write_model_input(root.create_group("model"), dumper->input());
+        write_nodes(root.create_group("nodes"), state.nodes, SimulationAccess::v_previous(sim));
+        write_hex_blocks(root.create_group("blocks"), state.hex_blocks);
+        write_rigid_system(root.create_group("rigid"), SimulationAccess::rigid(sim), model);
+        write_boundary(root.create_group("boundary"), SimulationAccess::boundary(sim), model);
+        SimulationAccess::write_members(sim, root.create_group("simulation"));
+        SimulationAccess::write_output(sim, root.create_group("output"));
+        SimulationAccess::write_features(sim, root.create_group("features"));
+        write_dump_schedule(root.create_group("dumps"), dumper->schedule());
+      }
+      file.close();
     }
-    file.close();
+    output::sync_file(partial);
+    std::error_code ec;
+    std::filesystem::rename(partial, path, ec);
+    if (ec) {
+      throw std::runtime_error(
+          fmt::format("cannot write restart dump '{}': {}", path.string(), ec.message()));
+    }
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove(partial, ignored);
+    throw;
   }
-  std::error_code ec;
-  std::filesystem::rename(partial, path, ec);
-  if (ec) {
-    throw std::runtime_error(
-        fmt::format("cannot write restart dump '{}': {}", path.string(), ec.message()));
-  }
+  output::sync_directory_of(path);
 }
 
 DumpHeader read_dump_header(const io::h5::File& file, const std::filesystem::path& path) {

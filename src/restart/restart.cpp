@@ -11,6 +11,7 @@
 #include "model/error.hpp"
 #include "model/error_context.hpp"
 #include "output/d3plot_writer.hpp"
+#include "output/output_directory.hpp"
 #include "restart/simulation_access.hpp"
 
 namespace rf::restart {
@@ -115,7 +116,7 @@ Restarted restart_from_dump(const RestartOptions& options) {
   fs::path dump_dir = options.dump.parent_path();
   if (dump_dir.empty()) dump_dir = ".";
   result.output_directory = options.output_directory.empty() ? dump_dir : options.output_directory;
-  fs::create_directories(result.output_directory);
+  output::prepare_output_directory(result.output_directory);
   const bool same = same_directory(dump_dir, result.output_directory);
   const io::h5::Group output = root.group("output");
   solver::SimulationOptions sim_options;

@@ -956,6 +956,26 @@ void Simulation::select_time_step() {
     // Without deformable elements DTINIT is the step throughout (capped by LCTM above).
     dt = std::min(dt, control.dtinit);
   }
+  if (no_element_step && !std::isfinite(dt) && state_.cycle > 0 && state_.dt > 0.0) {
+    // Every part was made rigid by switching and nothing else bounds the step: keep the step in
+    // force before the switch (what a user expects; rigid bodies alone are integrated stably
+    // at any step the loads resolve). Said once; `check` warns about it up front.
+    dt = state_.dt;
+    // Said once: the notice is looked for among the warnings (a few), only on this path.
+    constexpr std::string_view kHeldStep = "keeps the step in force before the switch";
+    const bool noted = std::any_of(warnings_.begin(), warnings_.end(), [&](const auto& w) {
+      return w.message.find(kHeldStep) != std::string::npos;
+    });
+    if (!noted) {
+      warnings_.push_back(
+          {{},
+           fmt::format("t = {:.6g}: no deformable element is left after switching and neither "
+                       "DTINIT nor LCTM (*CONTROL_TIMESTEP) nor DTMAX "
+                       "(*DEFORMABLE_TO_RIGID_AUTOMATIC) sets the step: the run keeps the step "
+                       "in force before the switch, dt = {:.6g}",
+                       state_.time, dt)});
+    }
+  }
   if (no_element_step && !std::isfinite(dt)) {
     throw InputError(
         {.file = {}, .line = 0, .keyword = "*CONTROL_TIMESTEP", .card = 1, .field = "DTINIT"},

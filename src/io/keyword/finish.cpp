@@ -513,7 +513,10 @@ void finish_switching(const model::Model& m) {
 // *PART_MODES: the part must be a rigid body's lead part, ANSID a node set, and the
 // damping ranges may not overlap.
 void finish_part_modes(const model::Model& m) {
-  for (const auto& [pid, modes] : m.part_modes) {
+  for (const auto& entry : m.part_modes) {
+    // Not a structured binding: clang 14 (the fuzz build) cannot capture one in a lambda.
+    const Id pid = entry.first;
+    const auto& modes = entry.second;
     if (!m.parts.count(pid)) {
       throw located_error(modes.where, "PID", fmt::format("part {} is not defined", pid));
     }
@@ -577,6 +580,45 @@ void finish_part_modes(const model::Model& m) {
       }
     }
   }
+}
+
+// Every part with deformable elements is switched rigid by *DEFORMABLE_TO_RIGID_AUTOMATIC sets
+// without DTMAX, and neither DTINIT nor LCTM gives a step: after the switch the run keeps the
+// step in force before it (solver/simulation.cpp, select_time_step). Said up front, so `check`
+// shows it (issue 22).
+void warn_all_rigid_without_step(ReaderContext& context) {
+  const model::Model& m = context.model;
+  const auto& automatic = m.switching.automatic;
+  if (automatic.empty() || !m.part_modes.empty()) return;
+  if (m.timestep.dtinit > 0.0 || m.timestep.lctm != 0 || m.timestep.dt_max > 0.0) return;
+  std::set<Id> switched;
+  for (const auto& set : automatic) {
+    if (set.dtmax > 0.0 && !set.to_rigid.empty()) return;  // that set caps the step
+    for (const auto& s : set.to_rigid) {
+      if (!s.part_set) {
+        switched.insert(s.pid);
+      } else if (const auto it = m.part_sets.find(s.pid); it != m.part_sets.end()) {
+        switched.insert(it->second.parts.begin(), it->second.parts.end());
+      }
+    }
+  }
+  std::set<Id> deformable;
+  for (const auto& e : m.solids) {
+    const auto part = m.parts.find(e.pid);
+    if (part == m.parts.end()) continue;
+    const auto mat = m.materials.find(part->second.mid);
+    if (mat != m.materials.end() && mat->second.kind != model::MaterialKind::Rigid) {
+      deformable.insert(e.pid);
+    }
+  }
+  if (deformable.empty()) return;
+  for (const Id p : deformable) {
+    if (!switched.count(p)) return;
+  }
+  context.warn(automatic.front().where,
+               "*DEFORMABLE_TO_RIGID_AUTOMATIC can make every deformable part rigid and no "
+               "DTMAX (on the switch set), DTINIT or LCTM (*CONTROL_TIMESTEP) sets the step "
+               "then: the run keeps the step in force before the switch");
 }
 
 void finish_model(ReaderContext& context) {
@@ -741,6 +783,7 @@ void finish_model(ReaderContext& context) {
   handlers::check_rigid_walls(m);
   handlers::check_contacts(m);
   finish_switching(m);
+  warn_all_rigid_without_step(context);
   handlers::finish_sensors(context, nodes);
 }
 
