@@ -1,0 +1,80 @@
+// Contiguous batch of 2-node beams and trusses that share part, section and material: the beam
+// element family (issue 16). Beam nodes carry rotations (solver::RotationalState); a truss
+// (ELFORM 3) has none and its rotation_conn entries are -1.
+//
+// SIGN CONVENTION as for solids (hex_block.hpp): block.force holds INTERNAL nodal forces and
+// moments; the solver forms a = (f_ext - f_int) / m and alpha = (m_ext - m_int) / I.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "element/hex_block.hpp"    // NodalView, KernelResult
+#include "element/shell_block.hpp"  // RotationalView
+#include "material/elastic.hpp"
+#include "material/history.hpp"
+#include "material/plastic_parameters.hpp"
+#include "model/model.hpp"
+
+namespace rf::element {
+
+// Force and moment entries per element: 2 nodes x (fx, fy, fz, mx, my, mz), node-major, global.
+inline constexpr int kBeamSlot = 12;
+
+enum class BeamCrossSection : std::uint8_t {
+  kRectangular = 0,  // *SECTION_BEAM CST 0: TS1/TS2 (s), TT1/TT2 (t) at the two nodes
+  kTubular = 1,      // CST 1: outer diameters TS1/TS2, inner TT1/TT2
+};
+
+struct BeamBlock {
+  model::Id part_id = 0;
+  int part_index = 0;
+  // 1: Hughes-Liu with cross-section integration; 2: Belytschko-Schwer resultant (A, I, J);
+  // 3: truss (axial only).
+  int elform = 2;
+  material::ElasticConstants material;
+  int material_index = 0;
+  material::PlasticParameters plastic;
+  bool rigid = false;
+  bool has_force_slots = true;
+
+  // Section (*SECTION_BEAM). Resultant and truss: A, ISS, ITT, J (IRR), SA (shear area).
+  double area = 0.0;
+  double iss = 0.0;  // second moment about the local s axis
+  double itt = 0.0;  // second moment about the local t axis
+  double torsion = 0.0;  // J
+  double shear_area = 0.0;
+  double shear_factor = 1.0;  // SHRF
+  // Hughes-Liu: cross-section shape and dimensions at node 1 (s, t) and node 2.
+  BeamCrossSection cross_section = BeamCrossSection::kRectangular;
+  double ts1 = 0.0, ts2 = 0.0, tt1 = 0.0, tt2 = 0.0;
+
+  std::vector<model::Id> element_id;         // user IDs, size n
+  std::vector<std::int32_t> conn;            // dense node indices, 2 per element
+  std::vector<std::int32_t> rotation_conn;   // rotational indices, 2 per element (-1 truss)
+  // Orientation of the local s axis at the reference configuration, 3 per element: from the
+  // third node (N3) or the orientation vector of *ELEMENT_BEAM_ORIENTATION; a default
+  // perpendicular to the axis otherwise.
+  std::vector<double> orientation;
+
+  // Per-element state: the co-rotational local frame (9 per element, rows e1 e2 e3, e1 along
+  // the axis), resultants (6 per element: N, Qs, Qt, Mtorsion, Ms, Mt) or stresses per point.
+  std::vector<double> frame;
+  std::vector<double> resultant;
+  std::vector<double> stress;
+  std::vector<material::HistoryArray> history;
+  std::vector<double> length0;  // reference length
+  std::vector<double> length;   // current length
+  std::vector<double> force;    // kBeamSlot per element
+
+  std::size_t size() const { return element_id.size(); }
+};
+
+void initialize_beam_block(BeamBlock& block, const NodalView& nodes);
+KernelResult compute_beam_forces(BeamBlock& block, const NodalView& nodes,
+                                 const RotationalView& rotations, double dt);
+KernelResult beam_critical_timestep(const BeamBlock& block, const NodalView& nodes);
+void add_beam_lumped_mass(const BeamBlock& block, std::vector<double>& nodal_mass,
+                          std::vector<double>& rotational_inertia);
+
+}  // namespace rf::element

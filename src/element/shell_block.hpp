@@ -1,0 +1,105 @@
+// Contiguous batch of 4-node shells (N3 = N4: triangles) that share part, section, material and
+// hourglass settings: the shell element family (issue 16). Nodes of shells carry rotations; the
+// rotational degrees of freedom live in solver::RotationalState, indexed by a rotational index
+// that the block stores next to the nodal connectivity (`rotation_conn`).
+//
+// SIGN CONVENTION as for solids (hex_block.hpp): block.force holds INTERNAL nodal forces and
+// moments; the solver forms a = (f_ext - f_int) / m and alpha = (m_ext - m_int) / I.
+//
+// Stresses are stored in the element's co-rotational frame (Belytschko, Lin and Tsay 1984): the
+// frame turns with the element, so a rigid rotation leaves them unchanged (objectivity) and a
+// switch to rigid and back needs no rotation of the shell stresses.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "element/hex_block.hpp"  // NodalView, HourglassSettings, KernelResult
+#include "material/elastic.hpp"
+#include "material/history.hpp"
+#include "material/plastic_parameters.hpp"
+#include "model/model.hpp"
+
+namespace rf::element {
+
+// Angular velocities omega^{n+1/2} by rotational index (struct-of-arrays).
+struct RotationalView {
+  const double* wx;
+  const double* wy;
+  const double* wz;
+};
+
+// Through-thickness integration rule of *SECTION_SHELL (QR/IRID < 0 user rules: not supported).
+enum class ThroughThicknessRule : std::uint8_t { kGauss = 0, kLobatto = 1 };
+
+// Force and moment entries per element: 4 nodes x (fx, fy, fz, mx, my, mz), node-major, global.
+inline constexpr int kShellSlot = 24;
+// Stress components stored per integration point, co-rotational frame: xx, yy, xy, yz, zx
+// (plane stress: sigma_zz = 0).
+inline constexpr int kShellStress = 5;
+
+struct ShellBlock {
+  model::Id part_id = 0;
+  int part_index = 0;
+  int elform = 2;  // 2: Belytschko-Lin-Tsay (one point in the plane); 16: fully integrated
+  HourglassSettings hourglass;
+  material::ElasticConstants material;
+  int material_index = 0;  // index in material::SolidMaterials (registry.hpp)
+  material::PlasticParameters plastic;
+  bool rigid = false;
+  bool has_force_slots = true;
+
+  // Section (*SECTION_SHELL): transverse shear factor SHRF, NIP points through the thickness
+  // (1..10) of rule `rule`. zeta in [-1, 1] from bottom to top, weights summing to 2.
+  double shear_factor = 5.0 / 6.0;
+  int nip = 2;
+  ThroughThicknessRule rule = ThroughThicknessRule::kGauss;
+  std::vector<double> zeta;    // nip
+  std::vector<double> weight;  // nip
+  // Belytschko-Wong-Chiang warping correction (*CONTROL_SHELL BWC = 1 turns it on for ELFORM 2;
+  // LS-DYNA's default BWC = 2 leaves it off).
+  bool warping_correction = false;
+
+  std::vector<model::Id> element_id;     // user IDs, size n
+  std::vector<std::int32_t> conn;        // dense node indices, 4 per element (N3 == N4: triangle)
+  std::vector<std::int32_t> rotation_conn;  // rotational indices of the same nodes, 4 per element
+  std::vector<double> thickness;         // nodal thicknesses T1..T4, 4 per element
+  std::vector<std::uint8_t> triangle;    // 1 where N3 == N4
+
+  // Per-element state.
+  // Stress: kShellStress per point, nip points per element (ELFORM 16: 4 x nip), co-rotational.
+  std::vector<double> stress;
+  std::vector<material::HistoryArray> history;  // per point, as for solids (material/history.hpp)
+  // Hourglass generalized forces of the stiffness forms (IHQ 4, 5): 5 per element (in-plane
+  // x, y; out-of-plane w; two rotational).
+  std::vector<double> hourglass_state;
+  std::vector<double> area0;  // reference mid-surface area
+  std::vector<double> area;   // current area
+  // Element forces and moments of the last evaluation, kShellSlot per element.
+  std::vector<double> force;
+
+  std::size_t size() const { return element_id.size(); }
+  int in_plane_points() const { return elform == 16 ? 4 : 1; }
+  int points_per_element() const { return in_plane_points() * nip; }
+};
+
+// Fills zeta/weight for the block's rule and nip, allocates per-element state and computes
+// reference areas. Throws rf::InputError-free rf::SolverError naming the element when an
+// element is degenerate (zero area) or a thickness is not positive.
+void initialize_shell_block(ShellBlock& block, const NodalView& nodes);
+
+// Internal forces and moments at x^{n+1} with rates from v^{n+1/2}, omega^{n+1/2}, over a step
+// dt; stresses and hourglass state updated. Results to block.force. OpenMP-parallel over
+// elements, no shared writes.
+KernelResult compute_shell_forces(ShellBlock& block, const NodalView& nodes,
+                                  const RotationalView& rotations, double dt);
+
+// Critical step of each element at the current configuration (no TSSFAC), minimum reported.
+KernelResult shell_critical_timestep(const ShellBlock& block, const NodalView& nodes);
+
+// Lumped translational mass (to nodal_mass by dense node index) and rotational inertia (to
+// rotational_inertia by rotational index).
+void add_shell_lumped_mass(const ShellBlock& block, std::vector<double>& nodal_mass,
+                           std::vector<double>& rotational_inertia);
+
+}  // namespace rf::element
