@@ -91,6 +91,47 @@ void print_model_summary(const model::Model& model, const solver::Simulation& si
             : fmt::format(", hourglass IHQ {} QM {:g}", block.hourglass.ihq, block.hourglass.qm),
         dt);
   }
+  // Shell and beam parts with their sections (and the step of the deformable ones).
+  if (!model.shells.empty() || !model.beams.empty()) {
+    fmt::print(out, "shell elements: {}, beam elements: {}\n", model.shells.size(),
+               model.beams.size());
+  }
+  const element::NodalView view{state.nodes.x.x.data(), state.nodes.x.y.data(),
+                                state.nodes.x.z.data(), state.nodes.v.x.data(),
+                                state.nodes.v.y.data(), state.nodes.v.z.data()};
+  for (const auto& block : state.shell_blocks) {
+    const auto& part = model.parts.at(block.part_id);
+    const auto& mat = model.materials.at(part.mid);
+    std::int64_t triangles = 0;
+    for (const auto t : block.triangle) triangles += t;
+    fmt::print(out,
+               "  part {} '{}': {} shells ({} triangles), *SECTION_SHELL {} (ELFORM {}, NIP {} {}, "
+               "SHRF {:g}, T1 {:g}), material {} {} (rho {:g}, E {:g}, nu {:g}){}\n",
+               part.id, part.title, block.size(), triangles, part.secid, block.elform, block.nip,
+               block.rule == element::ThroughThicknessRule::kLobatto ? "Lobatto" : "Gauss",
+               block.shear_factor, block.thickness.empty() ? 0.0 : block.thickness.front(), mat.id,
+               mat.keyword, mat.rho, mat.e, mat.pr,
+               block.rigid ? std::string(", rigid")
+                           : fmt::format(", hourglass IHQ {} QM {:g}, element step {:.4g}",
+                                         block.hourglass.ihq, block.hourglass.qm,
+                                         element::shell_critical_timestep(block, view).min_dt));
+  }
+  for (const auto& block : state.beam_blocks) {
+    const auto& part = model.parts.at(block.part_id);
+    const auto& mat = model.materials.at(part.mid);
+    static constexpr const char* kName[] = {"", "Hughes-Liu", "Belytschko-Schwer", "truss"};
+    fmt::print(out,
+               "  part {} '{}': {} beams, *SECTION_BEAM {} (ELFORM {} {}), material {} {} (rho "
+               "{:g}, E {:g}, nu {:g}){}\n",
+               part.id, part.title, block.size(), part.secid, block.elform,
+               kName[std::clamp(block.elform, 0, 3)], mat.id, mat.keyword, mat.rho, mat.e, mat.pr,
+               block.rigid ? std::string(", rigid")
+                           : fmt::format(", element step {:.4g}",
+                                         element::beam_critical_timestep(block, view).min_dt));
+  }
+  if (!state.rotations.empty()) {
+    fmt::print(out, "nodes with rotations: {}\n", state.rotations.size());
+  }
   fmt::print(out, "total mass: {:.6g}\n", total_mass);
   const auto& rigid = sim.rigid_bodies();
   fmt::print(out, "rigid bodies: {} (*RIGID_BODY_UPDATE {})\n", rigid.bodies.size(),

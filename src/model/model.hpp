@@ -81,6 +81,59 @@ struct SectionSolid {
   SourceLocation where;
 };
 
+// *ELEMENT_SHELL (N3 == N4: triangle). Nodal thicknesses from _THICKNESS (0: the section's).
+struct ShellElement {
+  Id id = 0;
+  Id pid = 0;
+  std::array<Id, 4> nodes{};
+  std::array<double, 4> thickness{};
+  SourceLocation where;
+};
+
+// *SECTION_SHELL as far as it is supported (docs/keywords.md lists the accepted values).
+struct SectionShell {
+  Id id = 0;
+  int elform = 2;        // 2: Belytschko-Lin-Tsay; 16: fully integrated
+  double shrf = 1.0;     // transverse shear factor (LS-DYNA default 1; 5/6 is the usual choice)
+  int nip = 2;           // points through the thickness, 1..10
+  int quadrature = -1;   // QR as written; -1 blank (then *CONTROL_SHELL INTGRD decides)
+  std::array<double, 4> t{};  // T1..T4
+  double nloc = 0.0;     // reference surface: 1 top, 0 mid, -1 bottom (only 0 supported)
+  SourceLocation where;
+};
+
+// *ELEMENT_BEAM: two nodes and the third (orientation) node or vector.
+struct BeamElement {
+  Id id = 0;
+  Id pid = 0;
+  std::array<Id, 3> nodes{};               // N1 N2 N3 (N3 0: default orientation)
+  std::optional<std::array<double, 3>> orientation;  // _ORIENTATION VX VY VZ
+  SourceLocation where;
+};
+
+// *SECTION_BEAM as far as it is supported.
+struct SectionBeam {
+  Id id = 0;
+  int elform = 1;     // 1 Hughes-Liu, 2 Belytschko-Schwer resultant, 3 truss
+  double shrf = 1.0;
+  int cst = 0;        // 0 rectangular, 1 tubular (ELFORM 1)
+  double ts1 = 0.0, ts2 = 0.0, tt1 = 0.0, tt2 = 0.0;  // ELFORM 1
+  double a = 0.0, iss = 0.0, itt = 0.0, j = 0.0, sa = 0.0;  // ELFORM 2 (and A for 3)
+  SourceLocation where;
+};
+
+// *CONTROL_SHELL fields that change the physics (the others are accepted at their defaults).
+struct ShellControl {
+  int theory = 2;           // default ELFORM of *SECTION_SHELL ELFORM 0
+  int bwc = 2;              // 1: Belytschko-Wong-Chiang warping correction on
+  int istupd = 0;           // thickness update (0 only)
+  int intgrd = 0;           // 0 Gauss, 1 Lobatto (NIP 3..10)
+  int miter = 1;            // plane-stress plasticity: 1, 2 iterative
+  int proj = 0;
+  double rotascl = 1.0;     // rotary inertia scale
+  SourceLocation where;
+};
+
 // Material cards. Each kind is its own struct; the variant-like tag keeps dispatch out of
 // per-element loops (the solver groups elements by material kind once).
 enum class MaterialKind { Elastic, Rigid, PlasticKinematic, PiecewiseLinearPlasticity };
@@ -285,6 +338,7 @@ struct InitialVelocity {
   Target target = Target::Node;
   Id id = 0;                  // node, node set, part or part set; 0 with All
   std::array<double, 3> v{};  // translational velocity
+  std::array<double, 3> w{};  // *INITIAL_VELOCITY_NODE VXR VYR VZR: nodes with rotations only
   double omega = 0.0;         // rad/time about axis through point
   std::array<double, 3> point{};
   std::array<double, 3> axis{};
@@ -638,6 +692,7 @@ struct TimestepControl {
   double dtinit = 0.0;
   double tssfac = 0.9;
   double dt2ms = 0.0;
+  int isdo = 0;  // shell step option (0 only)
   Id lctm = 0;
   double dt_max = 0.0;  // IMPETUS *TIME dt_max; 0: no cap
 };
@@ -701,6 +756,11 @@ struct Model {
   std::vector<SolidElement> solids;  // in input order
   std::map<Id, Part> parts;
   std::map<Id, SectionSolid> solid_sections;
+  std::vector<ShellElement> shells;  // in input order
+  std::vector<BeamElement> beams;    // in input order
+  std::map<Id, SectionShell> shell_sections;
+  std::map<Id, SectionBeam> beam_sections;
+  ShellControl shell_control;
   std::map<Id, Material> materials;
   std::map<Id, Hourglass> hourglass;
   std::map<Id, Curve> curves;

@@ -128,6 +128,59 @@ void write_atomically(const std::filesystem::path& path, WriteBody&& body) {
 
 }  // namespace
 
+namespace {
+
+// Co-rotational frame of a shell at the current configuration (rows e1, e2, e3): e3 along the
+// cross product of the diagonals, e1 along side 1-2 made normal to e3 (Belytschko, Lin and Tsay
+// 1984), the frame the kernel keeps the stresses in.
+std::array<std::array<double, 3>, 3> shell_frame(const solver::NodalState& nodes,
+                                                const std::int32_t* c) {
+  auto at = [&](int k) {
+    return std::array<double, 3>{nodes.x.x[c[k]], nodes.x.y[c[k]], nodes.x.z[c[k]]};
+  };
+  const auto x1 = at(0), x2 = at(1), x3 = at(2), x4 = at(3);
+  const std::array<double, 3> d13{x3[0] - x1[0], x3[1] - x1[1], x3[2] - x1[2]};
+  const std::array<double, 3> d24{x4[0] - x2[0], x4[1] - x2[1], x4[2] - x2[2]};
+  std::array<double, 3> e3{d13[1] * d24[2] - d13[2] * d24[1], d13[2] * d24[0] - d13[0] * d24[2],
+                           d13[0] * d24[1] - d13[1] * d24[0]};
+  if (c[2] == c[3]) {  // triangle: the normal of the face
+    const std::array<double, 3> a{x2[0] - x1[0], x2[1] - x1[1], x2[2] - x1[2]};
+    e3 = {a[1] * d13[2] - a[2] * d13[1], a[2] * d13[0] - a[0] * d13[2],
+          a[0] * d13[1] - a[1] * d13[0]};
+  }
+  auto normalise = [](std::array<double, 3>& v) {
+    const double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (l > 0.0)
+      for (double& x : v) x /= l;
+  };
+  normalise(e3);
+  std::array<double, 3> e1{x2[0] - x1[0], x2[1] - x1[1], x2[2] - x1[2]};
+  const double p = e1[0] * e3[0] + e1[1] * e3[1] + e1[2] * e3[2];
+  for (int k = 0; k < 3; ++k) e1[k] -= p * e3[k];
+  normalise(e1);
+  const std::array<double, 3> e2{e3[1] * e1[2] - e3[2] * e1[1], e3[2] * e1[0] - e3[0] * e1[2],
+                                 e3[0] * e1[1] - e3[1] * e1[0]};
+  return {e1, e2, e3};
+}
+
+// sigma_global = sum_ab e_a (x) e_b sigma_ab for the co-rotational components xx yy xy yz zx
+// (sigma_zz = 0), returned in Voigt order xx yy zz xy yz zx.
+void shell_stress_to_global(const double* local, const std::array<std::array<double, 3>, 3>& e,
+                            double out[6]) {
+  const double s[3][3] = {{local[0], local[2], local[4]},
+                          {local[2], local[1], local[3]},
+                          {local[4], local[3], 0.0}};
+  static constexpr int kI[6] = {0, 1, 2, 0, 1, 2}, kJ[6] = {0, 1, 2, 1, 2, 0};
+  for (int v = 0; v < 6; ++v) {
+    double sum = 0.0;
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) sum += e[a][kI[v]] * s[a][b] * e[b][kJ[v]];
+    out[v] = sum;
+  }
+}
+
+}  // namespace
+
 double von_mises(const double* s) {
   const double dxy = s[0] - s[1];
   const double dyz = s[1] - s[2];
@@ -293,6 +346,12 @@ void FieldWriter::write_frame(const solver::State& state, const FrameOptions& op
 
   std::size_t cell_count = 0;
   for (const element::HexBlock& block : state.hex_blocks) cell_count += block.size();
+  for (const element::ShellBlock& block : state.shell_blocks) cell_count += block.size();
+  for (const element::BeamBlock& block : state.beam_blocks) cell_count += block.size();
+  // Shell and beam cell arrays (zero on other cells): thickness, stresses at the bottom and top
+  // points in global axes, beam resultants N Qs Qt T Ms Mt in the beam's local axes.
+  std::vector<double> thickness(cell_count, 0.0), stress_bottom(6 * cell_count, 0.0),
+      stress_top(6 * cell_count, 0.0), beam_resultant(6 * cell_count, 0.0);
 
   std::vector<std::int64_t> connectivity, offsets, part_id, element_id;
   std::vector<std::uint8_t> types;
@@ -357,6 +416,78 @@ void FieldWriter::write_frame(const solver::State& state, const FrameOptions& op
     }
   }
 
+  // Shells: quads or triangles. "stress" is the mean over the points through the thickness (the
+  // membrane stress), effective_stress the largest von Mises value among the points; both in
+  // global axes, turned from the element's co-rotational frame at the current configuration.
+  for (const element::ShellBlock& block : state.shell_blocks) {
+    const std::size_t nip = static_cast<std::size_t>(block.nip);
+    const std::size_t points = static_cast<std::size_t>(block.points_per_element());
+    for (std::size_t e = 0; e < block.size(); ++e) {
+      const std::int32_t* c = &block.conn[4 * e];
+      const bool triangle = block.triangle[e] != 0;
+      const int corners = triangle ? 3 : 4;
+      for (int k = 0; k < corners; ++k) connectivity.push_back(c[k]);
+      offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
+      types.push_back(triangle ? 5 : 9);  // VTK_TRIANGLE, VTK_QUAD
+      part_id.push_back(block.part_id);
+      element_id.push_back(block.element_id[e]);
+      const std::size_t cell = part_id.size() - 1;
+      double t = 0.0;
+      for (int k = 0; k < corners; ++k) t += block.thickness[4 * e + static_cast<std::size_t>(k)];
+      thickness[cell] = t / corners;
+      const std::array<std::array<double, 3>, 3> frame = shell_frame(nodes, c);
+      double mean[6] = {0, 0, 0, 0, 0, 0};
+      double worst = 0.0;
+      for (std::size_t q = 0; q < points && !block.stress.empty(); ++q) {
+        double g[6];
+        shell_stress_to_global(&block.stress[(e * points + q) * element::kShellStress], frame, g);
+        for (int k = 0; k < 6; ++k) mean[k] += g[k] / static_cast<double>(points);
+        worst = std::max(worst, von_mises(g));
+        // Points run bottom to top through the thickness (per in-plane point for ELFORM 16).
+        if (q % nip == 0)
+          for (int k = 0; k < 6; ++k)
+            stress_bottom[6 * cell + k] += g[k] * static_cast<double>(nip) / points;
+        if (q % nip == nip - 1)
+          for (int k = 0; k < 6; ++k)
+            stress_top[6 * cell + k] += g[k] * static_cast<double>(nip) / points;
+      }
+      stress.insert(stress.end(), mean, mean + 6);
+      effective_stress.push_back(worst);
+      pressure.push_back(pressure_of(mean));
+      const std::array<double, 3> sp = principal_stresses(mean);
+      principal.insert(principal.end(), sp.begin(), sp.end());
+    }
+  }
+  // Beams: lines; "stress" holds the axial stress N / A along the beam axis.
+  for (const element::BeamBlock& block : state.beam_blocks) {
+    for (std::size_t e = 0; e < block.size(); ++e) {
+      const std::int32_t a = block.conn[2 * e], b = block.conn[2 * e + 1];
+      connectivity.push_back(a);
+      connectivity.push_back(b);
+      offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
+      types.push_back(3);  // VTK_LINE
+      part_id.push_back(block.part_id);
+      element_id.push_back(block.element_id[e]);
+      const std::size_t cell = part_id.size() - 1;
+      double r[6] = {0, 0, 0, 0, 0, 0};
+      if (block.resultant.size() >= 6 * (e + 1)) std::copy_n(&block.resultant[6 * e], 6, r);
+      for (int k = 0; k < 6; ++k) beam_resultant[6 * cell + k] = r[k];
+      const double area = block.area > 0.0 ? block.area : 0.0;
+      const double axial = area > 0.0 ? r[0] / area : 0.0;
+      double d[3] = {nodes.x.x[b] - nodes.x.x[a], nodes.x.y[b] - nodes.x.y[a],
+                     nodes.x.z[b] - nodes.x.z[a]};
+      const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      for (double& v : d) v = len > 0.0 ? v / len : 0.0;
+      const double g[6] = {axial * d[0] * d[0], axial * d[1] * d[1], axial * d[2] * d[2],
+                           axial * d[0] * d[1], axial * d[1] * d[2], axial * d[2] * d[0]};
+      stress.insert(stress.end(), g, g + 6);
+      effective_stress.push_back(std::abs(axial));
+      pressure.push_back(pressure_of(g));
+      const std::array<double, 3> sp = principal_stresses(g);
+      principal.insert(principal.end(), sp.begin(), sp.end());
+    }
+  }
+
   // Material history (plastic strain, back stress, ...): one cell array per field name found
   // in any block, the mean over the element's stress points; zero in blocks without it.
   struct HistoryCells {
@@ -371,6 +502,29 @@ void FieldWriter::write_frame(const solver::State& state, const FrameOptions& op
                        [&](const HistoryCells& c) { return c.name == h.field.name; }))
         history.push_back({std::string(h.field.name), h.field.components,
                            std::vector<double>(cell_count * h.field.components, 0.0)});
+  for (const element::ShellBlock& block : state.shell_blocks)
+    for (const auto& h : block.history)
+      if (std::none_of(history.begin(), history.end(),
+                       [&](const HistoryCells& c) { return c.name == h.field.name; }))
+        history.push_back({std::string(h.field.name), h.field.components,
+                           std::vector<double>(cell_count * h.field.components, 0.0)});
+  for (HistoryCells& cells : history) {  // shells after the solids, in cell order
+    std::size_t first_cell = 0;
+    for (const element::HexBlock& block : state.hex_blocks) first_cell += block.size();
+    for (const element::ShellBlock& block : state.shell_blocks) {
+      const std::size_t points = static_cast<std::size_t>(block.points_per_element());
+      const std::size_t nc = static_cast<std::size_t>(cells.components);
+      for (const auto& h : block.history) {
+        if (h.field.name != cells.name || h.values.size() != nc * points * block.size()) continue;
+        for (std::size_t e = 0; e < block.size(); ++e)
+          for (std::size_t p = 0; p < points; ++p)
+            for (std::size_t c = 0; c < nc; ++c)
+              cells.values[(first_cell + e) * nc + c] +=
+                  h.values[(e * points + p) * nc + c] / static_cast<double>(points);
+      }
+      first_cell += block.size();
+    }
+  }
   for (HistoryCells& cells : history) {
     std::size_t first_cell = 0;
     for (const element::HexBlock& block : state.hex_blocks) {
@@ -429,6 +583,19 @@ void FieldWriter::write_frame(const solver::State& state, const FrameOptions& op
                     bytes_of(cells.values)};
     if (cells.components == 6) a.component_names = {"xx", "yy", "zz", "xy", "yz", "zx"};
     arrays.push_back(std::move(a));
+  }
+  // Shell and beam cell arrays, only in models that have them.
+  const bool has_shells = !state.shell_blocks.empty(), has_beams = !state.beam_blocks.empty();
+  if (has_shells) {
+    arrays.push_back({"thickness", "Float64", 1, thickness.data(), bytes_of(thickness)});
+    arrays.push_back({"stress_bottom", "Float64", 6, stress_bottom.data(), bytes_of(stress_bottom),
+                      0, {"xx", "yy", "zz", "xy", "yz", "zx"}});
+    arrays.push_back({"stress_top", "Float64", 6, stress_top.data(), bytes_of(stress_top), 0,
+                      {"xx", "yy", "zz", "xy", "yz", "zx"}});
+  }
+  if (has_beams) {
+    arrays.push_back({"beam_resultant", "Float64", 6, beam_resultant.data(),
+                      bytes_of(beam_resultant), 0, {"N", "Qs", "Qt", "T", "Ms", "Mt"}});
   }
   std::uint64_t offset = 0;
   for (AppendedArray& a : arrays) {

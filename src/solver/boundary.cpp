@@ -165,17 +165,31 @@ Boundary resolve_boundary(const model::Model& model, const NodeIndex& node_index
                                     "*MAT_RIGID",
                                     ignored_tc)});
   }
+  // *NODE RC on nodes with rotations: 1 x, 2 y, 3 z, 4 x+y, 5 y+z, 6 z+x, 7 all.
+  b.rotation_fixed.assign(state.rotations.size(), 0);
+  for (std::size_t i = 0; i < std::min(n, model.nodes.size()); ++i) {
+    const int rc = model.nodes[i].rc;
+    const std::int32_t r = state.rotations.index(static_cast<std::int32_t>(i));
+    if (rc <= 0 || rc > 7 || r < 0 || rigid(static_cast<std::int32_t>(i))) continue;
+    b.rotation_fixed[static_cast<std::size_t>(r)] |= kTcMask[rc];  // same codes
+  }
   for (const auto& spc : model.spcs) {
     const auto nodes = resolve_nodes(model, node_index, state, spc.target, spc.id, spc.where,
                                      spc.target == model::Target::Node ? "NID" : "NSID");
     const std::uint8_t mask = static_cast<std::uint8_t>(
         (spc.fix[0] ? 1 : 0) | (spc.fix[1] ? 2 : 0) | (spc.fix[2] ? 4 : 0));
     std::int64_t ignored = 0;
+    const std::uint8_t rotation_mask = static_cast<std::uint8_t>(
+        (spc.fix_rot[0] ? 1 : 0) | (spc.fix_rot[1] ? 2 : 0) | (spc.fix_rot[2] ? 4 : 0));
     for (const auto i : nodes) {
       if (rigid(i)) {
         ++ignored;
       } else {
         b.fixed[i] |= mask;
+        // Rotational DOFs act on nodes that have them (shells, beams); solids have none.
+        if (const std::int32_t r = state.rotations.index(i); r >= 0) {
+          b.rotation_fixed[static_cast<std::size_t>(r)] |= rotation_mask;
+        }
       }
     }
     if (ignored > 0) {
@@ -273,6 +287,12 @@ void apply_initial_velocities(const model::Model& model, const NodeIndex& node_i
       nodes.v.x[i] = iv.v[0] + iv.omega * (ay * rz - az * ry);
       nodes.v.y[i] = iv.v[1] + iv.omega * (az * rx - ax * rz);
       nodes.v.z[i] = iv.v[2] + iv.omega * (ax * ry - ay * rx);
+      // Nodes with rotations turn with the field: omega * axis (a rigid rotation).
+      if (const std::int32_t r = state.rotations.index(i); r >= 0) {
+        state.rotations.w.x[r] = iv.omega * ax + iv.w[0];
+        state.rotations.w.y[r] = iv.omega * ay + iv.w[1];
+        state.rotations.w.z[r] = iv.omega * az + iv.w[2];
+      }
     }
   }
 }

@@ -71,6 +71,9 @@ struct MassDampingSystem {
 struct Boundary {
   // Bit k set: translation k of the node is fixed (SPC, *NODE TC).
   std::vector<std::uint8_t> fixed;
+  // Constrained rotations by rotational index (bit 0 x, 1 y, 2 z): *NODE RC, *BOUNDARY_SPC
+  // DOFRX..DOFRZ on nodes that have rotations (shells, beams).
+  std::vector<std::uint8_t> rotation_fixed;
   std::vector<PrescribedDof> prescribed;
   std::vector<NodalForce> nodal_forces;
   std::vector<BodyAcceleration> body_accelerations;

@@ -23,28 +23,6 @@ namespace {
 
 using model::context_of;
 
-element::HourglassSettings resolve_hourglass(const model::Model& model, const model::Part& part) {
-  element::HourglassSettings hg;
-  hg.ihq = model.hourglass_control.ihq;
-  hg.qm = model.hourglass_control.qh;
-  if (part.hgid != 0) {
-    const auto it = model.hourglass.find(part.hgid);
-    if (it == model.hourglass.end()) {
-      throw InputError(
-          context_of(part.where, "HGID"),
-          fmt::format("part {} refers to *HOURGLASS {}, which is not defined", part.id, part.hgid));
-    }
-    if (it->second.ihq != 0) hg.ihq = it->second.ihq;
-    if (it->second.qm > 0.0) hg.qm = it->second.qm;
-  }
-  if (hg.ihq < 1 || hg.ihq > 6) {
-    throw InputError(
-        context_of(part.where, "HGID"),
-        fmt::format("hourglass type IHQ={} for part {} is not supported (1-6)", hg.ihq, part.id));
-  }
-  return hg;
-}
-
 // Interpolation order of each part from *CHANGE_P-ORDER cards (later cards win).
 int part_order(const model::Model& model, model::Id pid) {
   int order = 1;
@@ -188,6 +166,61 @@ void elevate_blocks(const model::Model& model, State& state) {
 
 }  // namespace
 
+element::HourglassSettings resolve_hourglass(const model::Model& model, const model::Part& part) {
+  element::HourglassSettings hg;
+  hg.ihq = model.hourglass_control.ihq;
+  hg.qm = model.hourglass_control.qh;
+  if (part.hgid != 0) {
+    const auto it = model.hourglass.find(part.hgid);
+    if (it == model.hourglass.end()) {
+      throw InputError(
+          context_of(part.where, "HGID"),
+          fmt::format("part {} refers to *HOURGLASS {}, which is not defined", part.id, part.hgid));
+    }
+    if (it->second.ihq != 0) hg.ihq = it->second.ihq;
+    if (it->second.qm > 0.0) hg.qm = it->second.qm;
+  }
+  if (hg.ihq < 1 || hg.ihq > 6) {
+    throw InputError(
+        context_of(part.where, "HGID"),
+        fmt::format("hourglass type IHQ={} for part {} is not supported (1-6)", hg.ihq, part.id));
+  }
+  return hg;
+}
+
+ResolvedMaterial resolve_material(const model::Model& model, const model::Part& part,
+                                  unsigned family, const char* family_name) {
+  const auto mat_it = model.materials.find(part.mid);
+  if (mat_it == model.materials.end()) {
+    throw InputError(
+        context_of(part.where, "MID"),
+        fmt::format("part {} refers to material {}, which is not defined", part.id, part.mid));
+  }
+  const model::Material& mat = mat_it->second;
+  ResolvedMaterial out;
+  out.rigid = mat.kind == model::MaterialKind::Rigid;
+  out.elastic = material::make_elastic(mat.rho, mat.e, mat.pr);
+  if (out.rigid) return out;
+  out.index = material::material_index(mat.kind);
+  if (out.index < 0) {
+    throw InputError(context_of(mat.where, "MID"),
+                     fmt::format("part {} uses {} (material {}), which this version does not "
+                                 "simulate yet",
+                                 part.id, mat.keyword, mat.id));
+  }
+  // The registry says which element families the material runs on (material/registry.hpp).
+  if (!material::serves(out.index, static_cast<material::ElementFamily>(family))) {
+    throw InputError(context_of(part.where, "MID"),
+                     fmt::format("part {} uses {} (material {}) on {}, which this material does "
+                                 "not run on yet",
+                                 part.id, mat.keyword, mat.id, family_name));
+  }
+  if (mat.kind == model::MaterialKind::PlasticKinematic ||
+      mat.kind == model::MaterialKind::PiecewiseLinearPlasticity)
+    out.plastic = material::make_plastic_parameters(model, mat);
+  return out;
+}
+
 NodeIndex::NodeIndex(const model::Model& model) {
   index_.reserve(model.nodes.size());
   for (std::size_t i = 0; i < model.nodes.size(); ++i) {
@@ -309,6 +342,7 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
     element::initialize_block(block, view);
     element::add_block_lumped_mass(block, nodes.mass);
   }
+  build_structural_blocks(model, node_index, state);
   state.added_mass = add_mass_elements(model, node_index, state);
 
   // Node -> element-slot incidence, counted then filled (CSR).

@@ -22,6 +22,32 @@ class NodeIndex {
   std::unordered_map<model::Id, std::int32_t> index_;
 };
 
+// Hourglass settings of a part (its HGID, else *CONTROL_HOURGLASS); IHQ outside 1-6 is an error.
+element::HourglassSettings resolve_hourglass(const model::Model& model, const model::Part& part);
+
+// A part's material as the kernels use it; errors when the material is undefined, not
+// simulated, or does not run on the element family (`family`: a material::ElementFamily bit).
+struct ResolvedMaterial {
+  bool rigid = false;
+  int index = -1;  // in material::SolidMaterials; -1 for *MAT_RIGID
+  material::ElasticConstants elastic;
+  material::PlasticParameters plastic;
+};
+ResolvedMaterial resolve_material(const model::Model& model, const model::Part& part,
+                                  unsigned family, const char* family_name);
+
+// Shell and beam blocks (one per part), their rotational degrees of freedom, lumped masses and
+// inertias, and the structural incidence (solver/build_structural.cpp). Called by build_state.
+void build_structural_blocks(const model::Model& model, const NodeIndex& node_index,
+                             State& state);
+
+// Throws rf::InputError when a model with shells or beams uses a subsystem that does not
+// handle them yet (contact, part switching, flexible bodies).
+void check_structural_support(const model::Model& model, const State& state);
+
+// Adds the shell and beam force slots to nodes.f_int and sets rotations.m_int (fixed order).
+void assemble_structural_forces(State& state);
+
 // Builds nodes, element blocks (one per part), lumped masses and the node->element-slot
 // incidence. Throws rf::InputError for inconsistent input and rf::SolverError for inverted
 // elements in the reference configuration.

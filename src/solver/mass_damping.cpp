@@ -57,6 +57,16 @@ double add_mass_elements(const model::Model& model, const NodeIndex& node_index,
       if (std::find(parts.begin(), parts.end(), block.part_id) == parts.end()) continue;
       element::add_block_lumped_mass(block, own);
     }
+    // Shells and beams: translational mass only (the added mass is a translational mass).
+    std::vector<double> inertia_scratch(state.rotations.size());
+    for (const auto& block : state.shell_blocks) {
+      if (std::find(parts.begin(), parts.end(), block.part_id) == parts.end()) continue;
+      element::add_shell_lumped_mass(block, own, inertia_scratch);
+    }
+    for (const auto& block : state.beam_blocks) {
+      if (std::find(parts.begin(), parts.end(), block.part_id) == parts.end()) continue;
+      element::add_beam_lumped_mass(block, own, inertia_scratch);
+    }
     double part_mass = 0.0;
     for (const double m : own) part_mass += m;
     if (!(part_mass > 0.0)) {
@@ -118,10 +128,15 @@ MassDampingSystem resolve_mass_damping(const model::Model& model, const State& s
     const char* field = card->part_set ? "PSID" : "PID";
     const std::vector<model::Id> parts =
         parts_of(model, card->id, card->part_set, card->where, field);
-    for (const auto& block : state.hex_blocks) {
-      if (std::find(parts.begin(), parts.end(), block.part_id) == parts.end()) continue;
-      for (const std::int32_t node : block.conn) system.term_of_node[node] = index;
-    }
+    auto mark = [&](const auto& blocks) {
+      for (const auto& block : blocks) {
+        if (std::find(parts.begin(), parts.end(), block.part_id) == parts.end()) continue;
+        for (const std::int32_t node : block.conn) system.term_of_node[node] = index;
+      }
+    };
+    mark(state.hex_blocks);
+    mark(state.shell_blocks);  // translations only: rotations are not damped (docs/keywords.md)
+    mark(state.beam_blocks);
   }
   system.coefficient.resize(system.terms.size());
   return system;

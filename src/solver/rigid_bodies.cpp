@@ -141,14 +141,20 @@ RigidSystem build_rigid_system(const model::Model& model, const NodeIndex& node_
     if (mat == model.materials.end() || mat->second.kind != model::MaterialKind::Rigid) continue;
     parts_of_lead[lead_of(pid)].push_back(pid);
   }
-  std::map<Id, const element::HexBlock*> block_of_part;
+  // Connectivity of each part, whatever its element family.
+  std::map<Id, const std::vector<std::int32_t>*> block_of_part;
   std::vector<std::uint8_t> deformable_node(n, 0);
-  for (const auto& block : state.hex_blocks) {
-    block_of_part[block.part_id] = &block;
-    if (!block.rigid) {
-      for (const std::int32_t i : block.conn) deformable_node[i] = 1;
+  auto collect = [&](const auto& blocks) {
+    for (const auto& block : blocks) {
+      block_of_part[block.part_id] = &block.conn;
+      if (!block.rigid) {
+        for (const std::int32_t i : block.conn) deformable_node[i] = 1;
+      }
     }
-  }
+  };
+  collect(state.hex_blocks);
+  collect(state.shell_blocks);
+  collect(state.beam_blocks);
 
   rigid.body_of_node.assign(n, -1);
   // Where each body was defined (errors and warnings).
@@ -197,7 +203,7 @@ RigidSystem build_rigid_system(const model::Model& model, const NodeIndex& node_
       const model::Part& part = model.parts.at(p);
       const auto blk = block_of_part.find(p);
       std::vector<std::int32_t> part_nodes;
-      if (blk != block_of_part.end()) part_nodes = blk->second->conn;
+      if (blk != block_of_part.end()) part_nodes = *blk->second;
       std::sort(part_nodes.begin(), part_nodes.end());
       part_nodes.erase(std::unique(part_nodes.begin(), part_nodes.end()), part_nodes.end());
       for (const auto i : part_nodes) claim(i, index, part.where, "PID");
@@ -508,6 +514,16 @@ RigidStepSums advance_rigid_bodies(RigidSystem& rigid, const Boundary& boundary,
     }
     body.force = ft.force + load_force;
     body.torque = ft.torque + load_moment;
+    // Nodal moments on body nodes that carry rotations (shells and beams attached to the body).
+    if (!state.rotations.empty()) {
+      const RotationalState& rot = state.rotations;
+      for (const std::int32_t i : loaded) {
+        const std::int32_t r = rot.index(i);
+        if (r < 0) continue;
+        body.torque += Eigen::Vector3d(rot.m_ext.x[r] - rot.m_int.x[r], rot.m_ext.y[r] - rot.m_int.y[r],
+                                       rot.m_ext.z[r] - rot.m_int.z[r]);
+      }
+    }
 
     // Prescribed motion this step (same time sampling as nodal prescribed motion).
     rigid::VelocityConstraints& step = body.step_constraints;

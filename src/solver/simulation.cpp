@@ -70,6 +70,9 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
       boundary_(resolve_boundary(model_, node_index_, state_, rigid_.body_of_node, warnings_)) {
   const model::Model& model = model_;
   for (const auto& block : state_.hex_blocks) element_count_ += block.size();
+  for (const auto& block : state_.shell_blocks) element_count_ += block.size();
+  for (const auto& block : state_.beam_blocks) element_count_ += block.size();
+  check_structural_support(model_, state_);
   end_time_ = model.termination.endtim;
   end_cycle_ = model.termination.endcyc;
   if (end_time_ <= 0.0 && end_cycle_ <= 0) {
@@ -203,6 +206,11 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
       d3plot_schedule_.interval = default_interval(model.output.d3plot_dt, span, 20.0);
       fields_ = std::make_unique<output::FieldWriter>(options_.output_directory);
       d3plot_ = std::make_unique<output::D3plotWriter>(options_.output_directory, model.title);
+      if (!state_.shell_blocks.empty() || !state_.beam_blocks.empty()) {
+        warnings_.push_back({{},
+                             "d3plot holds the solid elements only: shells and beams are in the "
+                             "VTU frames (frames.pvd)"});
+      }
     }
   }
   if (model.switching.flagged) {
@@ -256,6 +264,17 @@ void Simulation::initialize() {
   for (int k = 0; k < 3; ++k) {
     sums[1 + k] += rigid_sums.momentum[k];
     sums[4 + k] += rigid_sums.angular_momentum[k];
+  }
+  {  // nodes with rotations: 1/2 I w.w and their spin I w (bodies count their own nodes)
+    const RotationalState& rot = state_.rotations;
+    for (std::size_t r = 0; r < rot.size(); ++r) {
+      if (body_of && body_of[rot.node[r]] >= 0) continue;
+      const double I = rot.inertia[r];
+      sums[0] += 0.5 * I * (rot.w.x[r] * rot.w.x[r] + rot.w.y[r] * rot.w.y[r] + rot.w.z[r] * rot.w.z[r]);
+      sums[4] += I * rot.w.x[r];
+      sums[5] += I * rot.w.y[r];
+      sums[6] += I * rot.w.z[r];
+    }
   }
   energy_.kinetic = sums[0];
   energy_.modal_elastic = rigid_sums.modal_elastic;
@@ -594,6 +613,8 @@ void Simulation::update_velocities() {
     }
   }
 
+  const std::array<double, 6> rotation_sums = update_rotations(dt_avg);
+
   // Energy and momenta at n+1/2: d = dt_avg (v^{n-1/2} + v^{n+1/2}) / 2 per DOF. Work is
   // summed over every node (forces on rigid-body nodes do work on the bodies); kinetic energy
   // and momenta of rigid-body nodes are those of their bodies.
@@ -667,10 +688,12 @@ void Simulation::update_velocities() {
                         rz * (vp.z[i] + nodes.v.z[i]));
     }
   }
-  sums[0] += rigid_sums.kinetic;
+  sums[0] += rigid_sums.kinetic + rotation_sums[0];
+  sums[1] += rotation_sums[1];
+  sums[2] += rotation_sums[2];
   for (int k = 0; k < 3; ++k) {
     sums[3 + k] += rigid_sums.momentum[k];
-    sums[6 + k] += rigid_sums.angular_momentum[k];
+    sums[6 + k] += rigid_sums.angular_momentum[k] + rotation_sums[3 + k];
   }
   energy_.kinetic = sums[0];
   energy_.internal_work +=
@@ -718,6 +741,59 @@ void Simulation::update_velocities() {
       }
     }
   }
+}
+
+// Central difference for the rotations, alpha = (m_ext - m_int) / I with an isotropic lumped
+// inertia (no gyroscopic term), constrained components held at zero; nodes of rigid bodies turn
+// with their body. Returns {kinetic, internal work, external work, spin x, y, z} of the step
+// with d theta = dt_avg (omega^{n-1/2} + omega^{n+1/2}) / 2, as for the translations.
+std::array<double, 6> Simulation::update_rotations(double dt_avg) {
+  std::array<double, 6> out{};
+  RotationalState& rot = state_.rotations;
+  if (rot.empty()) return out;
+  const std::int64_t count = static_cast<std::int64_t>(rot.size());
+  const std::int32_t* body_of = rigid_.empty() ? nullptr : rigid_.body_of_node.data();
+  const std::uint8_t* fixed = boundary_.rotation_fixed.data();
+#pragma omp parallel for schedule(static)
+  for (std::int64_t r = 0; r < count; ++r) {
+    rot.w_previous.x[r] = rot.w.x[r];
+    rot.w_previous.y[r] = rot.w.y[r];
+    rot.w_previous.z[r] = rot.w.z[r];
+    const std::int32_t i = rot.node[r];
+    if (body_of && body_of[i] >= 0) {
+      const Eigen::Vector3d& w = rigid_.bodies[body_of[i]].state.angular_velocity;
+      rot.w.x[r] = w.x();
+      rot.w.y[r] = w.y();
+      rot.w.z[r] = w.z();
+      continue;
+    }
+    const double I = rot.inertia[r];
+    const double inv = I > 0.0 ? dt_avg / I : 0.0;
+    rot.w.x[r] += inv * (rot.m_ext.x[r] - rot.m_int.x[r]);
+    rot.w.y[r] += inv * (rot.m_ext.y[r] - rot.m_int.y[r]);
+    rot.w.z[r] += inv * (rot.m_ext.z[r] - rot.m_int.z[r]);
+    const std::uint8_t f = fixed[r];
+    if (f & 1) rot.w.x[r] = 0.0;
+    if (f & 2) rot.w.y[r] = 0.0;
+    if (f & 4) rot.w.z[r] = 0.0;
+  }
+  out = deterministic_sum<6>(count, reduction_scratch_rotations_,
+                             [&](std::int64_t r, std::array<double, 6>& acc) {
+    const double wx = rot.w.x[r], wy = rot.w.y[r], wz = rot.w.z[r];
+    const double dx = 0.5 * dt_avg * (rot.w_previous.x[r] + wx);
+    const double dy = 0.5 * dt_avg * (rot.w_previous.y[r] + wy);
+    const double dz = 0.5 * dt_avg * (rot.w_previous.z[r] + wz);
+    acc[1] += rot.m_int.x[r] * dx + rot.m_int.y[r] * dy + rot.m_int.z[r] * dz;
+    acc[2] += rot.m_ext.x[r] * dx + rot.m_ext.y[r] * dy + rot.m_ext.z[r] * dz;
+    const std::int32_t i = rot.node[r];
+    if (body_of && body_of[i] >= 0) return;  // the body holds its kinetic energy and momentum
+    const double I = rot.inertia[r];
+    acc[0] += 0.5 * I * (wx * wx + wy * wy + wz * wz);
+    acc[3] += I * wx;
+    acc[4] += I * wy;
+    acc[5] += I * wz;
+  });
+  return out;
 }
 
 // Rigid walls act on v^{n+1/2} of deformable nodes and on the forces that drive the rigid
@@ -902,10 +978,41 @@ void Simulation::compute_internal_forces() {
       if (r.min_dt_element >= 0) controlling_element_ = block.element_id[r.min_dt_element];
     }
   }
+  compute_structural_forces();
   assemble_internal_forces(state_);
+  assemble_structural_forces(state_);
   if (!joints_.empty()) {  // penalty springs: their stiffness needs the first step
     prepare_joint_stiffness(joints_, rigid_, state_, initial_dt_);
     add_joint_forces(joints_, state_);
+  }
+}
+
+// Shell and beam blocks: forces and moments into their slots, the step they allow.
+void Simulation::compute_structural_forces() {
+  if (state_.shell_blocks.empty() && state_.beam_blocks.empty()) return;
+  const element::NodalView view = view_of(state_.nodes);
+  const RotationalState& rot = state_.rotations;
+  const element::RotationalView rotations{rot.w.x.data(), rot.w.y.data(), rot.w.z.data()};
+  auto account = [&](const element::KernelResult& r, const auto& block, const char* kind) {
+    energy_.hourglass += r.hourglass_work;
+    if (r.failed && breakdown_message_.empty()) {
+      breakdown_message_ = fmt::format(
+          "{} element {} of part {} has a degenerate shape (non-positive area or length) or a "
+          "non-finite force at time {:.6g} (cycle {})",
+          kind, block.element_id[r.failed_element], block.part_id, state_.time, state_.cycle);
+    }
+    if (r.min_dt < element_dt_) {
+      element_dt_ = r.min_dt;
+      if (r.min_dt_element >= 0) controlling_element_ = block.element_id[r.min_dt_element];
+    }
+  };
+  for (auto& block : state_.shell_blocks) {
+    if (block.rigid) continue;
+    account(element::compute_shell_forces(block, view, rotations, state_.dt), block, "shell");
+  }
+  for (auto& block : state_.beam_blocks) {
+    if (block.rigid) continue;
+    account(element::compute_beam_forces(block, view, rotations, state_.dt), block, "beam");
   }
 }
 

@@ -168,6 +168,9 @@ class Simulation {
  private:
   // The phases of a cycle, in order.
   void update_velocities();  // a^n -> v^{n+1/2}, constraints, rigid bodies, energy
+  // omega^{n-1/2} -> omega^{n+1/2} of the nodes with rotations; their energy and spin sums.
+  std::array<double, 6> update_rotations(double dt_avg);
+  void compute_structural_forces();  // shells and beams (part of compute_internal_forces)
   void apply_rigid_walls();  // (inside update_velocities) walls stop nodes and bodies
   void write_output_if_due(bool force);
   void update_positions();         // x^{n+1} = x^n + dt v^{n+1/2}
@@ -211,6 +214,7 @@ class Simulation {
   double initial_dt_ = 0.0;
   double dt_average_ = 0.0;  // (dt^{n-1/2} + dt^{n+1/2}) / 2
   std::int64_t element_count_ = 0;
+  std::vector<double> reduction_scratch_rotations_;
   model::Id controlling_element_ = 0;
   bool finished_ = false;
   int interrupt_signal_ = 0;  // SIGINT/SIGTERM seen between cycles: the run ends as at ENDTIM

@@ -7,7 +7,9 @@
 #include <utility>
 #include <vector>
 
+#include "element/beam_block.hpp"
 #include "element/hex_block.hpp"
+#include "element/shell_block.hpp"
 #include "model/model.hpp"
 
 namespace rf::solver {
@@ -32,6 +34,36 @@ struct NodalState {
   Vec3Array f_ext;            // assembled external force (loads, body forces)
   std::vector<double> mass;   // lumped mass
   std::size_t size() const { return id.size(); }
+};
+
+// Rotational degrees of freedom, only for the nodes that need them (shell and beam nodes):
+// struct-of-arrays by rotational index. Solid-only models leave every array empty and pay
+// nothing. The lumped rotational inertia is isotropic (one value per node), as for shells and
+// beams in LS-DYNA, so the angular velocity update needs no gyroscopic term.
+struct RotationalState {
+  std::vector<std::int32_t> of_node;  // dense node -> rotational index, -1 none (empty: none)
+  std::vector<std::int32_t> node;     // rotational index -> dense node
+  Vec3Array w;                        // angular velocity omega^{n-1/2}, then omega^{n+1/2}
+  Vec3Array w_previous;               // omega^{n-1/2} during the energy sums
+  Vec3Array m_int;                    // assembled internal moment
+  Vec3Array m_ext;                    // external moment (*LOAD_NODE DOF 5-7)
+  std::vector<double> inertia;        // lumped rotational inertia
+  std::size_t size() const { return node.size(); }
+  bool empty() const { return node.empty(); }
+  std::int32_t index(std::int32_t dense_node) const {
+    return of_node.empty() ? -1 : of_node[static_cast<std::size_t>(dense_node)];
+  }
+};
+
+// Assembly of the families whose force slots carry moments (shells, beams): for each node its
+// slots, in ascending (family, block, element, local node) order, so the gather is race-free and
+// the same for any thread count. A slot is the offset of (fx, fy, fz, mx, my, mz) in a block's
+// force array.
+struct StructuralIncidence {
+  std::vector<std::int64_t> offset;  // size nodes + 1 (empty: no shells or beams)
+  std::vector<std::int64_t> slot;
+  std::vector<std::int32_t> block;   // index into `forces` (shell blocks first, then beams)
+  std::vector<const double*> forces;
 };
 
 // Node -> element-slot incidence (CSR). Element kernels write each element's nodal forces
@@ -67,6 +99,10 @@ struct PartInfo {
 struct State {
   NodalState nodes;
   std::vector<element::HexBlock> hex_blocks;  // one block per part (contiguous elements)
+  std::vector<element::ShellBlock> shell_blocks;  // one block per shell part
+  std::vector<element::BeamBlock> beam_blocks;    // one block per beam part
+  RotationalState rotations;
+  StructuralIncidence structural_incidence;
   NodeIncidence incidence;
   std::vector<PartInfo> parts;
   double time = 0.0;

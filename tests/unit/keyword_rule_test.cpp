@@ -70,8 +70,8 @@ TEST(KeywordClasses, EverythingElseChangesThePhysics) {
         "*ICFD_PART", "*EM_CONTROL", "*NOT_A_KEYWORD", "*CONTROL_OUTPUTS"}) {
     EXPECT_EQ(rf::io::classify_unsupported(k).cls, UnsupportedClass::Physics) << k;
   }
-  EXPECT_EQ(rf::io::classify_unsupported("*SECTION_SHELL").what,
-            "a shell section: shells are not supported yet");
+  EXPECT_EQ(rf::io::classify_unsupported("*SECTION_TSHELL").what,
+            "a thick-shell section: thick shells are not supported yet");
   EXPECT_EQ(rf::io::classify_unsupported("*NOT_A_KEYWORD").what, "an unknown keyword");
 }
 
@@ -129,17 +129,17 @@ TEST(KeywordRule, CaseBlocksAreRefused) {
 
 // --- every problem in one pass -------------------------------------------------------------------
 
-TEST(KeywordRule, PartsWithShellSectionsNameTheRealCause) {
-  std::string extra = "*SECTION_SHELL_TITLE\nskin\n2,16\n1.0\n";  // lines 22-25
+TEST(KeywordRule, PartsWithUnsupportedSectionsNameTheRealCause) {
+  std::string extra = "*SECTION_TSHELL_TITLE\nskin\n2,1\n1.0\n";  // lines 22-25
   for (int p = 2; p <= 4; ++p) extra += "*PART\nshell part\n" + std::to_string(p) + ",2,1\n";
   const std::string message = rf::test::input_error_of(cube(extra), "d.k");
-  EXPECT_NE(message.find("d.k:22: *SECTION_SHELL_TITLE: not supported: a shell section: shells "
-                         "are not supported yet"),
+  EXPECT_NE(message.find("d.k:22: *SECTION_TSHELL_TITLE: not supported: a thick-shell section: "
+                         "thick shells are not supported yet"),
             std::string::npos)
       << message;
   EXPECT_EQ(count_of(message,
-                     "a *SECTION_SHELL_TITLE at d.k:22: a shell section: shells are not "
-                     "supported yet"),
+                     "a *SECTION_TSHELL_TITLE at d.k:22: a thick-shell section: thick shells are "
+                     "not supported yet"),
             3u)
       << message;
   EXPECT_NE(message.find("d.k:28: *PART field SECID: part 2 uses section 2"), std::string::npos)
@@ -203,14 +203,15 @@ TEST(KeywordRule, MissingTerminationIsLocated) {
 
 TEST(KeywordRule, NoElementsListsTheSkippedElementKeywords) {
   const std::string deck =
-      "*NODE\n1,0,0,0\n2,1,0,0\n3,1,1,0\n4,0,1,0\n*ELEMENT_SHELL\n1,1,1,2,3,4\n"
+      "*NODE\n1,0,0,0\n2,1,0,0\n3,1,1,0\n4,0,1,0\n*ELEMENT_TSHELL\n1,1,1,2,3,4\n"
       "*CONTROL_TERMINATION\n1.0\n";
   const std::string plain = runnable_error(deck);
-  EXPECT_NE(plain.find("d.k:6: *ELEMENT_SHELL: not supported: shell elements"), std::string::npos)
+  EXPECT_NE(plain.find("d.k:6: *ELEMENT_TSHELL: not supported: thick-shell elements"),
+            std::string::npos)
       << plain;
   const std::string ignored = runnable_error(deck, true);
   EXPECT_NE(ignored.find("d.k:1: the model has no elements or rigid bodies to simulate; skipped "
-                         "element keywords: *ELEMENT_SHELL (1 block(s))"),
+                         "element keywords: *ELEMENT_TSHELL (1 block(s))"),
             std::string::npos)
       << ignored;
 }

@@ -676,6 +676,51 @@ void finish_model(ReaderContext& context) {
       }
     }
   }
+  // Shells and beams: part and nodes defined, and the part's section of the element's kind.
+  auto check_structural = [&](model::Id eid, model::Id pid, const model::SourceLocation& where,
+                              const auto& element_nodes, const char* kind, const auto& sections) {
+    const auto part = m.parts.find(pid);
+    if (part == m.parts.end()) {
+      context.report(kReferenceErrors,
+                     located_error(where, "PID",
+                                   fmt::format("element {} refers to part {}, which is not defined",
+                                               eid, pid)));
+    } else if (!sections.count(part->second.secid) && !context.skipped_sections.count(part->second.secid) &&
+               (m.solid_sections.count(part->second.secid) || m.shell_sections.count(part->second.secid) ||
+                m.beam_sections.count(part->second.secid))) {
+      context.report(kReferenceErrors,
+                     located_error(where, "PID",
+                                   fmt::format("{} element {} is in part {}, whose section {} is "
+                                               "not a *SECTION_{}",
+                                               kind, eid, pid, part->second.secid,
+                                               std::string(kind) == "shell" ? "SHELL" : "BEAM")));
+    }
+    std::size_t k = 0;
+    for (const model::Id n : element_nodes) {
+      if (n != 0 && !nodes.count(n)) {
+        context.report(kReferenceErrors,
+                       located_error(where, kNodeFields[k],
+                                     fmt::format("element {} refers to node {}, which is not "
+                                                 "defined",
+                                                 eid, n)));
+        break;
+      }
+      ++k;
+    }
+  };
+  for (const auto& e : m.shells) check_structural(e.id, e.pid, e.where, e.nodes, "shell", m.shell_sections);
+  for (const auto& e : m.beams) check_structural(e.id, e.pid, e.where, e.nodes, "beam", m.beam_sections);
+  for (const auto& e : m.solids) {
+    const auto part = m.parts.find(e.pid);
+    if (part != m.parts.end() && !m.solid_sections.count(part->second.secid) &&
+        (m.shell_sections.count(part->second.secid) || m.beam_sections.count(part->second.secid))) {
+      context.report(kReferenceErrors,
+                     located_error(e.where, "PID",
+                                   fmt::format("solid element {} is in part {}, whose section {} "
+                                               "is not a *SECTION_SOLID",
+                                               e.id, e.pid, part->second.secid)));
+    }
+  }
   const bool skipped_materials = [&] {
     for (const auto& [keyword, count] : m.unknown_keywords) {
       if (keyword.starts_with("*MAT")) return true;
@@ -683,7 +728,8 @@ void finish_model(ReaderContext& context) {
     return false;
   }();
   for (const auto& [id, p] : m.parts) {
-    if (!m.solid_sections.count(p.secid)) {
+    if (!m.solid_sections.count(p.secid) && !m.shell_sections.count(p.secid) &&
+        !m.beam_sections.count(p.secid)) {
       const auto skipped = context.skipped_sections.find(p.secid);
       if (skipped != context.skipped_sections.end()) {
         const auto& s = skipped->second;
@@ -696,7 +742,8 @@ void finish_model(ReaderContext& context) {
         context.report(kReferenceErrors,
                        located_error(p.where, "SECID",
                                      fmt::format("part {} refers to section {}, which is not "
-                                                 "defined (no *SECTION_SOLID has SECID {})",
+                                                 "defined (no *SECTION_SOLID, *SECTION_SHELL or "
+                                                 "*SECTION_BEAM has SECID {})",
                                                  id, p.secid, p.secid)));
       }
     }
@@ -815,7 +862,7 @@ void check_runnable(ReaderContext& context) {
                                            "the deck has no *CONTROL_TERMINATION: nothing says "
                                            "when the analysis ends (add one with ENDTIM)"));
   }
-  if (m.solids.empty() && m.nodal_rigid_bodies.empty()) {
+  if (m.solids.empty() && m.shells.empty() && m.beams.empty() && m.nodal_rigid_bodies.empty()) {
     std::string skipped;
     for (const auto& [keyword, count] : m.unknown_keywords) {
       if (keyword.starts_with("*ELEMENT_")) {
@@ -838,12 +885,21 @@ void check_runnable(ReaderContext& context) {
       !m.switching.at_start.empty() || !m.switching.automatic.empty() || !m.part_modes.empty()) {
     return;
   }
-  for (const auto& e : m.solids) {
-    const auto part = m.parts.find(e.pid);
-    if (part == m.parts.end()) return;  // reported above
+  auto deformable_part = [&](model::Id pid) {
+    const auto part = m.parts.find(pid);
+    if (part == m.parts.end()) return true;  // reported above
     const auto material = m.materials.find(part->second.mid);
-    if (material == m.materials.end()) return;
-    if (material->second.kind != model::MaterialKind::Rigid) return;
+    if (material == m.materials.end()) return true;
+    return material->second.kind != model::MaterialKind::Rigid;
+  };
+  for (const auto& e : m.solids) {
+    if (deformable_part(e.pid)) return;
+  }
+  for (const auto& e : m.shells) {
+    if (deformable_part(e.pid)) return;
+  }
+  for (const auto& e : m.beams) {
+    if (deformable_part(e.pid)) return;
   }
   context.report(kModelErrors,
                  located_error(deck, "",

@@ -10,6 +10,10 @@ namespace rf::io::handlers {
 // handlers_mesh.cpp
 void node(const Block&, ReaderContext&);
 void element_solid(const Block&, ReaderContext&);
+void element_shell(const Block&, ReaderContext&);
+void element_beam(const Block&, ReaderContext&);
+void section_shell(const Block&, ReaderContext&);
+void section_beam(const Block&, ReaderContext&);
 void part(const Block&, ReaderContext&);
 void section_solid(const Block&, ReaderContext&);
 void mat_elastic(const Block&, ReaderContext&);
@@ -53,6 +57,7 @@ void constrained_joint(const Block&, ReaderContext&);
 void control_termination(const Block&, ReaderContext&);
 void control_timestep(const Block&, ReaderContext&);
 void control_hourglass(const Block&, ReaderContext&);
+void control_shell(const Block&, ReaderContext&);
 // handlers_implicit.cpp
 void control_implicit_general(const Block&, ReaderContext&);
 void control_implicit_eigenvalue(const Block&, ReaderContext&);

@@ -64,7 +64,16 @@ void control_timestep(const Block& block, ReaderContext& context) {
     ts.lctm = card->id(5, "LCTM");
     if (ts.lctm < 0) throw card->error("LCTM", "curve ID must not be negative");
     context.lctm_where = card->location();
-    // ISDO and TSLIMT concern shells; ERODE and MS1ST concern erosion and mass scaling.
+    // ISDO and TSLIMT concern shells (ISDO 0: LS-DYNA's shell length; TSLIMT a lower bound on
+    // the shell step by mass scaling, not supported); ERODE and MS1ST erosion and mass scaling.
+    ts.isdo = card->flag(2, "ISDO", 0);
+    if (ts.isdo != 0) {
+      throw card->error("ISDO", fmt::format("shell step option ISDO {} is not supported (0)",
+                                            ts.isdo));
+    }
+    if (card->real(3, "TSLIMT", 0.0) != 0.0) {
+      throw card->error("TSLIMT", "TSLIMT (shell mass scaling) is not supported (leave 0)");
+    }
   }
   warn_unread_lines(block, cursor, context);
 }
@@ -79,6 +88,84 @@ void control_hourglass(const Block& block, ReaderContext& context) {
       throw card->error("IHQ", fmt::format("value {} is not a hourglass type 1..10", h.ihq));
     }
     h.qh = non_negative(*card, 1, "QH", 0.1);
+  }
+  warn_unread_lines(block, cursor, context);
+}
+
+// *CONTROL_SHELL: the fields that change the shell physics are read and checked; values this
+// solver does not implement are errors (docs/keywords.md).
+void control_shell(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  auto& c = context.model.shell_control;
+  c.where = block.location();
+  if (const auto card = cursor.next_optional(1, kEightByTen)) {
+    card->real(0, "WRPANG", 20.0);  // a warning threshold in LS-DYNA's printout
+    const int esort = card->flag(1, "ESORT", 0);
+    if (esort != 0 && esort != 1) {
+      throw card->error("ESORT", "ESORT 2 (DKT triangles) is not supported (0 or 1)");
+    }
+    const int irnxx = card->flag(2, "IRNXX", -1);
+    if (irnxx != 0 && irnxx != -1) {
+      throw card->error("IRNXX", "only IRNXX -1 (normals recomputed every cycle) is supported");
+    }
+    c.istupd = card->flag(3, "ISTUPD", 0);
+    if (c.istupd != 0) {
+      throw card->error("ISTUPD", fmt::format("thickness update ISTUPD {} is not supported (0: "
+                                              "constant thickness)",
+                                              c.istupd));
+    }
+    c.theory = card->flag(4, "THEORY", 2);
+    if (c.theory == 0) c.theory = 2;
+    if (c.theory != 2) {
+      throw card->error("THEORY", fmt::format("default shell theory {} is not supported (2)",
+                                              c.theory));
+    }
+    c.bwc = card->flag(5, "BWC", 2);
+    if (c.bwc == 0) c.bwc = 2;
+    if (c.bwc != 1 && c.bwc != 2) throw card->error("BWC", "BWC must be 1 or 2");
+    c.miter = card->flag(6, "MITER", 1);
+    if (c.miter == 0) c.miter = 1;
+    if (c.miter != 1 && c.miter != 2) {
+      throw card->error("MITER", "MITER 3 (non-iterative radial return) is not supported: "
+                                 "plane stress is iterated (1 or 2)");
+    }
+    c.proj = card->flag(7, "PROJ", 0);
+    if (c.proj != 0 && c.proj != 1) throw card->error("PROJ", "PROJ must be 0 or 1");
+  }
+  if (const auto card = cursor.next_optional(2, kEightByTen)) {
+    c.rotascl = card->real(0, "ROTASCL", 1.0);
+    if (c.rotascl == 0.0) c.rotascl = 1.0;
+    if (c.rotascl < 0.0) throw card->error("ROTASCL", "must be positive");
+    c.intgrd = card->flag(1, "INTGRD", 0);
+    if (c.intgrd != 0 && c.intgrd != 1) throw card->error("INTGRD", "INTGRD must be 0 or 1");
+    if (card->flag(2, "LAMSHT", 0) != 0) {
+      throw card->error("LAMSHT", "laminated shell theory is not supported");
+    }
+    if (card->flag(4, "THSHEL", 0) != 0) {
+      throw card->error("THSHEL", "thermal shells are not supported");
+    }
+  }
+  // Cards 3-5 (thickness update sets, failure and deletion options, drilling control): only
+  // their defaults are supported.
+  static const char* const kLater[][8] = {
+      {"PSSTUPD", "SIDT4TU", "CNTCO", "ITSFLG", "IRQUAD", "W-MODE", "STRETCH", "ICRQ"},
+      {"NFAIL1", "NFAIL4", "PSNFAIL", "KEEPCS", "DELFR", "DRCPSID", "DRCPRM", "INTPERR"},
+      {"DRCMTH", "LISPSID", "NLOCDT", nullptr, nullptr, nullptr, nullptr, nullptr}};
+  for (int k = 0; k < 3; ++k) {
+    const auto card = cursor.next_optional(3 + k, kEightByTen);
+    if (!card) break;
+    for (std::size_t i = 0; i < 8 && kLater[k][i]; ++i) {
+      const std::string_view name = kLater[k][i];
+      const double fallback = name == "IRQUAD" ? 3.0 : name == "DRCPRM" ? 1.0 : 0.0;
+      const double v = card->real(i, kLater[k][i], fallback);
+      // IRQUAD concerns ELFORM 16's in-plane rule; W-MODE and STRETCH are warning thresholds.
+      if (name == "IRQUAD" || name == "W-MODE" || name == "STRETCH") continue;
+      if (v != fallback) {
+        throw card->error(kLater[k][i],
+                          fmt::format("value {} is not supported (only the default {})", v,
+                                      fallback));
+      }
+    }
   }
   warn_unread_lines(block, cursor, context);
 }

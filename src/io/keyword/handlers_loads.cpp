@@ -334,7 +334,8 @@ void initial_velocity_node(const Block& block, ReaderContext& context) {
     v.id = card.id(0, "NID");
     if (v.id <= 0) throw card.error("NID", "a positive node ID is required");
     v.v = {card.real(1, "VX", 0.0), card.real(2, "VY", 0.0), card.real(3, "VZ", 0.0)};
-    reject_rotation(card, 4, kRot);
+    // Angular velocities act on nodes with rotations (shells, beams); solid nodes have none.
+    v.w = {card.real(4, kRot[0], 0.0), card.real(5, kRot[1], 0.0), card.real(6, kRot[2], 0.0)};
     if (card.id(7, "ICID") != 0) {
       throw card.error("ICID", "local coordinate systems are not supported");
     }

@@ -117,6 +117,111 @@ void element_solid(const Block& block, ReaderContext& context) {
   }
 }
 
+// *ELEMENT_SHELL(_THICKNESS/_BETA/_MCID): EID PID N1..N4 (N5..N8 blank: 4-node shells only);
+// the options add a card with THIC1..THIC4 and BETA/MCID (angles matter only to anisotropic
+// materials, which shells do not run yet: read and not used).
+void element_shell(const Block& block, ReaderContext& context) {
+  static const Layout layout = uniform_layout(10, 8);
+  static const Layout thickness_layout{16, 16, 16, 16, 16};
+  static const char* const kNodeFields[] = {"N1", "N2", "N3", "N4", "N5", "N6", "N7", "N8"};
+  const bool thickness_card =
+      block.has_option("THICKNESS") || block.has_option("BETA") || block.has_option("MCID");
+  if (block.has_option("OFFSET")) {
+    throw block_error(block, 1, "OFFSET",
+                      "*ELEMENT_SHELL_OFFSET (shells offset from their nodes) is not supported");
+  }
+  CardCursor cursor(block, context.parameters);
+  while (true) {
+    cursor.skip_blank_lines();
+    if (cursor.at_end()) break;
+    const Card card = cursor.next(1, layout, "EID PID N1 N2 N3 N4");
+    model::ShellElement e;
+    e.id = positive_id(card, 0, "EID", "element");
+    e.pid = card.id(1, "PID");
+    e.where = card.location();
+    for (std::size_t k = 0; k < 4; ++k) {
+      e.nodes[k] = card.id(2 + k, kNodeFields[k]);
+      if (k == 3 && e.nodes[k] == 0) e.nodes[k] = e.nodes[2];  // three nodes: a triangle
+      if (e.nodes[k] <= 0) {
+        throw card.error(kNodeFields[k], "a shell needs 4 positive node IDs (N3 = N4 or N4 "
+                                         "blank for a triangle)");
+      }
+    }
+    for (std::size_t k = 4; k < 8; ++k) {
+      if (card.id(2 + k, kNodeFields[k]) != 0) {
+        throw card.error(kNodeFields[k], "8-node (quadratic) shells are not supported");
+      }
+    }
+    if (e.nodes[0] == e.nodes[1] || e.nodes[1] == e.nodes[2] || e.nodes[0] == e.nodes[2] ||
+        e.nodes[0] == e.nodes[3]) {
+      throw card.error("N1", "a shell repeats a node other than N3 = N4 (the only degenerate "
+                             "form is the triangle N1 N2 N3 N3)");
+    }
+    if (thickness_card) {
+      const Card t = cursor.next(2, thickness_layout, "THIC1 THIC2 THIC3 THIC4 BETA");
+      static const char* const kThick[] = {"THIC1", "THIC2", "THIC3", "THIC4"};
+      for (std::size_t k = 0; k < 4; ++k) {
+        e.thickness[k] = t.real(k, kThick[k], 0.0);
+        if (e.thickness[k] < 0.0) throw t.error(kThick[k], "a thickness must not be negative");
+      }
+      // Blank THIC2..4 take THIC1 (as LS-DYNA does for the section's T2..T4).
+      for (std::size_t k = 1; k < 4; ++k) {
+        if (e.thickness[k] == 0.0) e.thickness[k] = e.thickness[0];
+      }
+    }
+    const auto [it, inserted] = context.element_origin.try_emplace(
+        e.id, std::pair{context.current_file_index, card.line_number()});
+    if (!inserted) {
+      throw card.error("EID", fmt::format("element {} is already defined at {}", e.id,
+                                          context.origin_text(it->second)));
+    }
+    context.model.shells.push_back(e);
+  }
+}
+
+// *ELEMENT_BEAM(_ORIENTATION): EID PID N1 N2 N3 RT1 RR1 RT2 RR2 LOCAL; the option adds VX VY VZ.
+void element_beam(const Block& block, ReaderContext& context) {
+  static const Layout layout = uniform_layout(10, 8);
+  static const Layout vector_layout{16, 16, 16};
+  CardCursor cursor(block, context.parameters);
+  while (true) {
+    cursor.skip_blank_lines();
+    if (cursor.at_end()) break;
+    const Card card = cursor.next(1, layout, "EID PID N1 N2 N3 RT1 RR1 RT2 RR2 LOCAL");
+    model::BeamElement e;
+    e.id = positive_id(card, 0, "EID", "element");
+    e.pid = card.id(1, "PID");
+    e.where = card.location();
+    e.nodes = {card.id(2, "N1"), card.id(3, "N2"), card.id(4, "N3")};
+    if (e.nodes[0] <= 0) throw card.error("N1", "a beam needs positive node IDs N1 and N2");
+    if (e.nodes[1] <= 0) throw card.error("N2", "a beam needs positive node IDs N1 and N2");
+    if (e.nodes[0] == e.nodes[1]) throw card.error("N2", "N2 repeats N1: the beam has no length");
+    if (e.nodes[2] < 0) throw card.error("N3", "the orientation node must be positive or blank");
+    static const char* const kReleases[] = {"RT1", "RR1", "RT2", "RR2"};
+    for (std::size_t k = 0; k < 4; ++k) {
+      if (card.flag(5 + k, kReleases[k], 0) != 0) {
+        throw card.error(kReleases[k], "beam end releases are not supported (leave blank or 0)");
+      }
+    }
+    const int local = card.flag(9, "LOCAL", 2);
+    if (local != 0 && local != 2) {
+      throw card.error("LOCAL", "releases in the global system (LOCAL 1) are not supported");
+    }
+    if (block.has_option("ORIENTATION")) {
+      const Card v = cursor.next(2, vector_layout, "VX VY VZ");
+      e.orientation = std::array<double, 3>{v.real(0, "VX", 0.0), v.real(1, "VY", 0.0),
+                                            v.real(2, "VZ", 0.0)};
+    }
+    const auto [it, inserted] = context.element_origin.try_emplace(
+        e.id, std::pair{context.current_file_index, card.line_number()});
+    if (!inserted) {
+      throw card.error("EID", fmt::format("element {} is already defined at {}", e.id,
+                                          context.origin_text(it->second)));
+    }
+    context.model.beams.push_back(e);
+  }
+}
+
 void part(const Block& block, ReaderContext& context) {
   CardCursor cursor(block, context.parameters);
   int card_number = 1;
@@ -163,6 +268,155 @@ void section_solid(const Block& block, ReaderContext& context) {
     s.where = card.location();
     check_unique(context.model.solid_sections, s.id, card, "SECID", "section");
     context.model.solid_sections.emplace(s.id, std::move(s));
+  } while (!only_blank_lines_left(cursor, block));
+}
+
+// *SECTION_SHELL: SECID ELFORM SHRF NIP PROPT QR/IRID ICOMP SETYP, then T1..T4 NLOC MAREA
+// IDOF EDGSET. Values that would change the physics and are not supported are errors.
+void section_shell(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  do {
+    read_title(block, cursor);
+    const int first = block.has_option("TITLE") ? 2 : 1;
+    const Card card =
+        cursor.next(first, kEightByTen, "SECID ELFORM SHRF NIP PROPT QR/IRID ICOMP SETYP");
+    model::SectionShell s;
+    s.id = positive_id(card, 0, "SECID", "section");
+    s.elform = card.flag(1, "ELFORM", 0);  // 0: *CONTROL_SHELL THEORY (resolved when built)
+    if (s.elform != 0 && s.elform != 2) {
+      throw card.error("ELFORM", fmt::format("shell formulation {} is not supported (supported: "
+                                             "2, Belytschko-Lin-Tsay)",
+                                             s.elform));
+    }
+    s.shrf = card.real(2, "SHRF", 1.0);
+    if (s.shrf == 0.0) s.shrf = 1.0;
+    if (s.shrf < 0.0) throw card.error("SHRF", "the shear factor must be positive");
+    s.nip = card.flag(3, "NIP", 2);
+    if (s.nip == 0) s.nip = 2;
+    if (s.nip < 1 || s.nip > 10) {
+      throw card.error("NIP", fmt::format("{} points through the thickness: supported 1..10 "
+                                          "(user rules are not supported)",
+                                          s.nip));
+    }
+    const double propt = card.real(4, "PROPT", 1.0);
+    if (propt != 0.0 && propt != 1.0 && propt != 2.0 && propt != 3.0) {
+      throw card.error("PROPT", "printout option must be 1, 2 or 3");
+    }
+    const double qr = card.real(5, "QR/IRID", 0.0);
+    if (qr != 0.0) {
+      throw card.error("QR/IRID", fmt::format("quadrature rule {} is not supported (0: Gauss, or "
+                                              "Lobatto through *CONTROL_SHELL INTGRD 1)",
+                                              qr));
+    }
+    s.quadrature = 0;
+    if (card.flag(6, "ICOMP", 0) != 0) {
+      throw card.error("ICOMP", "composite layups (ICOMP 1) are not supported");
+    }
+    const int setyp = card.flag(7, "SETYP", 1);
+    if (setyp != 0 && setyp != 1) {
+      throw card.error("SETYP", "only 2D shells (SETYP 1) are supported");
+    }
+    const Card t = cursor.next(first + 1, kEightByTen, "T1 T2 T3 T4 NLOC MAREA IDOF EDGSET");
+    static const char* const kT[] = {"T1", "T2", "T3", "T4"};
+    for (std::size_t k = 0; k < 4; ++k) s.t[k] = t.real(k, kT[k], 0.0);
+    if (!(s.t[0] > 0.0)) {
+      throw t.error("T1", fmt::format("the shell thickness must be positive (got {})", s.t[0]));
+    }
+    for (std::size_t k = 1; k < 4; ++k) {
+      if (s.t[k] < 0.0) throw t.error(kT[k], "a thickness must not be negative");
+      if (s.t[k] == 0.0) s.t[k] = s.t[0];
+    }
+    s.nloc = t.real(4, "NLOC", 0.0);
+    if (s.nloc != 0.0) {
+      throw t.error("NLOC", "only the mid-surface as reference surface (NLOC 0) is supported");
+    }
+    if (t.real(5, "MAREA", 0.0) != 0.0) {
+      throw t.error("MAREA", "non-structural mass per area (MAREA) is not supported");
+    }
+    if (t.real(6, "IDOF", 0.0) != 0.0) throw t.error("IDOF", "IDOF is not supported");
+    if (t.id(7, "EDGSET") != 0) throw t.error("EDGSET", "EDGSET is not supported");
+    s.where = card.location();
+    check_unique(context.model.shell_sections, s.id, card, "SECID", "section");
+    context.model.shell_sections.emplace(s.id, std::move(s));
+  } while (!only_blank_lines_left(cursor, block));
+}
+
+// *SECTION_BEAM: SECID ELFORM SHRF QR/IRID CST SCOOR NSM, then the card of the formulation:
+// ELFORM 1 TS1 TS2 TT1 TT2 NSLOC NTLOC; ELFORM 2 A ISS ITT J SA IST; ELFORM 3 A RAMPT STRESS.
+void section_beam(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  do {
+    read_title(block, cursor);
+    const int first = block.has_option("TITLE") ? 2 : 1;
+    const Card card = cursor.next(first, kEightByTen, "SECID ELFORM SHRF QR/IRID CST SCOOR NSM");
+    model::SectionBeam s;
+    s.id = positive_id(card, 0, "SECID", "section");
+    s.elform = card.flag(1, "ELFORM", 1);
+    if (s.elform == 0) s.elform = 1;
+    if (s.elform < 1 || s.elform > 3) {
+      throw card.error("ELFORM", fmt::format("beam formulation {} is not supported (supported: 1 "
+                                             "Hughes-Liu, 2 Belytschko-Schwer, 3 truss)",
+                                             s.elform));
+    }
+    s.shrf = card.real(2, "SHRF", 1.0);
+    if (s.shrf == 0.0) s.shrf = 1.0;
+    const double qr = card.real(3, "QR/IRID", 2.0);
+    if (s.elform == 1 && qr != 2.0 && qr != 0.0) {
+      throw card.error("QR/IRID", fmt::format("cross-section rule {} is not supported (2: 2x2 "
+                                              "Gauss)",
+                                              qr));
+    }
+    s.cst = static_cast<int>(card.real(4, "CST", 0.0));
+    if (s.cst != 0 && s.cst != 1) {
+      throw card.error("CST", "cross section type must be 0 (rectangular) or 1 (tubular)");
+    }
+    if (card.real(5, "SCOOR", 0.0) != 0.0) throw card.error("SCOOR", "SCOOR is not supported");
+    if (card.real(6, "NSM", 0.0) != 0.0) {
+      throw card.error("NSM", "non-structural mass per length (NSM) is not supported");
+    }
+    const Card c2 = cursor.next(first + 1, kEightByTen, "the formulation's section card");
+    auto positive = [&](std::size_t i, const char* name) {
+      const double v = c2.real(i, name, 0.0);
+      if (!(v > 0.0)) throw c2.error(name, fmt::format("must be positive (got {})", v));
+      return v;
+    };
+    if (s.elform == 1) {
+      s.ts1 = positive(0, "TS1");
+      s.ts2 = c2.real(1, "TS2", 0.0);
+      if (s.ts2 == 0.0) s.ts2 = s.ts1;
+      s.tt1 = c2.real(2, "TT1", 0.0);
+      s.tt2 = c2.real(3, "TT2", 0.0);
+      if (s.cst == 0) {
+        if (!(s.tt1 > 0.0)) throw c2.error("TT1", "a rectangular section needs TT1 > 0");
+        if (s.tt2 == 0.0) s.tt2 = s.tt1;
+      }
+      if (s.tt1 < 0.0 || s.tt2 < 0.0 || s.ts2 < 0.0) {
+        throw c2.error("TT1", "section dimensions must not be negative");
+      }
+      if (s.cst == 1 && (s.tt1 >= s.ts1 || s.tt2 >= s.ts2)) {
+        throw c2.error("TT1", "a tube's inner diameter must be smaller than its outer one");
+      }
+      if (c2.real(4, "NSLOC", 0.0) != 0.0 || c2.real(5, "NTLOC", 0.0) != 0.0) {
+        throw c2.error("NSLOC", "beam offsets (NSLOC, NTLOC) are not supported");
+      }
+    } else if (s.elform == 2) {
+      s.a = positive(0, "A");
+      s.iss = positive(1, "ISS");
+      s.itt = positive(2, "ITT");
+      s.j = c2.real(3, "J", 0.0);
+      if (s.j < 0.0) throw c2.error("J", "must not be negative");
+      if (s.j == 0.0) s.j = s.iss + s.itt;  // LS-DYNA: J defaults to ISS + ITT
+      s.sa = c2.real(4, "SA", 0.0);
+      if (s.sa < 0.0) throw c2.error("SA", "must not be negative");
+    } else {
+      s.a = positive(0, "A");
+      if (c2.real(1, "RAMPT", 0.0) != 0.0 || c2.real(2, "STRESS", 0.0) != 0.0) {
+        throw c2.error("RAMPT", "truss initial stress ramps (RAMPT, STRESS) are not supported");
+      }
+    }
+    s.where = card.location();
+    check_unique(context.model.beam_sections, s.id, card, "SECID", "section");
+    context.model.beam_sections.emplace(s.id, std::move(s));
   } while (!only_blank_lines_left(cursor, block));
 }
 

@@ -1,0 +1,349 @@
+// Shell and beam blocks in the solver state: one block per part, the rotational degrees of
+// freedom of their nodes, lumped masses and inertias, and the structural incidence that gathers
+// their forces and moments (docs/architecture.md, "Element families").
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "material/element_family.hpp"
+#include "model/error.hpp"
+#include "model/error_context.hpp"
+#include "solver/build_state.hpp"
+
+namespace rf::solver {
+
+namespace {
+
+using model::context_of;
+
+const model::Part& part_of(const model::Model& model, model::Id pid, model::Id eid,
+                           const model::SourceLocation& where) {
+  const auto it = model.parts.find(pid);
+  if (it == model.parts.end()) {
+    throw InputError(context_of(where, "PID"),
+                     fmt::format("element {} refers to part {}, which is not defined", eid, pid));
+  }
+  return it->second;
+}
+
+// Shell parts: sections resolved, elements in input order within a part, parts in ID order.
+void build_shell_blocks(const model::Model& model, const NodeIndex& node_index, State& state) {
+  std::map<model::Id, std::vector<std::size_t>> elements_of_part;
+  for (std::size_t e = 0; e < model.shells.size(); ++e) {
+    elements_of_part[model.shells[e].pid].push_back(e);
+  }
+  for (const auto& [pid, indices] : elements_of_part) {
+    const auto& first = model.shells[indices.front()];
+    const model::Part& part = part_of(model, pid, first.id, first.where);
+    const auto sec = model.shell_sections.find(part.secid);
+    if (sec == model.shell_sections.end()) {
+      throw InputError(context_of(part.where, "SECID"),
+                       fmt::format("part {} has shell elements but section {} is not a "
+                                   "*SECTION_SHELL",
+                                   pid, part.secid));
+    }
+    const model::SectionShell& section = sec->second;
+    const ResolvedMaterial material =
+        resolve_material(model, part, material::kShell, "shell elements");
+    element::ShellBlock block;
+    block.part_id = pid;
+    block.part_index = static_cast<int>(state.parts.size());
+    block.elform = section.elform != 0 ? section.elform : model.shell_control.theory;
+    block.rigid = material.rigid;
+    block.has_force_slots = !material.rigid;
+    block.material = material.elastic;
+    block.material_index = std::max(material.index, 0);
+    block.plastic = material.plastic;
+    if (!block.rigid) {
+      block.hourglass = resolve_hourglass(model, part);
+      if (block.hourglass.ihq > 5) {
+        throw InputError(context_of(part.where, "HGID"),
+                         fmt::format("hourglass type IHQ {} is not defined for shells of part "
+                                     "{} (1-5)",
+                                     block.hourglass.ihq, pid));
+      }
+    }
+    block.shear_factor = section.shrf;
+    block.nip = section.nip;
+    // *CONTROL_SHELL INTGRD 1 asks for Lobatto with 3..10 points (LS-DYNA keeps Gauss below).
+    block.rule = model.shell_control.intgrd == 1 && section.nip >= 3
+                     ? element::ThroughThicknessRule::kLobatto
+                     : element::ThroughThicknessRule::kGauss;
+    block.warping_correction = model.shell_control.bwc == 1;
+    block.element_id.reserve(indices.size());
+    for (const std::size_t e : indices) {
+      const auto& shell = model.shells[e];
+      block.element_id.push_back(shell.id);
+      for (int k = 0; k < 4; ++k) {
+        block.conn.push_back(node_index.at(shell.nodes[k], shell.where, "N"));
+        // *ELEMENT_SHELL_THICKNESS overrides the section's T1..T4 where given.
+        const double t = shell.thickness[k] > 0.0 ? shell.thickness[k] : section.t[k];
+        block.thickness.push_back(t);
+      }
+      block.triangle.push_back(shell.nodes[2] == shell.nodes[3] ? 1 : 0);
+    }
+    state.parts.push_back(PartInfo{pid, part.title, block.elform,
+                                   static_cast<std::int64_t>(block.size())});
+    state.shell_blocks.push_back(std::move(block));
+  }
+}
+
+// A default s axis for a beam without third node or vector: the global axis least aligned with
+// the beam, made perpendicular to it (documented in docs/elements.md).
+std::array<double, 3> default_orientation(const std::array<double, 3>& axis) {
+  int least = 0;
+  for (int k = 1; k < 3; ++k) {
+    if (std::abs(axis[k]) < std::abs(axis[least])) least = k;
+  }
+  std::array<double, 3> s{};
+  s[least] = 1.0;
+  return s;
+}
+
+void build_beam_blocks(const model::Model& model, const NodeIndex& node_index, State& state) {
+  std::map<model::Id, std::vector<std::size_t>> elements_of_part;
+  for (std::size_t e = 0; e < model.beams.size(); ++e) {
+    elements_of_part[model.beams[e].pid].push_back(e);
+  }
+  const NodalState& nodes = state.nodes;
+  for (const auto& [pid, indices] : elements_of_part) {
+    const auto& first = model.beams[indices.front()];
+    const model::Part& part = part_of(model, pid, first.id, first.where);
+    const auto sec = model.beam_sections.find(part.secid);
+    if (sec == model.beam_sections.end()) {
+      throw InputError(context_of(part.where, "SECID"),
+                       fmt::format("part {} has beam elements but section {} is not a "
+                                   "*SECTION_BEAM",
+                                   pid, part.secid));
+    }
+    const model::SectionBeam& section = sec->second;
+    const ResolvedMaterial material =
+        resolve_material(model, part, material::kBeam, "beam elements");
+    element::BeamBlock block;
+    block.part_id = pid;
+    block.part_index = static_cast<int>(state.parts.size());
+    block.elform = section.elform;
+    block.rigid = material.rigid;
+    block.has_force_slots = !material.rigid;
+    block.material = material.elastic;
+    block.material_index = std::max(material.index, 0);
+    block.plastic = material.plastic;
+    block.area = section.a;
+    block.iss = section.iss;
+    block.itt = section.itt;
+    block.torsion = section.j;
+    block.shear_area = section.sa;
+    block.shear_factor = section.shrf;
+    block.cross_section = section.cst == 1 ? element::BeamCrossSection::kTubular
+                                           : element::BeamCrossSection::kRectangular;
+    block.ts1 = section.ts1;
+    block.ts2 = section.ts2;
+    block.tt1 = section.tt1;
+    block.tt2 = section.tt2;
+    for (const std::size_t e : indices) {
+      const auto& beam = model.beams[e];
+      block.element_id.push_back(beam.id);
+      const std::int32_t a = node_index.at(beam.nodes[0], beam.where, "N1");
+      const std::int32_t b = node_index.at(beam.nodes[1], beam.where, "N2");
+      block.conn.push_back(a);
+      block.conn.push_back(b);
+      const std::array<double, 3> axis{nodes.x0.x[b] - nodes.x0.x[a], nodes.x0.y[b] - nodes.x0.y[a],
+                                       nodes.x0.z[b] - nodes.x0.z[a]};
+      std::array<double, 3> s{};
+      if (beam.orientation) {
+        s = *beam.orientation;
+      } else if (beam.nodes[2] != 0) {
+        const std::int32_t c = node_index.at(beam.nodes[2], beam.where, "N3");
+        s = {nodes.x0.x[c] - nodes.x0.x[a], nodes.x0.y[c] - nodes.x0.y[a],
+             nodes.x0.z[c] - nodes.x0.z[a]};
+      } else {
+        s = default_orientation(axis);
+      }
+      // The orientation must not be parallel to the axis (it fixes the section's s axis).
+      const double cx = axis[1] * s[2] - axis[2] * s[1];
+      const double cy = axis[2] * s[0] - axis[0] * s[2];
+      const double cz = axis[0] * s[1] - axis[1] * s[0];
+      const double la = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+      const double ls = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+      if (!(la > 0.0)) {
+        throw InputError(context_of(beam.where, "N2"),
+                         fmt::format("beam {} has zero length (nodes {} and {} coincide)",
+                                     beam.id, beam.nodes[0], beam.nodes[1]));
+      }
+      if (block.elform != 3 && !(std::sqrt(cx * cx + cy * cy + cz * cz) > 1e-6 * la * ls)) {
+        throw InputError(context_of(beam.where, beam.orientation ? "VX" : "N3"),
+                         fmt::format("beam {}: the orientation {} is parallel to the beam axis",
+                                     beam.id, beam.orientation ? "vector" : "node"));
+      }
+      block.orientation.insert(block.orientation.end(), s.begin(), s.end());
+    }
+    state.parts.push_back(PartInfo{pid, part.title, block.elform,
+                                   static_cast<std::int64_t>(block.size())});
+    state.beam_blocks.push_back(std::move(block));
+  }
+}
+
+// Rotational indices for every node of a shell or a non-truss beam, in dense node order.
+void number_rotations(State& state) {
+  const std::size_t n = state.nodes.size();
+  RotationalState& rot = state.rotations;
+  std::vector<std::uint8_t> needs(n, 0);
+  for (const auto& block : state.shell_blocks) {
+    for (const std::int32_t i : block.conn) needs[static_cast<std::size_t>(i)] = 1;
+  }
+  for (const auto& block : state.beam_blocks) {
+    if (block.elform == 3) continue;
+    for (const std::int32_t i : block.conn) needs[static_cast<std::size_t>(i)] = 1;
+  }
+  if (std::find(needs.begin(), needs.end(), 1) == needs.end()) return;
+  rot.of_node.assign(n, -1);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!needs[i]) continue;
+    rot.of_node[i] = static_cast<std::int32_t>(rot.node.size());
+    rot.node.push_back(static_cast<std::int32_t>(i));
+  }
+  const std::size_t r = rot.node.size();
+  rot.w.resize(r);
+  rot.w_previous.resize(r);
+  rot.m_int.resize(r);
+  rot.m_ext.resize(r);
+  rot.inertia.assign(r, 0.0);
+  for (auto& block : state.shell_blocks) {
+    block.rotation_conn.resize(block.conn.size());
+    for (std::size_t k = 0; k < block.conn.size(); ++k) {
+      block.rotation_conn[k] = rot.of_node[static_cast<std::size_t>(block.conn[k])];
+    }
+  }
+  for (auto& block : state.beam_blocks) {
+    block.rotation_conn.resize(block.conn.size());
+    for (std::size_t k = 0; k < block.conn.size(); ++k) {
+      block.rotation_conn[k] =
+          block.elform == 3 ? -1 : rot.of_node[static_cast<std::size_t>(block.conn[k])];
+    }
+  }
+}
+
+}  // namespace
+
+void build_structural_blocks(const model::Model& model, const NodeIndex& node_index,
+                             State& state) {
+  build_shell_blocks(model, node_index, state);
+  build_beam_blocks(model, node_index, state);
+  if (state.shell_blocks.empty() && state.beam_blocks.empty()) return;
+  number_rotations(state);
+  NodalState& nodes = state.nodes;
+  const element::NodalView view{nodes.x.x.data(), nodes.x.y.data(), nodes.x.z.data(),
+                                nodes.v.x.data(), nodes.v.y.data(), nodes.v.z.data()};
+  std::vector<double> unused_inertia;  // trusses of a model without rotations
+  auto& inertia = state.rotations.empty() ? unused_inertia : state.rotations.inertia;
+  for (auto& block : state.shell_blocks) {
+    element::initialize_shell_block(block, view);
+    element::add_shell_lumped_mass(block, nodes.mass, inertia);
+  }
+  for (auto& block : state.beam_blocks) {
+    element::initialize_beam_block(block, view);
+    element::add_beam_lumped_mass(block, nodes.mass, inertia);
+  }
+
+  // Structural incidence: node -> (block, slot) in ascending (shells, beams; block; element;
+  // local node) order.
+  StructuralIncidence& inc = state.structural_incidence;
+  const std::size_t n = nodes.size();
+  inc.offset.assign(n + 1, 0);
+  inc.forces.clear();
+  struct Source {
+    const std::vector<std::int32_t>* conn;
+    int slot_stride;  // entries per local node in the block's force array (6)
+    bool active;
+  };
+  std::vector<Source> sources;
+  for (const auto& block : state.shell_blocks) sources.push_back({&block.conn, 6, block.has_force_slots});
+  for (const auto& block : state.beam_blocks) sources.push_back({&block.conn, 6, block.has_force_slots});
+  for (const auto& source : sources) {
+    if (!source.active) continue;
+    for (const std::int32_t i : *source.conn) ++inc.offset[static_cast<std::size_t>(i) + 1];
+  }
+  for (std::size_t i = 0; i < n; ++i) inc.offset[i + 1] += inc.offset[i];
+  inc.slot.resize(static_cast<std::size_t>(inc.offset[n]));
+  inc.block.resize(static_cast<std::size_t>(inc.offset[n]));
+  std::vector<std::int64_t> fill(inc.offset.begin(), inc.offset.end() - 1);
+  for (std::size_t b = 0; b < sources.size(); ++b) {
+    if (!sources[b].active) continue;
+    const auto& conn = *sources[b].conn;
+    for (std::size_t k = 0; k < conn.size(); ++k) {
+      const std::int64_t pos = fill[static_cast<std::size_t>(conn[k])]++;
+      inc.slot[static_cast<std::size_t>(pos)] = static_cast<std::int64_t>(k) * sources[b].slot_stride;
+      inc.block[static_cast<std::size_t>(pos)] = static_cast<std::int32_t>(b);
+    }
+  }
+}
+
+void assemble_structural_forces(State& state) {
+  StructuralIncidence& inc = state.structural_incidence;
+  if (inc.offset.empty()) return;
+  inc.forces.clear();
+  for (const auto& block : state.shell_blocks) inc.forces.push_back(block.force.data());
+  for (const auto& block : state.beam_blocks) inc.forces.push_back(block.force.data());
+  NodalState& nodes = state.nodes;
+  RotationalState& rot = state.rotations;
+  const std::int64_t n = static_cast<std::int64_t>(nodes.size());
+  const bool rotations = !rot.empty();
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const std::int64_t begin = inc.offset[i], end = inc.offset[i + 1];
+    if (begin == end) continue;
+    double f[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    for (std::int64_t k = begin; k < end; ++k) {
+      const double* slot = inc.forces[inc.block[k]] + inc.slot[k];
+      for (int c = 0; c < 6; ++c) f[c] += slot[c];
+    }
+    nodes.f_int.x[i] += f[0];
+    nodes.f_int.y[i] += f[1];
+    nodes.f_int.z[i] += f[2];
+    if (rotations) {
+      const std::int32_t r = rot.of_node[static_cast<std::size_t>(i)];
+      if (r >= 0) {
+        rot.m_int.x[r] = f[3];
+        rot.m_int.y[r] = f[4];
+        rot.m_int.z[r] = f[5];
+      }
+    }
+  }
+}
+
+}  // namespace rf::solver
+
+namespace rf::solver {
+
+// Subsystems that do not yet know shells and beams refuse a model that would need them, rather
+// than run it with part of the physics missing (docs/elements.md lists what works).
+void check_structural_support(const model::Model& model, const State& state) {
+  if (state.shell_blocks.empty() && state.beam_blocks.empty()) return;
+  const char* what = !state.shell_blocks.empty() ? "shell" : "beam";
+  if (!model.contacts.empty()) {
+    throw InputError(model::context_of(model.contacts.front().where, "SSID"),
+                     fmt::format("contacts in a model with {} elements are not supported yet "
+                                 "(contact surfaces are built from solid faces only)",
+                                 what));
+  }
+  if (model.switching.flagged) {
+    const model::SourceLocation where =
+        !model.switching.at_start.empty()    ? model.switching.at_start.front().where
+        : !model.switching.automatic.empty() ? model.switching.automatic.front().where
+                                             : model::SourceLocation{};
+    throw InputError(model::context_of(where, "PID"),
+                     fmt::format("part switching in a model with {} elements is not supported "
+                                 "yet",
+                                 what));
+  }
+  if (!model.part_modes.empty()) {
+    throw InputError(model::context_of(model.part_modes.begin()->second.where, "PID"),
+                     fmt::format("flexible bodies (*PART_MODES) in a model with {} elements "
+                                 "are not supported yet",
+                                 what));
+  }
+}
+
+}  // namespace rf::solver

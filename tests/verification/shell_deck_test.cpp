@@ -1,0 +1,267 @@
+// Shells through the whole deck path (reader, state, rotations, kernels, time loop). References
+// that do not come from our code:
+//  - Euler-Bernoulli cantilever: static tip deflection P L^3 / (3 E I) and first frequency
+//    f1 = (1.8751^2 / 2 pi) sqrt(E I / (rho A L^4));
+//  - conservation of linear and angular momentum (spin I omega of the nodes included) and of
+//    energy for a free structure;
+//  - a rigid rotation of a rigid shell part carrying a deformable one that is attached to it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "deck_builder.hpp"
+#include "model/error.hpp"
+#include "shell_builder.hpp"
+
+namespace rf::test {
+namespace {
+
+constexpr double kRho = 7800.0, kE = 2.0e11;
+
+// A strip L x b x t along x, clamped at x = 0 (all six DOFs).
+struct Strip {
+  double length = 1.0, width = 0.1, thickness = 0.01;
+  int elements = 10;
+  ShellPlate plate() const {
+    ShellPlate p;
+    p.nx = elements;
+    p.ny = 1;
+    p.lx = length;
+    p.ly = width;
+    return p;
+  }
+  double second_moment() const { return width * thickness * thickness * thickness / 12.0; }
+  std::string clamped(const ShellPlate& p) const {
+    return node_set(1, p.column(0)) + "*BOUNDARY_SPC_SET\n1,0,1,1,1,1,1,1\n";
+  }
+};
+
+TEST(ShellDeck, CantileverStaticTipDeflectionMatchesBeamTheory) {
+  const Strip strip;
+  const ShellPlate p = strip.plate();
+  const double load = 5.0;  // total tip load in z, N
+  const double ei = kE * strip.second_moment();
+  const double expected = load * std::pow(strip.length, 3) / (3.0 * ei);
+  std::string deck = "*KEYWORD\n" + p.text() + shell_part(1, strip.thickness, kRho, kE, 0.0);
+  deck += strip.clamped(p);
+  // Load ramped over 0.2 s and held; mass-proportional damping near critical for mode 1
+  // (omega_1 = 51 rad/s) lets the strip settle to the static answer by 0.6 s.
+  for (const int id : p.column(p.nx)) deck += fmt::format("*LOAD_NODE_POINT\n{},3,1,{}\n", id, load / 2);
+  deck += "*DEFINE_CURVE\n1\n0,0\n0.2,1\n10,1\n*DAMPING_GLOBAL\n0,50.0\n";
+  deck += "*CONTROL_TERMINATION\n0.6\n*END\n";
+  solver::Simulation sim(read(deck), {});
+  sim.run();
+  const auto& nodes = sim.state().nodes;
+  double tip = 0.0;
+  for (const int id : p.column(p.nx)) tip += nodes.x.z[static_cast<std::size_t>(id - 1)] / 2;
+  RecordProperty("tip_deflection_ratio", std::to_string(tip / expected));
+  EXPECT_NEAR(tip / expected, 1.0, 0.03) << "tip " << tip << " beam theory " << expected;
+  // The hourglass energy stays a small part of the strain energy in this bending problem.
+  EXPECT_LT(std::abs(sim.energy().hourglass), 0.05 * std::abs(sim.energy().internal_work));
+}
+
+TEST(ShellDeck, CantileverFirstFrequencyMatchesBeamTheory) {
+  const Strip strip;
+  const ShellPlate p = strip.plate();
+  const double ei = kE * strip.second_moment();
+  const double mass_per_length = kRho * strip.width * strip.thickness;
+  const double f1 = 1.8751 * 1.8751 / (2.0 * std::numbers::pi) *
+                    std::sqrt(ei / (mass_per_length * std::pow(strip.length, 4)));
+  // Initial velocity in the shape of the first Euler-Bernoulli mode (small amplitude).
+  const double beta = 1.8751 / strip.length;
+  const double sigma = (std::sinh(beta * strip.length) - std::sin(beta * strip.length)) /
+                       (std::cosh(beta * strip.length) + std::cos(beta * strip.length));
+  auto mode = [&](double x) {
+    return std::cosh(beta * x) - std::cos(beta * x) - sigma * (std::sinh(beta * x) - std::sin(beta * x));
+  };
+  auto slope = [&](double x) {
+    return beta * (std::sinh(beta * x) + std::sin(beta * x) - sigma * (std::cosh(beta * x) - std::cos(beta * x)));
+  };
+  const double tip_mode = mode(strip.length);
+  std::string deck = "*KEYWORD\n" + p.text() + shell_part(1, strip.thickness, kRho, kE, 0.0);
+  deck += strip.clamped(p);
+  deck += "*INITIAL_VELOCITY_NODE\n";
+  for (int j = 0; j <= p.ny; ++j)
+    for (int i = 1; i <= p.nx; ++i) {
+      const double x = strip.length * i / p.nx;
+      // v_z = 0.01 phi / phi(L); the section turns with -d v_z / dx about y.
+      deck += fmt::format("{},0,0,{:.17g},0,{:.17g},0\n", p.node_id(i, j), 0.01 * mode(x) / tip_mode,
+                          -0.01 * slope(x) / tip_mode);
+    }
+  const double end = 3.2 / f1;
+  deck += fmt::format("*CONTROL_TERMINATION\n{:.17g}\n*END\n", end);
+  solver::Simulation sim(read(deck), {});
+  // Zero crossings of the tip velocity's z component (downward) mark whole periods.
+  const auto tip = static_cast<std::size_t>(p.node_id(p.nx, 0) - 1);
+  std::vector<double> crossings;
+  double previous = 0.01, previous_time = 0.0;
+  sim.run([&](const solver::Simulation& s) {
+    const double v = s.state().nodes.v.z[tip];
+    const double t = s.state().time;
+    if (previous > 0.0 && v <= 0.0 && t > 0.0) {
+      crossings.push_back(previous_time + (t - previous_time) * previous / (previous - v));
+    }
+    previous = v;
+    previous_time = t;
+  });
+  ASSERT_GE(crossings.size(), 3u);
+  const double period = (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+  RecordProperty("frequency_ratio", std::to_string(1.0 / period / f1));
+  EXPECT_NEAR(1.0 / period / f1, 1.0, 0.02) << "f " << 1.0 / period << " beam theory " << f1;
+  EXPECT_NEAR(sim.energy().ratio(), 1.0, 2e-3);
+}
+
+// Two plates joined at a right angle (an L section), free in space, thrown with a translation,
+// a spin about a skew axis and a local kick that makes them vibrate.
+TEST(ShellDeck, FreeTumblingStructureConservesMomentaAndEnergy) {
+  ShellPlate a;
+  a.nx = 4;
+  a.ny = 4;
+  a.lx = 0.4;
+  a.ly = 0.4;
+  ShellPlate b = a;
+  b.first_node = 100;
+  b.first_element = 100;
+  b.pid = 2;
+  b.place = [](double u, double v) { return Eigen::Vector3d(u, 0.0, v); };
+  // Plate b shares plate a's edge v = 0 (y = 0): its nodes with v index 0 are a's nodes.
+  std::string nodes = a.nodes_text() + "*NODE\n";
+  for (int j = 1; j <= b.ny; ++j)
+    for (int i = 0; i <= b.nx; ++i) {
+      const Eigen::Vector3d x = b.position(i, j);
+      nodes += fmt::format("{},{:.17g},{:.17g},{:.17g}\n", b.node_id(i, j), x.x(), x.y(), x.z());
+    }
+  std::string elements = a.elements_text() + "*ELEMENT_SHELL\n";
+  int eid = b.first_element;
+  auto bid = [&](int i, int j) { return j == 0 ? a.node_id(i, 0) : b.node_id(i, j); };
+  for (int j = 0; j < b.ny; ++j)
+    for (int i = 0; i < b.nx; ++i)
+      elements += fmt::format("{},2,{},{},{},{}\n", eid++, bid(i, j), bid(i + 1, j), bid(i + 1, j + 1),
+                              bid(i, j + 1));
+  std::string deck = "*KEYWORD\n" + nodes + elements +
+                     shell_part(1, 0.004, 2700.0, 7.0e10, 0.3) + shell_part(2, 0.004, 2700.0, 7.0e10, 0.3);
+  deck += "*INITIAL_VELOCITY_GENERATION\n0,1,20.0,1.0,-2.0,0.5\n0.1,0.2,0.0,1.0,1.0,1.0\n";
+  deck += fmt::format("*INITIAL_VELOCITY_NODE\n{},0,0,3.0\n{},0,0,-3.0,0,0,20.0\n", a.node_id(4, 4),
+                      a.node_id(2, 3));
+  deck += "*CONTROL_TERMINATION\n0.02\n*END\n";
+  solver::Simulation sim(read(deck), {});
+  const auto e0 = sim.energy();
+  sim.run();
+  const auto& e = sim.energy();
+  const double p_scale = std::abs(e0.momentum[0]) + std::abs(e0.momentum[1]) + std::abs(e0.momentum[2]);
+  const double l_scale = std::abs(e0.angular_momentum[0]) + std::abs(e0.angular_momentum[1]) +
+                         std::abs(e0.angular_momentum[2]);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(e.momentum[k], e0.momentum[k], 1e-10 * p_scale) << k;
+    EXPECT_NEAR(e.angular_momentum[k], e0.angular_momentum[k], 1e-6 * l_scale) << k;
+  }
+  EXPECT_GT(e.internal_work, 1e-4 * e0.kinetic);  // it does deform
+  EXPECT_NEAR(e.ratio(), 1.0, 2e-3);
+  RecordProperty("energy_ratio", std::to_string(e.ratio()));
+}
+
+// A rigid shell part (*MAT_RIGID) carrying a deformable shell plate through shared nodes, spun
+// about z: the deformable plate turns with the body (rotations carried at the shared nodes), and
+// the momenta and the energy are conserved.
+TEST(ShellDeck, RigidShellBodyCarriesDeformableShells) {
+  ShellPlate rigid;
+  rigid.nx = 2;
+  rigid.ny = 2;
+  rigid.lx = 0.2;
+  rigid.ly = 0.2;
+  ShellPlate soft = rigid;
+  soft.nx = 4;
+  soft.lx = 0.4;
+  soft.first_node = 100;
+  soft.first_element = 100;
+  soft.pid = 2;
+  soft.place = [](double u, double v) { return Eigen::Vector3d(0.2 + u, v, 0.0); };
+  std::string nodes = rigid.nodes_text() + "*NODE\n";
+  for (int j = 0; j <= soft.ny; ++j)
+    for (int i = 1; i <= soft.nx; ++i) {
+      const Eigen::Vector3d x = soft.position(i, j);
+      nodes += fmt::format("{},{:.17g},{:.17g},{:.17g}\n", soft.node_id(i, j), x.x(), x.y(), x.z());
+    }
+  auto sid = [&](int i, int j) { return i == 0 ? rigid.node_id(rigid.nx, j) : soft.node_id(i, j); };
+  std::string elements = rigid.elements_text() + "*ELEMENT_SHELL\n";
+  int eid = soft.first_element;
+  for (int j = 0; j < soft.ny; ++j)
+    for (int i = 0; i < soft.nx; ++i)
+      elements += fmt::format("{},2,{},{},{},{}\n", eid++, sid(i, j), sid(i + 1, j), sid(i + 1, j + 1),
+                              sid(i, j + 1));
+  const double omega = 5.0;
+  std::string deck = "*KEYWORD\n" + nodes + elements;
+  deck += "*PART\nrigid\n1,1,1\n*SECTION_SHELL\n1,2,0.8333,2\n0.005,0.005,0.005,0.005\n";
+  deck += "*MAT_RIGID\n1,7800.0,2.0e11,0.3\n";
+  deck += shell_part(2, 0.002, 7800.0, 2.0e11, 0.3);
+  deck += fmt::format("*INITIAL_VELOCITY_GENERATION\n1,2,{},0,0,0\n0.1,0.1,0,0,0,1\n", omega);
+  deck += fmt::format("*INITIAL_VELOCITY_GENERATION\n2,2,{},0,0,0\n0.1,0.1,0,0,0,1\n", omega);
+  // Out-of-plane kick at the free end: bending must pass moments into the rigid body.
+  deck += fmt::format("*INITIAL_VELOCITY_NODE\n{},0,0,0.5\n", soft.node_id(soft.nx, 1));
+  const double end = 0.25;  // about 0.2 revolutions
+  deck += fmt::format("*CONTROL_TERMINATION\n{}\n*END\n", end);
+  solver::Simulation sim(read(deck), {});
+  const auto e0 = sim.energy();
+  sim.run();
+  const auto& e = sim.energy();
+  const double l_scale = std::abs(e0.angular_momentum[2]);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(e.angular_momentum[k], e0.angular_momentum[k], 1e-6 * l_scale) << k;
+  }
+  EXPECT_NEAR(e.ratio(), 1.0, 2e-3);
+  // The far corner of the deformable plate has turned with the body about (0.1, 0.1): its
+  // in-plane position follows the rigid rotation (bending is out of plane).
+  const auto& x = sim.state().nodes;
+  const std::size_t corner = static_cast<std::size_t>(
+      std::distance(x.id.begin(), std::find(x.id.begin(), x.id.end(), soft.node_id(soft.nx, 0))));
+  const double angle = omega * sim.state().time;
+  const Eigen::Vector2d r0(0.6 - 0.1, 0.0 - 0.1);
+  const Eigen::Vector2d expected = Eigen::Rotation2Dd(angle) * r0 + Eigen::Vector2d(0.1, 0.1);
+  EXPECT_NEAR(x.x.x[corner], expected.x(), 2e-3 * r0.norm());
+  EXPECT_NEAR(x.x.y[corner], expected.y(), 2e-3 * r0.norm());
+}
+
+// Bad shell and beam input: errors name the keyword and field.
+TEST(ShellDeck, BadInputNamesKeywordAndField) {
+  const ShellPlate p;
+  const std::string base = "*KEYWORD\n" + p.text() + "*CONTROL_TERMINATION\n0.001\n";
+  auto expect_error = [&](const std::string& cards, const std::string& keyword,
+                          const std::string& field) {
+    try {
+      solver::Simulation sim(read(base + cards + "*END\n"), {});
+      ADD_FAILURE() << "expected an input error at " << keyword << " " << field;
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(keyword), std::string::npos) << what;
+      EXPECT_NE(what.find(field), std::string::npos) << what;
+    }
+  };
+  const std::string mat = "*MAT_ELASTIC\n1,7800,2e11,0.3\n*PART\np\n1,1,1\n";
+  expect_error(mat + "*SECTION_SHELL\n1,2,1,2\n0.0\n", "*SECTION_SHELL", "T1");
+  expect_error(mat + "*SECTION_SHELL\n1,2,1,12\n0.01\n", "*SECTION_SHELL", "NIP");
+  expect_error(mat + "*SECTION_SHELL\n1,7,1,2\n0.01\n", "*SECTION_SHELL", "ELFORM");
+  expect_error(mat + "*SECTION_SHELL\n1,2,1,2\n0.01,,,,1\n", "*SECTION_SHELL", "NLOC");
+  expect_error(mat + "*SECTION_SOLID\n1,1\n", "*ELEMENT_SHELL", "PID");
+  expect_error(mat + "*SECTION_SHELL\n1,2,1,2\n0.01\n*CONTROL_SHELL\n20,0,-1,1\n", "*CONTROL_SHELL",
+               "ISTUPD");
+  expect_error(mat + "*SECTION_SHELL\n1,2,1,2\n0.01\n*CONTROL_TIMESTEP\n0,0.9,1\n",
+               "*CONTROL_TIMESTEP", "ISDO");
+  expect_error(mat + "*SECTION_SHELL\n1,2,1,2\n0.01\n*ELEMENT_SHELL\n9,1,1,2,3,4,5\n",
+               "*ELEMENT_SHELL", "N5");
+  expect_error(mat + "*SECTION_SHELL\n1,2,1,2\n0.01\n*ELEMENT_SHELL\n9,1,1,1,3,4\n",
+               "*ELEMENT_SHELL", "N1");
+  // Beams: zero length, an orientation node on the axis, unsupported releases.
+  const std::string beam_part = "*MAT_ELASTIC\n2,7800,2e11,0.3\n*PART\nb\n2,2,2\n"
+                                "*SECTION_BEAM\n2,2\n1e-4,1e-8,1e-8,2e-8\n*SECTION_SHELL\n1,2,1,2\n0.01\n"
+                                "*MAT_ELASTIC\n1,7800,2e11,0.3\n*PART\np\n1,1,1\n";
+  expect_error(beam_part + "*ELEMENT_BEAM\n20,2,1,1\n", "*ELEMENT_BEAM", "N2");
+  expect_error(beam_part + "*NODE\n50,2.0,0,0\n*ELEMENT_BEAM\n20,2,1,2,50\n", "*ELEMENT_BEAM", "N3");
+  expect_error(beam_part + "*ELEMENT_BEAM\n20,2,1,2,3,1\n", "*ELEMENT_BEAM", "RT1");
+  expect_error("*MAT_ELASTIC\n2,7800,2e11,0.3\n*PART\nb\n2,2,2\n*SECTION_BEAM\n2,2\n0,1e-8,1e-8\n"
+               "*ELEMENT_BEAM\n20,2,1,2\n",
+               "*SECTION_BEAM", "A");
+}
+
+}  // namespace
+}  // namespace rf::test
