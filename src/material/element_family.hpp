@@ -7,6 +7,10 @@ namespace rf::material {
 enum ElementFamily : unsigned {
   kHex8 = 1u << 0,         // 8-node hexahedra, ELFORM 1 and 2 (element/hex_block.hpp)
   kLagrangeHex = 1u << 1,  // p = 2, 3 Lagrange hexahedra (element/lagrange_hex.hpp)
+  // 4-node shells (element/shell_block.hpp): plane stress at each through-thickness point. The
+  // elastic law runs in closed form there; the J2 laws run their 3D update with the thickness
+  // strain rate iterated until sigma_zz = 0 (shell_block.cpp).
+  kShell = 1u << 2,
 };
 
 }  // namespace rf::material
