@@ -112,46 +112,95 @@ namespace {
 
 constexpr double kHourglassPattern[4] = {1.0, -1.0, 1.0, -1.0};
 
-// Co-rotational frame and flat-element geometry of one element at one configuration.
+// Batched evaluation (as the hexahedra, hex_block.cpp): the elastic kernel processes kLanes
+// consecutive elements at once, every quantity a GCC vector with one element per lane, so each
+// arithmetic statement is one SIMD instruction across elements. T is double (one element: the
+// J2 materials, whose plane-stress iteration branches per point) or Lanes. The same templated
+// code serves both; branches per element become lane-wise selects.
+#if defined(__AVX512F__)
+constexpr int kLanes = 8;
+#elif defined(__AVX__)
+constexpr int kLanes = 4;
+#else
+constexpr int kLanes = 2;
+#endif
+using Lanes = double __attribute__((vector_size(kLanes * sizeof(double))));
+
+template <class T>
+constexpr int lanes_of() {
+  return material::lane_count<T>();
+}
+
+template <class T>
+inline T tsqrt(T a) {
+  if constexpr (std::is_same_v<T, double>) {
+    return std::sqrt(a);
+  } else {
+    T r;
+    for (int l = 0; l < kLanes; ++l) r[l] = std::sqrt(a[l]);
+    return r;
+  }
+}
+
+// p[idx[l]] in lane l.
+template <class T, std::size_t... L>
+inline T gather_lanes(const double* p, const std::size_t* idx, std::index_sequence<L...>) {
+  return T{p[idx[L]]...};
+}
+template <class T>
+inline T gather(const double* p, const std::size_t* idx) {
+  if constexpr (std::is_same_v<T, double>)
+    return p[idx[0]];
+  else
+    return gather_lanes<T>(p, idx, std::make_index_sequence<kLanes>{});
+}
+
+// Co-rotational frame and flat-element geometry of an element (a batch) at one configuration.
+// A collapsed element (area 0) gets finite placeholder values; the caller checks `area`.
+template <class T>
 struct Frame {
-  double e[3][3];  // e[k] = e_{k+1}, global components
-  double x[4], y[4], z[4];
-  double area;
-  double b1[4], b2[4];
+  T e[3][3];  // e[k] = e_{k+1}, global components
+  T x[4], y[4], z[4];
+  T area;
+  T b1[4], b2[4];
 };
 
-inline bool make_frame(const double p[4][3], Frame& f) {
-  double c[3], d31[3], d42[3], s[3];
+template <class T>
+inline void make_frame(const T p[4][3], Frame<T>& f) {
+  T c[3], d31[3], d42[3], s[3];
   for (int i = 0; i < 3; ++i) {
     c[i] = 0.25 * (p[0][i] + p[1][i] + p[2][i] + p[3][i]);
     d31[i] = p[2][i] - p[0][i];
     d42[i] = p[3][i] - p[1][i];
     s[i] = p[1][i] - p[0][i];
   }
-  double n[3] = {d31[1] * d42[2] - d31[2] * d42[1], d31[2] * d42[0] - d31[0] * d42[2],
-                 d31[0] * d42[1] - d31[1] * d42[0]};
-  const double nn = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  const T n[3] = {d31[1] * d42[2] - d31[2] * d42[1], d31[2] * d42[0] - d31[0] * d42[2],
+                  d31[0] * d42[1] - d31[1] * d42[0]};
+  T nn = tsqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
   f.area = 0.5 * nn;
-  if (!(nn > 0.0)) return false;
-  const double inv_n = 1.0 / nn;
+  const T one = T{} + 1.0;
+  nn = nn > 0.0 ? nn : one;
+  const T inv_n = 1.0 / nn;
   for (int i = 0; i < 3; ++i) f.e[2][i] = n[i] * inv_n;
-  const double sn = s[0] * f.e[2][0] + s[1] * f.e[2][1] + s[2] * f.e[2][2];
+  const T sn = s[0] * f.e[2][0] + s[1] * f.e[2][1] + s[2] * f.e[2][2];
   for (int i = 0; i < 3; ++i) s[i] -= sn * f.e[2][i];
-  const double ss = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
-  if (!(ss > 0.0)) return false;
-  for (int i = 0; i < 3; ++i) f.e[0][i] = s[i] / ss;
-  const double* a = f.e[2];
-  const double* b = f.e[0];
+  T ss = tsqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+  f.area = ss > 0.0 ? f.area : T{};  // side 1-2 collapsed: degenerate
+  ss = ss > 0.0 ? ss : one;
+  const T inv_s = 1.0 / ss;
+  for (int i = 0; i < 3; ++i) f.e[0][i] = s[i] * inv_s;
+  const T* a = f.e[2];
+  const T* b = f.e[0];
   f.e[1][0] = a[1] * b[2] - a[2] * b[1];
   f.e[1][1] = a[2] * b[0] - a[0] * b[2];
   f.e[1][2] = a[0] * b[1] - a[1] * b[0];
   for (int I = 0; I < 4; ++I) {
-    const double r0 = p[I][0] - c[0], r1 = p[I][1] - c[1], r2 = p[I][2] - c[2];
+    const T r0 = p[I][0] - c[0], r1 = p[I][1] - c[1], r2 = p[I][2] - c[2];
     f.x[I] = f.e[0][0] * r0 + f.e[0][1] * r1 + f.e[0][2] * r2;
     f.y[I] = f.e[1][0] * r0 + f.e[1][1] * r1 + f.e[1][2] * r2;
     f.z[I] = f.e[2][0] * r0 + f.e[2][1] * r1 + f.e[2][2] * r2;
   }
-  const double inv2a = 1.0 / nn;  // 1 / (2A)
+  const T inv2a = inv_n;  // 1 / (2A)
   f.b1[0] = (f.y[1] - f.y[3]) * inv2a;
   f.b1[1] = (f.y[2] - f.y[0]) * inv2a;
   f.b1[2] = (f.y[3] - f.y[1]) * inv2a;
@@ -160,26 +209,25 @@ inline bool make_frame(const double p[4][3], Frame& f) {
   f.b2[1] = (f.x[0] - f.x[2]) * inv2a;
   f.b2[2] = (f.x[1] - f.x[3]) * inv2a;
   f.b2[3] = (f.x[2] - f.x[0]) * inv2a;
-  return true;
 }
 
 // Hourglass shape vector tau (section 6 of the header comment).
-inline void hourglass_shape(const Frame& f, double tau[4]) {
-  double hx = 0.0, hy = 0.0;
-  for (int I = 0; I < 4; ++I) {
-    hx += kHourglassPattern[I] * f.x[I];
-    hy += kHourglassPattern[I] * f.y[I];
-  }
+template <class T>
+inline void hourglass_shape(const Frame<T>& f, T tau[4]) {
+  const T hx = f.x[0] - f.x[1] + f.x[2] - f.x[3];
+  const T hy = f.y[0] - f.y[1] + f.y[2] - f.y[3];
   for (int I = 0; I < 4; ++I) tau[I] = kHourglassPattern[I] - hx * f.b1[I] - hy * f.b2[I];
 }
 
 // Largest squared side length (a triangle's fourth side has length zero).
-inline double max_side_squared(const double p[4][3]) {
-  double m = 0.0;
+template <class T>
+inline T max_side_squared(const T p[4][3]) {
+  T m{};
   for (int I = 0; I < 4; ++I) {
     const int J = (I + 1) & 3;
-    const double a = p[J][0] - p[I][0], b = p[J][1] - p[I][1], c = p[J][2] - p[I][2];
-    m = std::max(m, a * a + b * b + c * c);
+    const T a = p[J][0] - p[I][0], b = p[J][1] - p[I][1], c = p[J][2] - p[I][2];
+    const T s = a * a + b * b + c * c;
+    m = s > m ? s : m;
   }
   return m;
 }
@@ -188,9 +236,6 @@ inline double plate_wave_speed(const material::ElasticConstants& m) {
   return std::sqrt(m.young / (m.rho * (1.0 - m.poisson * m.poisson)));
 }
 
-// Transverse-shear weights N_I at the element centre.
-constexpr double kQuadWeights[4] = {0.25, 0.25, 0.25, 0.25};
-constexpr double kTriangleWeights[4] = {1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0, 1.0 / 6.0};
 
 struct alignas(64) Partial {
   double hourglass_work = 0.0;
@@ -247,6 +292,7 @@ struct BlockConstants {
   double shear;             // G
   double transverse_shear;  // SHRF G
   double wave_speed;        // plate wave speed
+  double shear_to_membrane;  // sqrt(K_w / K_m) = sqrt(4 SHRF G / (E' + G))
   int ihq;
   double qm;
 };
@@ -259,6 +305,7 @@ BlockConstants block_constants(const ShellBlock& b) {
   k.shear = m.shear;
   k.transverse_shear = b.shear_factor * m.shear;
   k.wave_speed = plate_wave_speed(m);
+  k.shear_to_membrane = std::sqrt(4.0 * k.transverse_shear / (k.plane_modulus + k.shear));
   k.ihq = b.hourglass.ihq;
   k.qm = b.hourglass.qm;
   return k;
@@ -321,46 +368,57 @@ inline void plane_stress_update(const ShellBlock& block, const BlockConstants& k
   }
 }
 
-// One element: rates on the mid-step geometry, stress update, forces at x^{n+1}.
-template <class M>
-void shell_element(ShellBlock& block, const BlockConstants& k, std::size_t e, const NodalView& nv,
-                   const RotationalView& rv, double dt, Partial& part) {
+// A batch of elements [first, first + count) (count <= lanes of T; lanes past count repeat the
+// last element and are discarded): rates on the mid-step geometry, stress update, forces at
+// x^{n+1}.
+template <class M, class T>
+void shell_batch(ShellBlock& block, const BlockConstants& k, std::size_t first, int count,
+                 const NodalView& nv, const RotationalView& rv, double dt, Partial& part) {
+  constexpr int L = lanes_of<T>();
   constexpr int kHist = material::history_size<M>();
-  const std::int32_t* c = &block.conn[4 * e];
-  const std::int32_t* rc = &block.rotation_conn[4 * e];
-  const auto ie = static_cast<std::int64_t>(e);
-  double* out = &block.force[kShellSlot * e];
-  double p[4][3], pm[4][3], v[4][3], w[4][3];
+  static_assert(kHist == 0 || std::is_same_v<T, double>, "J2 materials run one element at a time");
+  std::size_t elem[L];
+  for (int l = 0; l < L; ++l) elem[l] = first + static_cast<std::size_t>(l < count ? l : count - 1);
+
+  // Gather x^{n+1}, v^{n+1/2}, omega^{n+1/2}.
+  T p[4][3], pm[4][3], v[4][3], w[4][3];
   const double half_dt = 0.5 * dt;
   for (int I = 0; I < 4; ++I) {
-    const std::int32_t n = c[I], r = rc[I];
-    v[I][0] = nv.vx[n];
-    v[I][1] = nv.vy[n];
-    v[I][2] = nv.vz[n];
-    p[I][0] = nv.x[n];
-    p[I][1] = nv.y[n];
-    p[I][2] = nv.z[n];
-    w[I][0] = rv.wx[r];
-    w[I][1] = rv.wy[r];
-    w[I][2] = rv.wz[r];
+    std::size_t n[L], r[L];
+    for (int l = 0; l < L; ++l) {
+      n[l] = static_cast<std::size_t>(block.conn[4 * elem[l] + static_cast<std::size_t>(I)]);
+      r[l] = static_cast<std::size_t>(block.rotation_conn[4 * elem[l] + static_cast<std::size_t>(I)]);
+    }
+    p[I][0] = gather<T>(nv.x, n);
+    p[I][1] = gather<T>(nv.y, n);
+    p[I][2] = gather<T>(nv.z, n);
+    v[I][0] = gather<T>(nv.vx, n);
+    v[I][1] = gather<T>(nv.vy, n);
+    v[I][2] = gather<T>(nv.vz, n);
+    w[I][0] = gather<T>(rv.wx, r);
+    w[I][1] = gather<T>(rv.wy, r);
+    w[I][2] = gather<T>(rv.wz, r);
     for (int i = 0; i < 3; ++i) pm[I][i] = p[I][i] - half_dt * v[I][i];
   }
-  Frame fm, f;
-  const bool ok_mid = make_frame(pm, fm);
-  const bool ok_end = make_frame(p, f);
-  block.area[e] = f.area;
-  if (!ok_mid || !ok_end) {
-    part.record_failure(ie, ok_end ? fm.area : f.area);
-    for (int s = 0; s < kShellSlot; ++s) out[s] = 0.0;
-    return;
+  const T t = gather<T>(block.element_thickness.data(), elem);
+  const T area0 = gather<T>(block.area0.data(), elem);
+  T tri;  // 1 for triangles
+  if constexpr (std::is_same_v<T, double>) {
+    tri = block.triangle[elem[0]] ? 1.0 : 0.0;
+  } else {
+    for (int l = 0; l < L; ++l) tri[l] = block.triangle[elem[l]] ? 1.0 : 0.0;
   }
-  const bool tri = block.triangle[e] != 0;
-  const double* nw = tri ? kTriangleWeights : kQuadWeights;
+  Frame<T> fm, f;
+  make_frame(pm, fm);
+  make_frame(p, f);
+  // Transverse-shear weights N_I: 1/4, or 1/3 per distinct node of a triangle (1/6 in each of
+  // the two slots of node 3).
+  const T nw01 = 0.25 + tri * (1.0 / 12.0), nw23 = 0.25 - tri * (1.0 / 12.0);
+  const T nw[4] = {nw01, nw01, nw23, nw23};
   const bool warp = block.warping_correction;
-  const double t = block.element_thickness[e];
 
   // Local velocities on the mid-step frame.
-  double vl[4][3], wl[4][3];
+  T vl[4][3], wl[4][3];
   for (int I = 0; I < 4; ++I)
     for (int a = 0; a < 3; ++a) {
       vl[I][a] = fm.e[a][0] * v[I][0] + fm.e[a][1] * v[I][1] + fm.e[a][2] * v[I][2];
@@ -373,9 +431,9 @@ void shell_element(ShellBlock& block, const BlockConstants& k, std::size_t e, co
     }
 
   // Membrane rates (d_x, d_y, 2 d_xy), curvature rates, transverse shear (2 d_yz, 2 d_zx).
-  double em[3] = {0.0, 0.0, 0.0}, kp[3] = {0.0, 0.0, 0.0}, gyz = 0.0, gzx = 0.0;
+  T em[3] = {}, kp[3] = {}, gyz{}, gzx{};
   for (int I = 0; I < 4; ++I) {
-    const double b1 = fm.b1[I], b2 = fm.b2[I];
+    const T b1 = fm.b1[I], b2 = fm.b2[I];
     em[0] += b1 * vl[I][0];
     em[1] += b2 * vl[I][1];
     em[2] += b2 * vl[I][0] + b1 * vl[I][1];
@@ -388,18 +446,20 @@ void shell_element(ShellBlock& block, const BlockConstants& k, std::size_t e, co
 
   // Through-thickness points: stress update and resultants.
   const int nip = block.nip;
-  double* stress = &block.stress[static_cast<std::size_t>(kShellStress * nip) * e];
-  double N[3] = {0.0, 0.0, 0.0}, Mr[3] = {0.0, 0.0, 0.0}, Q[2] = {0.0, 0.0};
-  const double half_t = 0.5 * t;
+  const std::size_t stride = static_cast<std::size_t>(kShellStress * nip);
+  T N[3] = {}, Mr[3] = {}, Q[2] = {};
+  const T half_t = 0.5 * t;
   const double gs_dt = k.transverse_shear * dt;
   for (int q = 0; q < nip; ++q) {
-    double* s = stress + kShellStress * q;
-    const double z = block.zeta[q] * half_t;
-    const double d[3] = {em[0] + z * kp[0], em[1] + z * kp[1], em[2] + z * kp[2]};
-    double sp[3] = {s[0], s[1], s[2]};
+    std::size_t off[L];
+    for (int l = 0; l < L; ++l) off[l] = stride * elem[l] + static_cast<std::size_t>(kShellStress * q);
+    T sp[5];
+    for (int c = 0; c < 5; ++c) sp[c] = gather<T>(block.stress.data() + c, off);
+    const T z = block.zeta[q] * half_t;
+    const T d[3] = {em[0] + z * kp[0], em[1] + z * kp[1], em[2] + z * kp[2]};
     if constexpr (kHist > 0) {
       double h[kHist];
-      const std::size_t point = static_cast<std::size_t>(nip) * e + static_cast<std::size_t>(q);
+      const std::size_t point = static_cast<std::size_t>(nip) * elem[0] + static_cast<std::size_t>(q);
       int slot = 0;
       for (std::size_t fi = 0; fi < M::kHistory.size(); ++fi) {
         const int nc = M::kHistory[fi].components;
@@ -414,32 +474,39 @@ void shell_element(ShellBlock& block, const BlockConstants& k, std::size_t e, co
         for (int cc = 0; cc < nc; ++cc) o[cc] = h[slot++];
       }
     } else {
-      plane_stress_update<M>(block, k, d, dt, sp, nullptr);
+      // Elastic plane stress in closed form.
+      const double a = k.plane_modulus * dt;
+      sp[0] += a * (d[0] + k.nu * d[1]);
+      sp[1] += a * (d[1] + k.nu * d[0]);
+      sp[2] += (k.shear * dt) * d[2];
     }
-    s[0] = sp[0];
-    s[1] = sp[1];
-    s[2] = sp[2];
-    s[3] += gs_dt * gyz;
-    s[4] += gs_dt * gzx;
-    const double wt = half_t * block.weight[q];
-    const double wz = wt * z;
-    N[0] += wt * s[0];
-    N[1] += wt * s[1];
-    N[2] += wt * s[2];
-    Mr[0] += wz * s[0];
-    Mr[1] += wz * s[1];
-    Mr[2] += wz * s[2];
-    Q[0] += wt * s[3];
-    Q[1] += wt * s[4];
+    sp[3] += gs_dt * gyz;
+    sp[4] += gs_dt * gzx;
+    for (int l = 0; l < count; ++l) {
+      double* o = block.stress.data() + off[l];
+      for (int c = 0; c < 5; ++c) o[c] = material::get_lane(sp[c], l);
+    }
+    const T wt = half_t * block.weight[q];
+    const T wz = wt * z;
+    N[0] += wt * sp[0];
+    N[1] += wt * sp[1];
+    N[2] += wt * sp[2];
+    Mr[0] += wz * sp[0];
+    Mr[1] += wz * sp[1];
+    Mr[2] += wz * sp[2];
+    Q[0] += wt * sp[3];
+    Q[1] += wt * sp[4];
   }
 
-  // Hourglass generalised forces (quadrilaterals).
-  double hq[5] = {0.0, 0.0, 0.0, 0.0, 0.0};
-  const bool hourglass = !tri && k.qm > 0.0;
+  // Hourglass generalised forces (quadrilaterals only: scaled by 1 - tri).
+  T hq[5] = {};
+  T work{};
+  const bool hourglass = k.qm > 0.0;
   if (hourglass) {
-    double tau[4];
+    const T quad = 1.0 - tri;
+    T tau[4];
     hourglass_shape(fm, tau);
-    double qd[5] = {0.0, 0.0, 0.0, 0.0, 0.0}, tt = 0.0, bb = 0.0;
+    T qd[5] = {}, tt{}, bb{};
     for (int I = 0; I < 4; ++I) {
       qd[0] += tau[I] * vl[I][0];
       qd[1] += tau[I] * vl[I][1];
@@ -449,65 +516,83 @@ void shell_element(ShellBlock& block, const BlockConstants& k, std::size_t e, co
       tt += tau[I] * tau[I];
       bb += fm.b1[I] * fm.b1[I] + fm.b2[I] * fm.b2[I];
     }
-    const double abb = fm.area * bb;
-    // QM = 1 stiffnesses of the modes (header comment, section 6).
-    const double eg = k.plane_modulus + k.shear;
-    const double km = t * abb * eg / 24.0;
-    const double kw = k.transverse_shear * t * abb / 6.0;
-    const double kr = t * t * t * abb * eg / 288.0;
-    double work = 0.0;
+    const T abb = fm.area * bb * quad;
+    // QM = 1 stiffness of the membrane modes (header comment, section 6); the others follow.
+    const T km = t * abb * ((k.plane_modulus + k.shear) / 24.0);
     if (k.ihq == 4 || k.ihq == 5) {
-      double* st = &block.hourglass_state[5 * e];
-      const double kk[5] = {km, km, kw, kr, kr};
+      const T kk[5] = {km, km, km * (k.shear_to_membrane * k.shear_to_membrane), km * t * t / 12.0,
+                       km * t * t / 12.0};
+      std::size_t off[L];
+      for (int l = 0; l < L; ++l) off[l] = 5 * elem[l];
       for (int m = 0; m < 5; ++m) {
-        const double old = st[m];
-        st[m] += k.qm * kk[m] * qd[m] * dt;
-        hq[m] = st[m];
-        work += 0.5 * (old + st[m]) * qd[m] * dt;
+        const T old = gather<T>(block.hourglass_state.data() + m, off);
+        hq[m] = old + (k.qm * dt) * kk[m] * qd[m];
+        work += 0.5 * (old + hq[m]) * qd[m] * dt;
+        for (int l = 0; l < count; ++l)
+          block.hourglass_state[off[l] + static_cast<std::size_t>(m)] = material::get_lane(hq[m], l);
       }
     } else {
-      const double mass = block.material.rho * t * block.area0[e] * 0.25;
-      const double inertia = mass * (block.area0[e] / 8.0 + t * t / 12.0);
-      const double cm = k.qm * std::sqrt(km * mass * tt);
-      const double cw = k.qm * std::sqrt(kw * mass * tt);
-      const double cr = k.qm * std::sqrt(kr * inertia * tt);
-      const double cc[5] = {cm, cm, cw, cr, cr};
+      // sqrt(K_k M_k), M_k the lumped mass (inertia) of the mode: K_w / K_m and the inertia
+      // per mass factored out so that one element needs two square roots.
+      const T mass = block.material.rho * 0.25 * t * area0;
+      const T cm = k.qm * tsqrt(km * mass * tt);
+      const T cw = cm * k.shear_to_membrane;
+      const T cr = cm * t * tsqrt((area0 * (1.0 / 8.0) + t * t * (1.0 / 12.0)) * (1.0 / 12.0));
+      const T cc[5] = {cm, cm, cw, cr, cr};
       for (int m = 0; m < 5; ++m) {
         hq[m] = cc[m] * qd[m];
         work += hq[m] * qd[m] * dt;
       }
     }
-    part.hourglass_work += work;
   }
 
-  // Local forces and moments at x^{n+1}.
-  const double A = f.area;
-  double tau[4] = {0.0, 0.0, 0.0, 0.0};
+  // Local forces and moments at x^{n+1}, rotated to global axes.
+  const T A = f.area;
+  T tau[4] = {};
   if (hourglass) hourglass_shape(f, tau);
-  double sum = 0.0;
+  T out[24];
+  T sum{};
   for (int I = 0; I < 4; ++I) {
-    const double b1 = f.b1[I], b2 = f.b2[I];
-    double fl[3], ml[3];
+    const T b1 = f.b1[I], b2 = f.b2[I];
+    T fl[3], ml[2];
     fl[0] = A * (b1 * N[0] + b2 * N[2]) + hq[0] * tau[I];
     fl[1] = A * (b2 * N[1] + b1 * N[2]) + hq[1] * tau[I];
     fl[2] = A * (b1 * Q[1] + b2 * Q[0]) + hq[2] * tau[I];
     ml[0] = -A * (b2 * Mr[1] + b1 * Mr[2]) - A * nw[I] * Q[0] + hq[3] * tau[I];
     ml[1] = A * (b1 * Mr[0] + b2 * Mr[2]) + A * nw[I] * Q[1] + hq[4] * tau[I];
-    ml[2] = 0.0;
     if (warp) {
       ml[0] += f.z[I] * fl[1];
       ml[1] -= f.z[I] * fl[0];
     }
-    double* o = out + 6 * I;
+    T* o = out + 6 * I;
     for (int i = 0; i < 3; ++i) {
       o[i] = f.e[0][i] * fl[0] + f.e[1][i] * fl[1] + f.e[2][i] * fl[2];
       o[3 + i] = f.e[0][i] * ml[0] + f.e[1][i] * ml[1];
       sum += o[i] + o[3 + i];
     }
   }
-  if (!std::isfinite(sum)) part.record_failure(ie, A);
-  const double length = (tri ? 2.0 : 1.0) * A / std::sqrt(max_side_squared(p));
-  part.record_dt(length / k.wave_speed, ie);
+  // Squared step (one square root per block, after the minimum: compute_shell_forces).
+  const T length = A + tri * A;  // (1 + beta) A
+  const T dt2 = length * length / (max_side_squared(p) * (k.wave_speed * k.wave_speed));
+
+  // Write back lane by lane in element order (first failure and the work sum as an element loop).
+  for (int l = 0; l < count; ++l) {
+    const std::size_t e = elem[l];
+    const auto ie = static_cast<std::int64_t>(e);
+    const double area_end = material::get_lane(f.area, l);
+    const double area_mid = material::get_lane(fm.area, l);
+    block.area[e] = area_end;
+    double* o = &block.force[kShellSlot * e];
+    if (!(area_mid > 0.0) || !(area_end > 0.0)) {
+      part.record_failure(ie, area_end > 0.0 ? area_mid : area_end);
+      for (int c = 0; c < kShellSlot; ++c) o[c] = 0.0;
+      continue;
+    }
+    for (int c = 0; c < kShellSlot; ++c) o[c] = material::get_lane(out[c], l);
+    part.hourglass_work += material::get_lane(work, l);
+    if (!std::isfinite(material::get_lane(sum, l))) part.record_failure(ie, area_end);
+    part.record_dt(material::get_lane(dt2, l), ie);
+  }
 }
 
 // Legendre polynomial P_n and its derivative at x.
@@ -651,8 +736,9 @@ void initialize_shell_block(ShellBlock& block, const NodalView& nodes) {
       p[I][1] = nodes.y[c[I]];
       p[I][2] = nodes.z[c[I]];
     }
-    Frame f;
-    if (!make_frame(p, f) || !(f.area > 0.0))
+    Frame<double> f;
+    make_frame(p, f);
+    if (!(f.area > 0.0))
       throw SolverError(fmt::format(
           "shell element {} of part {} is degenerate (area {:.6g}): check that its nodes are "
           "distinct (a triangle repeats N3 as N4) and not collinear",
@@ -672,15 +758,30 @@ KernelResult compute_shell_forces(ShellBlock& block, const NodalView& nodes,
   {
     Partial local;
     material::with_material(block.material_index, [&]<class M>(std::type_identity<M>) {
+      if constexpr (material::history_size<M>() == 0) {
+        // Elastic: batches of kLanes elements; a static schedule over batches still gives each
+        // thread a contiguous element range.
+        const std::int64_t batches = (n + kLanes - 1) / kLanes;
 #pragma omp for schedule(static)
-      for (std::int64_t e = 0; e < n; ++e)
-        shell_element<M>(block, k, static_cast<std::size_t>(e), nodes, rotations, dt, local);
+        for (std::int64_t bi = 0; bi < batches; ++bi) {
+          const std::size_t first = static_cast<std::size_t>(bi) * kLanes;
+          const int count = static_cast<int>(std::min<std::int64_t>(kLanes, n - bi * kLanes));
+          shell_batch<M, Lanes>(block, k, first, count, nodes, rotations, dt, local);
+        }
+      } else {
+#pragma omp for schedule(static)
+        for (std::int64_t e = 0; e < n; ++e)
+          shell_batch<M, double>(block, k, static_cast<std::size_t>(e), 1, nodes, rotations, dt,
+                                 local);
+      }
     });
     partials[omp_get_thread_num()] = local;
 #pragma omp single
     threads = omp_get_num_threads();
   }
-  return combine(partials, threads);
+  KernelResult r = combine(partials, threads);
+  if (r.min_dt_element >= 0) r.min_dt = std::sqrt(r.min_dt);  // partials hold squared steps
+  return r;
 }
 
 KernelResult shell_critical_timestep(const ShellBlock& block, const NodalView& nodes) {
@@ -700,8 +801,9 @@ KernelResult shell_critical_timestep(const ShellBlock& block, const NodalView& n
         p[I][1] = nodes.y[cn[I]];
         p[I][2] = nodes.z[cn[I]];
       }
-      Frame f;
-      if (!make_frame(p, f)) {
+      Frame<double> f;
+      make_frame(p, f);
+      if (!(f.area > 0.0)) {
         local.record_failure(e, f.area);
         continue;
       }
