@@ -415,7 +415,7 @@ TEST_P(ShellObjectivity, RigidRotationLeavesStressAndEnergyUnchanged) {
       EXPECT_NEAR(r.hourglass_work, 0.0, 1e-9 * (1.0 + hg0[4] * 1e-3));
     }
     for (std::size_t k = 0; k < stress0.size(); ++k)
-      EXPECT_NEAR(mm.block.stress[k], stress0[k], 1e-9 * s0) << "ihq " << ihq;
+      EXPECT_NEAR(mm.block.stress[k], stress0[k], 1e-10 * s0) << "ihq " << ihq;  // meas. 2e-12
     for (int k = 0; k < 5; ++k) EXPECT_NEAR(mm.block.hourglass_state[k], hg0[k], 1e-9 * 5e3);
   }
 }
@@ -471,8 +471,9 @@ TEST(ShellPlasticity, EquibiaxialPlaneStressFollowsBilinearLaw) {
     ASSERT_NE(eps, nullptr);
     const double eps_p = eps->values[0];
     EXPECT_NEAR(sigma, sigy + ep * eps_p, 1e-8 * sigma);
-    // Mid-step rate over updated geometry: the accumulated strain is the log strain to O(dt^2).
-    EXPECT_NEAR((1 - kNu) * sigma / kE + 0.5 * eps_p, strain, 2e-4 * strain);
+    // Mid-step rate over updated geometry: the accumulated strain is the log strain (measured
+    // 3e-11 relative).
+    EXPECT_NEAR((1 - kNu) * sigma / kE + 0.5 * eps_p, strain, 1e-8 * strain);
     EXPECT_NEAR(eps->values[1], eps_p, 1e-12);  // both points (pure membrane)
   }
 }
@@ -480,7 +481,10 @@ TEST(ShellPlasticity, EquibiaxialPlaneStressFollowsBilinearLaw) {
 // Uniaxial stress on one element: the lateral velocity is found by the test (secant on
 // sigma_yy = 0 over trial copies of the block); the stress-strain curve then follows the
 // bilinear law sigma = SIGY + Ep eps_p, eps_p = eps - sigma / E (logarithmic strain).
+// *MAT_003 with BETA = 1 (isotropic) and BETA = 0 (kinematic: Prager back stress, the same
+// monotonic uniaxial curve).
 TEST(ShellPlasticity, UniaxialPlaneStressFollowsBilinearLaw) {
+  for (bool kinematic : {false, true}) {
   ShellMesh m;
   m.add_node(0, 0, 0);
   m.add_node(1, 0, 0);
@@ -491,10 +495,11 @@ TEST(ShellPlasticity, UniaxialPlaneStressFollowsBilinearLaw) {
   const double sigy = 2.5e8, etan = 1.0e9;
   const double ep = kE * etan / (kE - etan);
   m.block.plastic.sigy = sigy;
-  m.block.plastic.isotropic_modulus = ep;
+  m.block.plastic.isotropic_modulus = kinematic ? 0.0 : ep;
+  m.block.plastic.kinematic_modulus = kinematic ? ep : 0.0;
   m.block.plastic.linear = true;
   m.block.plastic.strain = {0.0, 1.0};
-  m.block.plastic.stress = {sigy, sigy + ep};
+  m.block.plastic.stress = {sigy, sigy + (kinematic ? 0.0 : ep)};
   m.initialize();
   const double dt = 1e-5;
   double lx = 1.0, ly = 1.0;
@@ -532,10 +537,11 @@ TEST(ShellPlasticity, UniaxialPlaneStressFollowsBilinearLaw) {
   const double eps_p = eps->values[0];
   EXPECT_GT(eps_p, 0.0);
   EXPECT_NEAR(sigma, sigy + ep * eps_p, 1e-8 * sigma);
-  EXPECT_NEAR(eps_p, strain - sigma / kE, 2e-4 * strain);
+  EXPECT_NEAR(eps_p, strain - sigma / kE, 1e-8 * strain);  // measured 1e-10
   // Plastic incompressibility + elastic plane stress: the lateral log strain is
   // -nu sigma / E - eps_p / 2.
-  EXPECT_NEAR(std::log(ly), -kNu * sigma / kE - 0.5 * eps_p, 2e-4 * strain);
+  EXPECT_NEAR(std::log(ly), -kNu * sigma / kE - 0.5 * eps_p, 1e-8 * strain);
+}
 }
 
 // Hourglass modes of a square (tau = h): a viscous form opposes the mode's velocity, a
@@ -808,7 +814,7 @@ TEST(ShellMass, RotationsDoNotGovernTheStep) {
     const double w_trans = std::sqrt(max_eig(A(trans, trans)));
     const double w_rot = std::sqrt(max_eig(A(rot, rot)));
     EXPECT_LT(w_rot, w_trans) << "t " << g.t;
-    EXPECT_LT(w_full, 1.05 * w_trans) << "t " << g.t;
+    EXPECT_LT(w_full, 1.001 * w_trans) << "t " << g.t;  // measured 1.0000
     // And the shell step formula is within the usual TSSFAC margin of the exact 2 / w_max.
     const double dt = rf::element::shell_critical_timestep(m.block, m.view()).min_dt;
     EXPECT_GT(2.0 / w_full, 0.85 * dt) << "t " << g.t;
