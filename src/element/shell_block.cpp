@@ -311,17 +311,14 @@ BlockConstants block_constants(const ShellBlock& b) {
   return k;
 }
 
-// Plane-stress update of the in-plane stress s = (xx, yy, xy) at one point for a material M
-// with history h (kHistory order), strain rates d = (d_x, d_y, 2 d_xy) over dt.
+// Plane-stress update of the in-plane stress s = (xx, yy, xy) at one point for a J2 material M
+// with history h (kHistory order), strain rates d = (d_x, d_y, 2 d_xy) over dt: the material's
+// 3D update with w = 0 (the frame is co-rotational) and d_zz iterated to sigma_zz = 0. (The
+// elastic law is in closed form in shell_batch.)
 template <class M>
 inline void plane_stress_update(const ShellBlock& block, const BlockConstants& k, const double d[3],
                                 double dt, double s[3], double* h) {
-  if constexpr (std::is_same_v<M, material::ElasticMaterial>) {
-    const double a = k.plane_modulus * dt;
-    s[0] += a * (d[0] + k.nu * d[1]);
-    s[1] += a * (d[1] + k.nu * d[0]);
-    s[2] += k.shear * d[2] * dt;
-  } else {
+  {
     constexpr int kH = material::history_size<M>() > 0 ? material::history_size<M>() : 1;
     const material::ElasticConstants& m = block.material;
     const double w[3] = {0.0, 0.0, 0.0};
