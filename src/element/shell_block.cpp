@@ -49,7 +49,9 @@
 //    at the end-of-step geometry (A, B, frame of x^{n+1}), then rotated to global axes. These
 //    are exactly the derivatives of the internal power A sum (t/2) w s : d with respect to the
 //    nodal (angular) velocities, so rigid-body modes do no work and the element is in force and
-//    moment balance (sum f = 0, sum x_I x f_I + m_I = 0).
+//    moment balance (sum f = 0, sum x_I x f_I + m_I = 0). There is no drilling stiffness
+//    (m_z = 0 in the element frame), as in BLT and LS-DYNA: a node's rotation about the shell
+//    normal is carried only by its inertia.
 //
 // 5. Warping correction (block.warping_correction, BWC sec. 3 in spirit): each node is tied by
 //    a rigid link to its projection x_I - z_I e3 on the element plane. The projected flat
@@ -692,7 +694,8 @@ void initialize_shell_block(ShellBlock& block, const NodalView& nodes) {
     throw SolverError(fmt::format(
         "part {}: shell ELFORM {} has no kernel yet (supported: 2, Belytschko-Lin-Tsay)",
         block.part_id, block.elform));
-  if (!material::serves(block.material_index, material::kShell))
+  // *MAT_RIGID blocks have no stress update (the body moves them) but need areas and masses.
+  if (!block.rigid && !material::serves(block.material_index, material::kShell))
     throw SolverError(
         fmt::format("part {}: the part's material does not run on shell elements", block.part_id));
   const ThroughThicknessRule rule = block.nip == 1 ? ThroughThicknessRule::kGauss : block.rule;

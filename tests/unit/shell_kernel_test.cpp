@@ -706,6 +706,28 @@ TEST(ShellInitialize, DegenerateElementIsAnError) {
   z.add_element({0, 1, 2, 2}, 0.0);
   set_section(z.block, 0, 2, rf::element::ThroughThicknessRule::kGauss, 1, 0.1);
   EXPECT_THROW(z.initialize(), std::exception);
+  // ELFORM 16 has no kernel yet: said at initialisation, not silently run as ELFORM 2.
+  ShellMesh f = z;
+  f.block.thickness.assign(4, 0.01);
+  f.block.elform = 16;
+  EXPECT_THROW(f.initialize(), std::exception);
+}
+
+// A *MAT_RIGID block (no material in the registry) still gets areas and masses.
+TEST(ShellInitialize, RigidBlockHasMass) {
+  ShellMesh m;
+  m.add_node(0, 0, 0);
+  m.add_node(2, 0, 0);
+  m.add_node(2, 1, 0);
+  m.add_node(0, 1, 0);
+  m.add_element({0, 1, 2, 3}, 0.01);
+  set_section(m.block, -1, 2, rf::element::ThroughThicknessRule::kGauss, 1, 0.1);
+  m.block.rigid = true;
+  m.initialize();
+  std::vector<double> mass(4, 0.0), inertia(4, 0.0);
+  rf::element::add_shell_lumped_mass(m.block, mass, inertia);
+  EXPECT_NEAR(mass[2], kRho * 0.01 * 2.0 / 4, 1e-12);
+  EXPECT_NEAR(inertia[2], mass[2] * (2.0 / 8 + 1e-4 / 12), 1e-12);
 }
 
 // Arbitrary states: random velocities and angular velocities on distorted elements (flat, and
