@@ -978,4 +978,53 @@ TEST(ShellDynamics, CantileverStripFirstFrequencyMatchesBeamTheory) {
   EXPECT_LT(std::abs(hourglass), 1e-3 * ke0);  // measured 4e-29
 }
 
+// Cylindrical bending of an elastic-perfectly plastic plate (*MAT_024, no hardening): the
+// imposed curvature about y with eps_y = 0 gives at every yielded point sigma_y = sigma_x / 2,
+// sigma_x = 2 SIGY / sqrt(3) (von Mises, plane stress); the moment tends to the limit moment
+// M_p = (2 / sqrt 3) SIGY t^2 / 4, exactly so up to the rule's quadrature of |z|.
+TEST(ShellPlasticity, CylindricalBendingReachesLimitMoment) {
+  for (auto rule : {rf::element::ThroughThicknessRule::kGauss,
+                    rf::element::ThroughThicknessRule::kLobatto}) {
+    ShellMesh m;
+    const double a = 0.1, t = 0.01, sigy = 2.5e8;
+    m.add_node(-a / 2, -a / 2, 0);
+    m.add_node(a / 2, -a / 2, 0);
+    m.add_node(a / 2, a / 2, 0);
+    m.add_node(-a / 2, a / 2, 0);
+    m.add_element({0, 1, 2, 3}, t);
+    set_section(m.block, 2, 10, rule, 1, 0.1);
+    m.block.plastic.sigy = sigy;
+    m.block.plastic.isotropic_modulus = 0.0;
+    m.block.plastic.linear = true;
+    m.block.plastic.strain = {0.0, 1.0};
+    m.block.plastic.stress = {sigy, sigy};
+    m.initialize();
+    // Surface strain 40 times the yield strain in 400 steps.
+    const double kappa_end = 40.0 * sigy / kE / (t / 2), steps = 400, dt = 1e-4;
+    const double kdot = kappa_end / (steps * dt);
+    for (int i = 0; i < 4; ++i) {
+      m.wy[i] = kdot * m.x[i];
+      m.vz[i] = -0.5 * kdot * m.x[i] * m.x[i];
+    }
+    for (int s = 0; s < steps; ++s) ASSERT_FALSE(m.step(dt).failed);
+    double M = 0.0;
+    for (int q = 0; q < 10; ++q) {
+      const double z = m.block.zeta[q] * t / 2;
+      const double* st = &m.block.stress[5 * q];
+      M += t / 2 * m.block.weight[q] * z * st[0];
+      if (std::abs(m.block.zeta[q]) > 0.2) {  // well inside the plastic zone
+        EXPECT_NEAR(st[0], std::copysign(2.0 * sigy / std::sqrt(3.0), z), 1e-3 * sigy);
+        EXPECT_NEAR(st[1], 0.5 * st[0], 1e-3 * sigy);
+      }
+    }
+    const double mp = 2.0 / std::sqrt(3.0) * sigy * t * t / 4.0;
+    // Every point lies outside the elastic core |zeta| < 1/40, so the element's moment is M_p
+X
+    double quad = 0.0;
+    for (int q = 0; q < 10; ++q) quad += m.block.weight[q] * std::abs(m.block.zeta[q]);
+    EXPECT_NEAR(M, mp * quad, 1e-4 * mp);
+    EXPECT_NEAR(M / mp, 1.0, 0.01);
+  }
+}
+
 }  // namespace
