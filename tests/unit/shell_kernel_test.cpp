@@ -706,11 +706,56 @@ TEST(ShellInitialize, DegenerateElementIsAnError) {
   z.add_element({0, 1, 2, 2}, 0.0);
   set_section(z.block, 0, 2, rf::element::ThroughThicknessRule::kGauss, 1, 0.1);
   EXPECT_THROW(z.initialize(), std::exception);
+  // Side 1-2 collapsed (not the N3 = N4 triangle pattern): no frame, an error.
+  ShellMesh c;
+  c.add_node(0, 0, 0);
+  c.add_node(1, 0, 0);
+  c.add_node(1, 1, 0);
+  c.add_element({0, 0, 1, 2}, 0.01);
+  set_section(c.block, 0, 2, rf::element::ThroughThicknessRule::kGauss, 1, 0.1);
+  EXPECT_THROW(c.initialize(), std::exception);
   // ELFORM 16 has no kernel yet: said at initialisation, not silently run as ELFORM 2.
   ShellMesh f = z;
   f.block.thickness.assign(4, 0.01);
   f.block.elform = 16;
   EXPECT_THROW(f.initialize(), std::exception);
+}
+
+// During the run: a non-finite velocity or an element collapsed to zero area is reported with
+// the element's index in the block (the solver names element, part and time), forces zeroed for
+// the collapsed one.
+TEST(ShellInitialize, RunTimeFailuresAreReported) {
+  for (int kind : {0, 1})
+    for (int mat : {0, 2}) {
+      ShellMesh m;
+      m.add_node(0, 0, 0);
+      m.add_node(1, 0, 0);
+      m.add_node(1, 1, 0);
+      m.add_node(0, 1, 0);
+      m.add_node(2, 0, 0);
+      m.add_node(2, 1, 0);
+      m.add_element({0, 1, 2, 3}, 0.01);
+      m.add_element({1, 4, 5, 2}, 0.01);
+      set_section(m.block, mat, 2, rf::element::ThroughThicknessRule::kGauss, 1, 0.1);
+      m.block.plastic.sigy = 2e8;
+      m.block.plastic.strain = {0.0, 1.0};
+      m.block.plastic.stress = {2e8, 2e8};
+      m.initialize();
+      if (kind == 0) {
+        m.vx[5] = std::nan("");
+      } else {
+        m.x[4] = m.x[1];  // element 2 collapses onto a line
+        m.y[4] = m.y[1];
+        m.x[5] = m.x[2];
+        m.y[5] = m.y[2];
+      }
+      const auto r = m.step(1e-6);
+      EXPECT_TRUE(r.failed);
+      EXPECT_EQ(r.failed_element, 1);
+      if (kind == 1)
+        for (int c = 0; c < 24; ++c) EXPECT_EQ(m.block.force[24 + c], 0.0);
+      for (int c = 0; c < 24; ++c) EXPECT_TRUE(std::isfinite(m.block.force[c]));
+    }
 }
 
 // A *MAT_RIGID block (no material in the registry) still gets areas and masses.
