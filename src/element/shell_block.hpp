@@ -74,6 +74,9 @@ struct ShellBlock {
   // x, y; out-of-plane w; two rotational).
   std::vector<double> hourglass_state;
   std::vector<double> area0;  // reference mid-surface area
+  // Element thickness: mean of the nodal thicknesses of the distinct nodes, fixed at
+  // initialisation (no thickness update: ISTUPD 0).
+  std::vector<double> element_thickness;
   std::vector<double> area;   // current area
   // Element forces and moments of the last evaluation, kShellSlot per element.
   std::vector<double> force;
@@ -94,12 +97,25 @@ void initialize_shell_block(ShellBlock& block, const NodalView& nodes);
 KernelResult compute_shell_forces(ShellBlock& block, const NodalView& nodes,
                                   const RotationalView& rotations, double dt);
 
-// Critical step of each element at the current configuration (no TSSFAC), minimum reported.
+// Critical step of each element at the current configuration (no TSSFAC), minimum reported:
+// dt = L_s / c, L_s = (1 + beta) A / max(side), beta = 0 quads, 1 triangles (LS-DYNA ISDO 0),
+// c = sqrt(E / (rho (1 - nu^2))).
 KernelResult shell_critical_timestep(const ShellBlock& block, const NodalView& nodes);
 
 // Lumped translational mass (to nodal_mass by dense node index) and rotational inertia (to
-// rotational_inertia by rotational index).
+// rotational_inertia by rotational index). Per distinct node of an element with mass
+// m = rho t A0 / (number of distinct nodes): rotational inertia m (A0 / 8 + t^2 / 12) about every
+// axis (scaled rotary inertia, see shell_block.cpp), so that rotations never govern the step.
 void add_shell_lumped_mass(const ShellBlock& block, std::vector<double>& nodal_mass,
                            std::vector<double>& rotational_inertia);
+
+// Through-thickness rule: nip points zeta (ascending, in [-1, 1]) and weights (sum 2). Gauss
+// 1..10, Lobatto 2..10 (nip 1 is the mid-surface point whatever the rule). Returns false for an
+// unsupported (rule, nip).
+bool through_thickness_points(ThroughThicknessRule rule, int nip, std::vector<double>& zeta,
+                              std::vector<double>& weight);
+
+// Finds a history array of a shell block by name (nullptr if the block's material has none).
+const material::HistoryArray* find_history(const ShellBlock& block, std::string_view name);
 
 }  // namespace rf::element

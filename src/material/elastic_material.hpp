@@ -14,8 +14,9 @@ namespace rf::material {
 struct ElasticMaterial {
   static constexpr model::MaterialKind kKind = model::MaterialKind::Elastic;
   // The 8-node hexahedra use this update; the p > 1 Lagrange hexahedra are total-Lagrangian
-  // and use their own neo-Hookean law with the same Lame constants (lagrange_hex.hpp).
-  static constexpr unsigned kFamilies = kHex8 | kLagrangeHex;
+  // and use their own neo-Hookean law with the same Lame constants (lagrange_hex.hpp); shells
+  // use the plane-stress closed form with the same E, nu (shell_block.cpp).
+  static constexpr unsigned kFamilies = kHex8 | kLagrangeHex | kShell;
   static constexpr std::array<HistoryField, 0> kHistory{};
 
   template <class T>

@@ -7,7 +7,10 @@ namespace rf::material {
 enum ElementFamily : unsigned {
   kHex8 = 1u << 0,         // 8-node hexahedra, ELFORM 1 and 2 (element/hex_block.hpp)
   kLagrangeHex = 1u << 1,  // p = 2, 3 Lagrange hexahedra (element/lagrange_hex.hpp)
-  kShell = 1u << 2,        // 4-node shells, plane stress (element/shell_block.hpp)
+  // 4-node shells (element/shell_block.hpp): plane stress at each through-thickness point. The
+  // elastic law runs in closed form there; the J2 laws run their 3D update with the thickness
+  // strain rate iterated until sigma_zz = 0 (shell_block.cpp).
+  kShell = 1u << 2,
   kBeam = 1u << 3,         // beams and trusses, uniaxial (element/beam_block.hpp)
 };
 

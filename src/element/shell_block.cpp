@@ -1,0 +1,837 @@
+// Belytschko-Lin-Tsay shell (LS-DYNA ELFORM 2): co-rotational, one point in the plane, Mindlin
+// kinematics, plane stress at each through-thickness point, hourglass control.
+//
+// References: T. Belytschko, J.I. Lin, C.S. Tsay, "Explicit algorithms for the nonlinear
+// dynamics of shells", CMAME 42 (1984) 225-251 (BLT); T. Belytschko, B.L. Wong, H.Y. Chiang,
+// "Advances in one-point quadrature shell elements", CMAME 96 (1992) 93-107 (BWC); LS-DYNA
+// Theory Manual, shell chapter (Belytschko-Tsay shell, its hourglass control and the shell time
+// step); T. Belytschko, W.K. Liu, B. Moran, "Nonlinear finite elements for continua and
+// structures", Wiley 2000, sec. 9.5-9.6.
+//
+// 1. Co-rotational frame (BLT sec. 2). With the element nodes x_I (I = 1..4):
+//      e3 = (x3 - x1) x (x4 - x2) / |.|          (normal from the diagonals)
+//      e1 = s / |s|, s = (x2 - x1) - ((x2 - x1).e3) e3     (side 1-2 projected on the plane)
+//      e2 = e3 x e1.
+//    Local coordinates xh_I = e . (x_I - x_c), x_c the mean of the four nodes. Because both
+//    diagonals are normal to e3, the heights are z_I = z (1, -1, 1, -1): the warping of the
+//    element. The projected area A = |(x3 - x1) x (x4 - x2)| / 2, and the one-point gradient
+//    operator (the mean of dN/dx over the projected quadrilateral)
+//      B1 = [y24, y31, y42, y13] / (2A),  B2 = [x42, x13, x24, x31] / (2A)   (BLT eq. 15)
+//    (yIJ = y_I - y_J) satisfies B1.x = B2.y = 1, B1.y = B2.x = 0, sum B = 0 exactly.
+//
+// 2. Velocity strains (BLT eq. 19-21). With the Mindlin kinematics v(z) = v + omega x (z e3),
+//    local components vh, thh of the nodal velocities and angular velocities, and a point at
+//    height z = zeta t / 2:
+//      d_x   = B1 vh_x + z B1 thh_y
+//      d_y   = B2 vh_y - z B2 thh_x
+//      2 d_xy = B2 vh_x + B1 vh_y + z (B2 thh_y - B1 thh_x)
+//      2 d_yz = B2 vh_z - N_I thh_xI,   2 d_zx = B1 vh_z + N_I thh_yI
+//    with N_I = 1/4 at the element centre (triangles: 1/3 per distinct node). The frame turns
+//    with the element, so the stresses stored in it need no objective rate; the in-plane spin
+//    relative to side 1-2 is neglected, as in BLT. The rates are evaluated on the mid-step
+//    configuration x^{n+1/2} = x^{n+1} - dt/2 v^{n+1/2} (as the hexahedra do): a rigid rotation
+//    by a finite step then gives d = 0 exactly (the velocity is the Cayley-skew field of the
+//    mid-step positions), so stresses stay unchanged to round-off however large the rotation.
+//
+// 3. Stress update per through-thickness point zeta_p (block.zeta, block.weight: Gauss or
+//    Lobatto, NIP 1 = membrane only, no bending stiffness):
+//      elastic: closed-form plane stress, s_xx += E/(1-nu^2) (d_x + nu d_y) dt, etc.;
+//      J2 materials (*MAT_003, *MAT_024): their 3D update with w = 0, with the thickness rate
+//      d_zz iterated (one elastic-tangent step, then secant steps) until |sigma_zz| <=
+//      1e-10 (|sigma| + SIGY); at most 30 evaluations. Transverse shear (yz, zx) stays
+//      elastic: s_yz += SHRF G 2 d_yz dt in every material, outside the yield function.
+//    Thickness is constant (ISTUPD 0): block.element_thickness, the mean of the nodal T1..T4.
+//
+// 4. Resultants and nodal forces (BLT eq. 25-27), INTERNAL sign as the hexahedra:
+//      N = sum_p (t/2) w_p s_p,  M = sum_p (t/2) w_p z_p s_p,  Q = sum_p (t/2) w_p s_p (yz, zx)
+//      f_xI = A (B1 N_x + B2 N_xy),  f_yI = A (B2 N_y + B1 N_xy),  f_zI = A (B1 Q_zx + B2 Q_yz)
+//      m_xI = -A (B2 M_y + B1 M_xy) - A N_I Q_yz,  m_yI = A (B1 M_x + B2 M_xy) + A N_I Q_zx
+//    at the end-of-step geometry (A, B, frame of x^{n+1}), then rotated to global axes. These
+//    are exactly the derivatives of the internal power A sum (t/2) w s : d with respect to the
+//    nodal (angular) velocities, so rigid-body modes do no work and the element is in force and
+//    moment balance (sum f = 0, sum x_I x f_I + m_I = 0). There is no drilling stiffness
+//    (m_z = 0 in the element frame), as in BLT and LS-DYNA: a node's rotation about the shell
+//    normal is carried only by its inertia.
+//
+// 5. Warping correction (block.warping_correction, BWC sec. 3 in spirit): each node is tied by
+//    a rigid link to its projection x_I - z_I e3 on the element plane. The projected flat
+//    element sees the velocities vh - thh x (z_I e3), i.e. vh_x - z_I thh_y, vh_y + z_I thh_x,
+//    and its in-plane forces pass back to the node with the link moment (-z_I e3) x f:
+//    m_x += z_I f_y, m_y -= z_I f_x. Rigid motions stay strain-free and hourglass-free on a
+//    warped element, and the moment balance holds with the hourglass forces included. Off
+//    (LS-DYNA's default), a warped element feels spurious in-plane hourglass rates in a rigid
+//    rotation about an in-plane axis (the one-point strains are unaffected: B annihilates the
+//    warping pattern).
+//
+// 6. Hourglass control (Belytschko & Tsay 1983, LS-DYNA theory manual). Shape vector
+//      tau_I = h_I - (h.xh) B1_I - (h.yh) B2_I,  h = (1, -1, 1, -1),
+//    orthogonal to every linear field. Five generalised rates (mid-step, local frame):
+//      membrane qd_1 = tau.vh_x, qd_2 = tau.vh_y; out-of-plane qd_3 = tau.vh_z;
+//      rotational qd_4 = tau.thh_x, qd_5 = tau.thh_y,
+//    resisted by generalised forces Q_k that act as f_kI += Q_k tau_I (forces and moments).
+//    Stiffness (derived here, E' = E/(1-nu^2), BB = sum_I B1_I^2 + B2_I^2): QM = 1 reproduces
+//    the strain energy of each mode on a square element (membrane mode: in-plane
+//    bending energy; w mode: transverse shear energy of the twist; rotational: bending energy),
+//      K_m = QM t A BB (E' + G) / 24,  K_w = QM SHRF G t A BB / 6,
+//      K_r = QM t^3 A BB (E' + G) / 288.
+//    IHQ 4, 5 (stiffness): Q += K qd dt, stored in hourglass_state in the co-rotational frame
+//    (objective); work 0.5 (Q_old + Q_new) qd dt. IHQ 1-3 (viscous, all three the same for
+//    shells, as in LS-DYNA): Q = QM sqrt(K_k M_k) qd with K_k the QM = 1 stiffness and M_k the
+//    lumped mass of the mode (m_node tau.tau; rotations: the nodal rotary inertia), i.e. QM/2
+//    of critical damping of the mode; work Q qd dt. Triangles: no hourglass (see 7).
+//
+// 7. Triangles (N3 = N4): the quadrilateral's degeneration. The one-point B of the collapsed
+//    quadrilateral is exactly the constant-strain triangle's gradient (slots 3 and 4 sum to
+//    node 3's), the transverse-shear weights N are 1/3 per distinct node, and the hourglass is
+//    off for the element (a triangle has no hourglass modes). This is the membrane CST with
+//    constant-curvature bending (not Belytschko-Stolarski-Tsay's C0 triangle).
+//
+// 8. Critical step (LS-DYNA theory manual, shell time step, ISDO 0): dt = L_s / c with
+//    L_s = (1 + beta) A / max(L_1..L_4) (beta 0 quadrilateral, 1 triangle) and the plate
+//    wave speed c = sqrt(E / (rho (1 - nu^2))).
+//
+// 9. Lumped mass: rho t A0 / 4 per node (triangles: / 3 per distinct node). Rotary inertia per
+//    node m (A0 / 8 + t^2 / 12): the t^2/12 part is the physical rotary inertia of the slab, the
+//    A0 / 8 part scales it up (as BLT and LS-DYNA scale shell rotary inertia) so that the
+//    rotational frequencies, the transverse-shear one N_I-coupled over the element being the
+//    highest (about SHRF G t A / (4 I)), stay below the membrane frequency: checked in
+//    tests/unit/shell_kernel_test.cpp (RotationsDoNotGovernTheStep).
+#include "element/shell_block.hpp"
+
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <type_traits>
+
+#include "material/registry.hpp"
+#include "model/error.hpp"
+
+namespace rf::element {
+namespace {
+
+constexpr double kHourglassPattern[4] = {1.0, -1.0, 1.0, -1.0};
+
+// Batched evaluation (as the hexahedra, hex_block.cpp): the elastic kernel processes kLanes
+// consecutive elements at once, every quantity a GCC vector with one element per lane, so each
+// arithmetic statement is one SIMD instruction across elements. T is double (one element: the
+// J2 materials, whose plane-stress iteration branches per point) or Lanes. The same templated
+// code serves both; branches per element become lane-wise selects.
+#if defined(__AVX512F__)
+constexpr int kLanes = 8;
+#elif defined(__AVX__)
+constexpr int kLanes = 4;
+#else
+constexpr int kLanes = 2;
+#endif
+using Lanes = double __attribute__((vector_size(kLanes * sizeof(double))));
+
+template <class T>
+constexpr int lanes_of() {
+  return material::lane_count<T>();
+}
+
+template <class T>
+inline T tsqrt(T a) {
+  if constexpr (std::is_same_v<T, double>) {
+    return std::sqrt(a);
+  } else {
+    T r;
+    for (int l = 0; l < kLanes; ++l) r[l] = std::sqrt(a[l]);
+    return r;
+  }
+}
+
+// p[idx[l]] in lane l.
+template <class T, std::size_t... L>
+inline T gather_lanes(const double* p, const std::size_t* idx, std::index_sequence<L...>) {
+  return T{p[idx[L]]...};
+}
+template <class T>
+inline T gather(const double* p, const std::size_t* idx) {
+  if constexpr (std::is_same_v<T, double>)
+    return p[idx[0]];
+  else
+    return gather_lanes<T>(p, idx, std::make_index_sequence<kLanes>{});
+}
+
+// Co-rotational frame and flat-element geometry of an element (a batch) at one configuration.
+// A collapsed element (area 0) gets finite placeholder values; the caller checks `area`.
+template <class T>
+struct Frame {
+  T e[3][3];  // e[k] = e_{k+1}, global components
+  T x[4], y[4], z[4];
+  T area;
+  T b1[4], b2[4];
+};
+
+template <class T>
+inline void make_frame(const T p[4][3], Frame<T>& f) {
+  T c[3], d31[3], d42[3], s[3];
+  for (int i = 0; i < 3; ++i) {
+    c[i] = 0.25 * (p[0][i] + p[1][i] + p[2][i] + p[3][i]);
+    d31[i] = p[2][i] - p[0][i];
+    d42[i] = p[3][i] - p[1][i];
+    s[i] = p[1][i] - p[0][i];
+  }
+  const T n[3] = {d31[1] * d42[2] - d31[2] * d42[1], d31[2] * d42[0] - d31[0] * d42[2],
+                  d31[0] * d42[1] - d31[1] * d42[0]};
+  T nn = tsqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  f.area = 0.5 * nn;
+  const T one = T{} + 1.0;
+  nn = nn > 0.0 ? nn : one;
+  const T inv_n = 1.0 / nn;
+  for (int i = 0; i < 3; ++i) f.e[2][i] = n[i] * inv_n;
+  const T sn = s[0] * f.e[2][0] + s[1] * f.e[2][1] + s[2] * f.e[2][2];
+  for (int i = 0; i < 3; ++i) s[i] -= sn * f.e[2][i];
+  T ss = tsqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+  f.area = ss > 0.0 ? f.area : T{};  // side 1-2 collapsed: degenerate
+  ss = ss > 0.0 ? ss : one;
+  const T inv_s = 1.0 / ss;
+  for (int i = 0; i < 3; ++i) f.e[0][i] = s[i] * inv_s;
+  const T* a = f.e[2];
+  const T* b = f.e[0];
+  f.e[1][0] = a[1] * b[2] - a[2] * b[1];
+  f.e[1][1] = a[2] * b[0] - a[0] * b[2];
+  f.e[1][2] = a[0] * b[1] - a[1] * b[0];
+  for (int I = 0; I < 4; ++I) {
+    const T r0 = p[I][0] - c[0], r1 = p[I][1] - c[1], r2 = p[I][2] - c[2];
+    f.x[I] = f.e[0][0] * r0 + f.e[0][1] * r1 + f.e[0][2] * r2;
+    f.y[I] = f.e[1][0] * r0 + f.e[1][1] * r1 + f.e[1][2] * r2;
+    f.z[I] = f.e[2][0] * r0 + f.e[2][1] * r1 + f.e[2][2] * r2;
+  }
+  const T inv2a = inv_n;  // 1 / (2A)
+  f.b1[0] = (f.y[1] - f.y[3]) * inv2a;
+  f.b1[1] = (f.y[2] - f.y[0]) * inv2a;
+  f.b1[2] = (f.y[3] - f.y[1]) * inv2a;
+  f.b1[3] = (f.y[0] - f.y[2]) * inv2a;
+  f.b2[0] = (f.x[3] - f.x[1]) * inv2a;
+  f.b2[1] = (f.x[0] - f.x[2]) * inv2a;
+  f.b2[2] = (f.x[1] - f.x[3]) * inv2a;
+  f.b2[3] = (f.x[2] - f.x[0]) * inv2a;
+}
+
+// Hourglass shape vector tau (section 6 of the header comment).
+template <class T>
+inline void hourglass_shape(const Frame<T>& f, T tau[4]) {
+  const T hx = f.x[0] - f.x[1] + f.x[2] - f.x[3];
+  const T hy = f.y[0] - f.y[1] + f.y[2] - f.y[3];
+  for (int I = 0; I < 4; ++I) tau[I] = kHourglassPattern[I] - hx * f.b1[I] - hy * f.b2[I];
+}
+
+// Largest squared side length (a triangle's fourth side has length zero).
+template <class T>
+inline T max_side_squared(const T p[4][3]) {
+  T m{};
+  for (int I = 0; I < 4; ++I) {
+    const int J = (I + 1) & 3;
+    const T a = p[J][0] - p[I][0], b = p[J][1] - p[I][1], c = p[J][2] - p[I][2];
+    const T s = a * a + b * b + c * c;
+    m = s > m ? s : m;
+  }
+  return m;
+}
+
+inline double plate_wave_speed(const material::ElasticConstants& m) {
+  return std::sqrt(m.young / (m.rho * (1.0 - m.poisson * m.poisson)));
+}
+
+
+struct alignas(64) Partial {
+  double hourglass_work = 0.0;
+  double min_dt = 1e300;
+  std::int64_t min_dt_element = -1;
+  std::int64_t failed_element = -1;
+  double failed_volume = 0.0;
+
+  void record_dt(double dt, std::int64_t e) {
+    if (dt < min_dt) {
+      min_dt = dt;
+      min_dt_element = e;
+    }
+  }
+  void record_failure(std::int64_t e, double area) {
+    if (failed_element < 0) {
+      failed_element = e;
+      failed_volume = area;
+    }
+  }
+};
+
+constexpr int kMaxThreads = 256;
+
+// Per-thread partials combined in thread order (static schedule: deterministic for a fixed
+// thread count, "first failure" = lowest element index).
+KernelResult combine(const std::array<Partial, kMaxThreads>& partials, int threads) {
+  KernelResult r;
+  for (int t = 0; t < threads; ++t) {
+    const Partial& p = partials[t];
+    r.hourglass_work += p.hourglass_work;
+    if (p.min_dt < r.min_dt) {
+      r.min_dt = p.min_dt;
+      r.min_dt_element = p.min_dt_element;
+    }
+    if (!r.failed && p.failed_element >= 0) {
+      r.failed = true;
+      r.failed_element = p.failed_element;
+      r.failed_volume = p.failed_volume;
+    }
+  }
+  return r;
+}
+
+inline int thread_count() {
+  const int n = omp_get_max_threads();
+  return n < kMaxThreads ? n : kMaxThreads;
+}
+
+// Constants of a block that every element uses.
+struct BlockConstants {
+  double plane_modulus;  // E / (1 - nu^2)
+  double nu;
+  double shear;             // G
+  double transverse_shear;  // SHRF G
+  double wave_speed;        // plate wave speed
+  double shear_to_membrane;  // sqrt(K_w / K_m) = sqrt(4 SHRF G / (E' + G))
+  int ihq;
+  double qm;
+};
+
+BlockConstants block_constants(const ShellBlock& b) {
+  BlockConstants k;
+  const auto& m = b.material;
+  k.nu = m.poisson;
+  k.plane_modulus = m.young / (1.0 - m.poisson * m.poisson);
+  k.shear = m.shear;
+  k.transverse_shear = b.shear_factor * m.shear;
+  k.wave_speed = plate_wave_speed(m);
+  k.shear_to_membrane = std::sqrt(4.0 * k.transverse_shear / (k.plane_modulus + k.shear));
+  k.ihq = b.hourglass.ihq;
+  k.qm = b.hourglass.qm;
+  return k;
+}
+
+// Plane-stress update of the in-plane stress s = (xx, yy, xy) at one point for a J2 material M
+// with history h (kHistory order), strain rates d = (d_x, d_y, 2 d_xy) over dt: the material's
+// 3D update with w = 0 (the frame is co-rotational) and d_zz iterated to sigma_zz = 0. (The
+// elastic law is in closed form in shell_batch.)
+template <class M>
+inline void plane_stress_update(const ShellBlock& block, const BlockConstants& k, const double d[3],
+                                double dt, double s[3], double* h) {
+  {
+    constexpr int kH = material::history_size<M>() > 0 ? material::history_size<M>() : 1;
+    const material::ElasticConstants& m = block.material;
+    const double w[3] = {0.0, 0.0, 0.0};
+    double h0[kH];
+    for (int c = 0; c < material::history_size<M>(); ++c) h0[c] = h[c];
+    double trial[6], ht[kH];
+    // sigma_zz after the 3D update with thickness rate dzz (the other components to `trial`).
+    auto evaluate = [&](double dzz) {
+      double dd[6] = {d[0], d[1], dzz, 0.5 * d[2], 0.0, 0.0};
+      trial[0] = s[0];
+      trial[1] = s[1];
+      trial[2] = 0.0;
+      trial[3] = s[2];
+      trial[4] = 0.0;
+      trial[5] = 0.0;
+      for (int c = 0; c < material::history_size<M>(); ++c) ht[c] = h0[c];
+      M::update(m, block.plastic, dd, w, dt, trial, ht);
+      return trial[2];
+    };
+    const double stiff = (m.lambda + 2.0 * m.shear) * dt;
+    // Elastic plane-stress thickness rate as the first guess: exact while the point is elastic.
+    double z0 = -m.lambda / (m.lambda + 2.0 * m.shear) * (d[0] + d[1]);
+    double f0 = evaluate(z0);
+    const double scale =
+        std::abs(s[0]) + std::abs(s[1]) + std::abs(s[2]) + block.plastic.sigy + 1e-300;
+    const double tol = 1e-10 * scale;
+    if (std::abs(f0) > tol && stiff > 0.0) {
+      // Elastic-tangent step, then secant steps on sigma_zz(dzz) (continuous, increasing).
+      double z1 = z0 - f0 / stiff;
+      double f1 = evaluate(z1);
+      for (int it = 0; it < 28 && std::abs(f1) > tol; ++it) {
+        const double df = f1 - f0;
+        const double z2 = df != 0.0 ? z1 - f1 * (z1 - z0) / df : z1 - f1 / stiff;
+        z0 = z1;
+        f0 = f1;
+        z1 = z2;
+        f1 = evaluate(z1);
+      }
+    }
+    s[0] = trial[0];
+    s[1] = trial[1];
+    s[2] = trial[3];
+    for (int c = 0; c < material::history_size<M>(); ++c) h[c] = ht[c];
+  }
+}
+
+// A batch of elements [first, first + count) (count <= lanes of T; lanes past count repeat the
+// last element and are discarded): rates on the mid-step geometry, stress update, forces at
+// x^{n+1}.
+template <class M, class T>
+void shell_batch(ShellBlock& block, const BlockConstants& k, std::size_t first, int count,
+                 const NodalView& nv, const RotationalView& rv, double dt, Partial& part) {
+  constexpr int L = lanes_of<T>();
+  constexpr int kHist = material::history_size<M>();
+  static_assert(kHist == 0 || std::is_same_v<T, double>, "J2 materials run one element at a time");
+  std::size_t elem[L];
+  for (int l = 0; l < L; ++l) elem[l] = first + static_cast<std::size_t>(l < count ? l : count - 1);
+
+  // Gather x^{n+1}, v^{n+1/2}, omega^{n+1/2}.
+  T p[4][3], pm[4][3], v[4][3], w[4][3];
+  const double half_dt = 0.5 * dt;
+  for (int I = 0; I < 4; ++I) {
+    std::size_t n[L], r[L];
+    for (int l = 0; l < L; ++l) {
+      n[l] = static_cast<std::size_t>(block.conn[4 * elem[l] + static_cast<std::size_t>(I)]);
+      r[l] = static_cast<std::size_t>(block.rotation_conn[4 * elem[l] + static_cast<std::size_t>(I)]);
+    }
+    p[I][0] = gather<T>(nv.x, n);
+    p[I][1] = gather<T>(nv.y, n);
+    p[I][2] = gather<T>(nv.z, n);
+    v[I][0] = gather<T>(nv.vx, n);
+    v[I][1] = gather<T>(nv.vy, n);
+    v[I][2] = gather<T>(nv.vz, n);
+    w[I][0] = gather<T>(rv.wx, r);
+    w[I][1] = gather<T>(rv.wy, r);
+    w[I][2] = gather<T>(rv.wz, r);
+    for (int i = 0; i < 3; ++i) pm[I][i] = p[I][i] - half_dt * v[I][i];
+  }
+  const T t = gather<T>(block.element_thickness.data(), elem);
+  const T area0 = gather<T>(block.area0.data(), elem);
+  T tri;  // 1 for triangles
+  if constexpr (std::is_same_v<T, double>) {
+    tri = block.triangle[elem[0]] ? 1.0 : 0.0;
+  } else {
+    for (int l = 0; l < L; ++l) tri[l] = block.triangle[elem[l]] ? 1.0 : 0.0;
+  }
+  Frame<T> fm, f;
+  make_frame(pm, fm);
+  make_frame(p, f);
+  // Transverse-shear weights N_I: 1/4, or 1/3 per distinct node of a triangle (1/6 in each of
+  // the two slots of node 3).
+  const T nw01 = 0.25 + tri * (1.0 / 12.0), nw23 = 0.25 - tri * (1.0 / 12.0);
+  const T nw[4] = {nw01, nw01, nw23, nw23};
+  const bool warp = block.warping_correction;
+
+  // Local velocities on the mid-step frame.
+  T vl[4][3], wl[4][3];
+  for (int I = 0; I < 4; ++I)
+    for (int a = 0; a < 3; ++a) {
+      vl[I][a] = fm.e[a][0] * v[I][0] + fm.e[a][1] * v[I][1] + fm.e[a][2] * v[I][2];
+      wl[I][a] = fm.e[a][0] * w[I][0] + fm.e[a][1] * w[I][1] + fm.e[a][2] * w[I][2];
+    }
+  if (warp)
+    for (int I = 0; I < 4; ++I) {
+      vl[I][0] -= fm.z[I] * wl[I][1];
+      vl[I][1] += fm.z[I] * wl[I][0];
+    }
+
+  // Membrane rates (d_x, d_y, 2 d_xy), curvature rates, transverse shear (2 d_yz, 2 d_zx).
+  T em[3] = {}, kp[3] = {}, gyz{}, gzx{};
+  for (int I = 0; I < 4; ++I) {
+    const T b1 = fm.b1[I], b2 = fm.b2[I];
+    em[0] += b1 * vl[I][0];
+    em[1] += b2 * vl[I][1];
+    em[2] += b2 * vl[I][0] + b1 * vl[I][1];
+    kp[0] += b1 * wl[I][1];
+    kp[1] -= b2 * wl[I][0];
+    kp[2] += b2 * wl[I][1] - b1 * wl[I][0];
+    gyz += b2 * vl[I][2] - nw[I] * wl[I][0];
+    gzx += b1 * vl[I][2] + nw[I] * wl[I][1];
+  }
+
+  // Through-thickness points: stress update and resultants.
+  const int nip = block.nip;
+  const std::size_t stride = static_cast<std::size_t>(kShellStress * nip);
+  T N[3] = {}, Mr[3] = {}, Q[2] = {};
+  const T half_t = 0.5 * t;
+  const double gs_dt = k.transverse_shear * dt;
+  for (int q = 0; q < nip; ++q) {
+    std::size_t off[L];
+    for (int l = 0; l < L; ++l) off[l] = stride * elem[l] + static_cast<std::size_t>(kShellStress * q);
+    T sp[5];
+    for (int c = 0; c < 5; ++c) sp[c] = gather<T>(block.stress.data() + c, off);
+    const T z = block.zeta[q] * half_t;
+    const T d[3] = {em[0] + z * kp[0], em[1] + z * kp[1], em[2] + z * kp[2]};
+    if constexpr (kHist > 0) {
+      double h[kHist];
+      const std::size_t point = static_cast<std::size_t>(nip) * elem[0] + static_cast<std::size_t>(q);
+      int slot = 0;
+      for (std::size_t fi = 0; fi < M::kHistory.size(); ++fi) {
+        const int nc = M::kHistory[fi].components;
+        const double* in = block.history[fi].values.data() + static_cast<std::size_t>(nc) * point;
+        for (int cc = 0; cc < nc; ++cc) h[slot++] = in[cc];
+      }
+      plane_stress_update<M>(block, k, d, dt, sp, h);
+      slot = 0;
+      for (std::size_t fi = 0; fi < M::kHistory.size(); ++fi) {
+        const int nc = M::kHistory[fi].components;
+        double* o = block.history[fi].values.data() + static_cast<std::size_t>(nc) * point;
+        for (int cc = 0; cc < nc; ++cc) o[cc] = h[slot++];
+      }
+    } else {
+      // Elastic plane stress in closed form.
+      const double a = k.plane_modulus * dt;
+      sp[0] += a * (d[0] + k.nu * d[1]);
+      sp[1] += a * (d[1] + k.nu * d[0]);
+      sp[2] += (k.shear * dt) * d[2];
+    }
+    sp[3] += gs_dt * gyz;
+    sp[4] += gs_dt * gzx;
+    for (int l = 0; l < count; ++l) {
+      double* o = block.stress.data() + off[l];
+      for (int c = 0; c < 5; ++c) o[c] = material::get_lane(sp[c], l);
+    }
+    const T wt = half_t * block.weight[q];
+    const T wz = wt * z;
+    N[0] += wt * sp[0];
+    N[1] += wt * sp[1];
+    N[2] += wt * sp[2];
+    Mr[0] += wz * sp[0];
+    Mr[1] += wz * sp[1];
+    Mr[2] += wz * sp[2];
+    Q[0] += wt * sp[3];
+    Q[1] += wt * sp[4];
+  }
+
+  // Hourglass generalised forces (quadrilaterals only: scaled by 1 - tri).
+  T hq[5] = {};
+  T work{};
+  const bool hourglass = k.qm > 0.0;
+  if (hourglass) {
+    const T quad = 1.0 - tri;
+    T tau[4];
+    hourglass_shape(fm, tau);
+    T qd[5] = {}, tt{}, bb{};
+    for (int I = 0; I < 4; ++I) {
+      qd[0] += tau[I] * vl[I][0];
+      qd[1] += tau[I] * vl[I][1];
+      qd[2] += tau[I] * vl[I][2];
+      qd[3] += tau[I] * wl[I][0];
+      qd[4] += tau[I] * wl[I][1];
+      tt += tau[I] * tau[I];
+      bb += fm.b1[I] * fm.b1[I] + fm.b2[I] * fm.b2[I];
+    }
+    const T abb = fm.area * bb * quad;
+    // QM = 1 stiffness of the membrane modes (header comment, section 6); the others follow.
+    const T km = t * abb * ((k.plane_modulus + k.shear) / 24.0);
+    if (k.ihq == 4 || k.ihq == 5) {
+      const T kk[5] = {km, km, km * (k.shear_to_membrane * k.shear_to_membrane), km * t * t / 12.0,
+                       km * t * t / 12.0};
+      std::size_t off[L];
+      for (int l = 0; l < L; ++l) off[l] = 5 * elem[l];
+      for (int m = 0; m < 5; ++m) {
+        const T old = gather<T>(block.hourglass_state.data() + m, off);
+        hq[m] = old + (k.qm * dt) * kk[m] * qd[m];
+        work += 0.5 * (old + hq[m]) * qd[m] * dt;
+        for (int l = 0; l < count; ++l)
+          block.hourglass_state[off[l] + static_cast<std::size_t>(m)] = material::get_lane(hq[m], l);
+      }
+    } else {
+      // sqrt(K_k M_k), M_k the lumped mass (inertia) of the mode: K_w / K_m and the inertia
+      // per mass factored out so that one element needs two square roots.
+      const T mass = block.material.rho * 0.25 * t * area0;
+      const T cm = k.qm * tsqrt(km * mass * tt);
+      const T cw = cm * k.shear_to_membrane;
+      const T cr = cm * t * tsqrt((area0 * (1.0 / 8.0) + t * t * (1.0 / 12.0)) * (1.0 / 12.0));
+      const T cc[5] = {cm, cm, cw, cr, cr};
+      for (int m = 0; m < 5; ++m) {
+        hq[m] = cc[m] * qd[m];
+        work += hq[m] * qd[m] * dt;
+      }
+    }
+  }
+
+  // Local forces and moments at x^{n+1}, rotated to global axes.
+  const T A = f.area;
+  T tau[4] = {};
+  if (hourglass) hourglass_shape(f, tau);
+  T out[24];
+  T sum{};
+  for (int I = 0; I < 4; ++I) {
+    const T b1 = f.b1[I], b2 = f.b2[I];
+    T fl[3], ml[2];
+    fl[0] = A * (b1 * N[0] + b2 * N[2]) + hq[0] * tau[I];
+    fl[1] = A * (b2 * N[1] + b1 * N[2]) + hq[1] * tau[I];
+    fl[2] = A * (b1 * Q[1] + b2 * Q[0]) + hq[2] * tau[I];
+    ml[0] = -A * (b2 * Mr[1] + b1 * Mr[2]) - A * nw[I] * Q[0] + hq[3] * tau[I];
+    ml[1] = A * (b1 * Mr[0] + b2 * Mr[2]) + A * nw[I] * Q[1] + hq[4] * tau[I];
+    if (warp) {
+      ml[0] += f.z[I] * fl[1];
+      ml[1] -= f.z[I] * fl[0];
+    }
+    T* o = out + 6 * I;
+    for (int i = 0; i < 3; ++i) {
+      o[i] = f.e[0][i] * fl[0] + f.e[1][i] * fl[1] + f.e[2][i] * fl[2];
+      o[3 + i] = f.e[0][i] * ml[0] + f.e[1][i] * ml[1];
+      sum += o[i] + o[3 + i];
+    }
+  }
+  // Squared step (one square root per block, after the minimum: compute_shell_forces).
+  const T length = A + tri * A;  // (1 + beta) A
+  const T dt2 = length * length / (max_side_squared(p) * (k.wave_speed * k.wave_speed));
+
+  // Write back lane by lane in element order (first failure and the work sum as an element loop).
+  for (int l = 0; l < count; ++l) {
+    const std::size_t e = elem[l];
+    const auto ie = static_cast<std::int64_t>(e);
+    const double area_end = material::get_lane(f.area, l);
+    const double area_mid = material::get_lane(fm.area, l);
+    block.area[e] = area_end;
+    double* o = &block.force[kShellSlot * e];
+    if (!(area_mid > 0.0) || !(area_end > 0.0)) {
+      part.record_failure(ie, area_end > 0.0 ? area_mid : area_end);
+      for (int c = 0; c < kShellSlot; ++c) o[c] = 0.0;
+      continue;
+    }
+    for (int c = 0; c < kShellSlot; ++c) o[c] = material::get_lane(out[c], l);
+    part.hourglass_work += material::get_lane(work, l);
+    if (!std::isfinite(material::get_lane(sum, l))) part.record_failure(ie, area_end);
+    part.record_dt(material::get_lane(dt2, l), ie);
+  }
+}
+
+// Legendre polynomial P_n and its derivative at x.
+inline void legendre(int n, double x, double& p, double& dp) {
+  double p0 = 1.0, p1 = x;
+  if (n == 0) {
+    p = 1.0;
+    dp = 0.0;
+    return;
+  }
+  for (int k = 2; k <= n; ++k) {
+    const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
+    p0 = p1;
+    p1 = p2;
+  }
+  p = p1;
+  dp = n * (x * p1 - p0) / (x * x - 1.0);
+}
+
+int distinct_nodes(const std::int32_t* c) { return c[2] == c[3] ? 3 : 4; }
+
+}  // namespace
+
+bool through_thickness_points(ThroughThicknessRule rule, int nip, std::vector<double>& zeta,
+                              std::vector<double>& weight) {
+  zeta.assign(static_cast<std::size_t>(std::max(nip, 0)), 0.0);
+  weight.assign(zeta.size(), 0.0);
+  if (nip < 1 || nip > 10) return false;
+  if (nip == 1) {
+    if (rule == ThroughThicknessRule::kLobatto) return false;  // needs both surfaces
+    zeta[0] = 0.0;
+    weight[0] = 2.0;
+    return true;
+  }
+  const double pi = std::acos(-1.0);
+  if (rule == ThroughThicknessRule::kGauss) {
+    // Roots of P_n by Newton from the Chebyshev-like estimate; w = 2 / ((1 - x^2) P_n'^2).
+    for (int i = 0; i < nip; ++i) {
+      double x = -std::cos(pi * (i + 0.75) / (nip + 0.5));
+      double p = 0.0, dp = 0.0;
+      for (int it = 0; it < 100; ++it) {
+        legendre(nip, x, p, dp);
+        const double dx = p / dp;
+        x -= dx;
+        if (std::abs(dx) < 1e-16) break;
+      }
+      legendre(nip, x, p, dp);
+      zeta[i] = x;
+      weight[i] = 2.0 / ((1.0 - x * x) * dp * dp);
+    }
+  } else {
+    // Gauss-Lobatto: the ends and the roots of P_{n-1}'; w = 2 / (n (n-1) P_{n-1}(x)^2).
+    const int m = nip - 1;
+    const double wend = 2.0 / (nip * (nip - 1.0));
+    zeta[0] = -1.0;
+    zeta[nip - 1] = 1.0;
+    weight[0] = weight[nip - 1] = wend;
+    for (int i = 1; i < nip - 1; ++i) {
+      double x = -std::cos(pi * i / m);
+      for (int it = 0; it < 100; ++it) {
+        double p = 0.0, dp = 0.0;
+        legendre(m, x, p, dp);
+        const double d2p = (2.0 * x * dp - m * (m + 1.0) * p) / (1.0 - x * x);
+        const double dx = dp / d2p;
+        x -= dx;
+        if (std::abs(dx) < 1e-16) break;
+      }
+      double p = 0.0, dp = 0.0;
+      legendre(m, x, p, dp);
+      zeta[i] = x;
+      weight[i] = wend / (p * p);
+    }
+  }
+  for (int i = 0; i < nip / 2; ++i) {  // exact symmetry
+    const double zs = 0.5 * (zeta[nip - 1 - i] - zeta[i]);
+    const double ws = 0.5 * (weight[i] + weight[nip - 1 - i]);
+    zeta[i] = -zs;
+    zeta[nip - 1 - i] = zs;
+    weight[i] = weight[nip - 1 - i] = ws;
+  }
+  if (nip % 2 == 1) zeta[nip / 2] = 0.0;
+  return true;
+}
+
+const material::HistoryArray* find_history(const ShellBlock& block, std::string_view name) {
+  for (const auto& h : block.history)
+    if (h.field.name == name) return &h;
+  return nullptr;
+}
+
+void initialize_shell_block(ShellBlock& block, const NodalView& nodes) {
+  const std::size_t n = block.size();
+  if (block.conn.size() != 4 * n || block.rotation_conn.size() != 4 * n ||
+      block.thickness.size() != 4 * n)
+    throw SolverError(fmt::format(
+        "part {}: shell block has {} elements but {} nodes, {} rotational indices and {} "
+        "thicknesses (expected 4 per element each)",
+        block.part_id, n, block.conn.size(), block.rotation_conn.size(), block.thickness.size()));
+  if (block.elform != 2)
+    throw SolverError(fmt::format(
+        "part {}: shell ELFORM {} has no kernel yet (supported: 2, Belytschko-Lin-Tsay)",
+        block.part_id, block.elform));
+  // *MAT_RIGID blocks have no stress update (the body moves them) but need areas and masses.
+  if (!block.rigid && !material::serves(block.material_index, material::kShell))
+    throw SolverError(
+        fmt::format("part {}: the part's material does not run on shell elements", block.part_id));
+  const ThroughThicknessRule rule = block.nip == 1 ? ThroughThicknessRule::kGauss : block.rule;
+  if (!through_thickness_points(rule, block.nip, block.zeta, block.weight))
+    throw SolverError(fmt::format(
+        "part {}: {} through-thickness points NIP = {} not supported (Gauss 1-10, Lobatto 2-10)",
+        block.part_id, block.rule == ThroughThicknessRule::kGauss ? "Gauss" : "Lobatto",
+        block.nip));
+  const std::size_t points = static_cast<std::size_t>(block.points_per_element()) * n;
+  block.stress.assign(kShellStress * points, 0.0);
+  block.history.clear();
+  for (const material::HistoryField& f : material::history_fields(block.material_index))
+    block.history.push_back(
+        {f, std::vector<double>(points * static_cast<std::size_t>(f.components), 0.0)});
+  block.hourglass_state.assign(5 * n, 0.0);
+  block.force.assign(kShellSlot * n, 0.0);
+  block.area0.assign(n, 0.0);
+  block.area.assign(n, 0.0);
+  block.element_thickness.assign(n, 0.0);
+  block.triangle.assign(n, 0);
+  for (std::size_t e = 0; e < n; ++e) {
+    const std::int32_t* c = &block.conn[4 * e];
+    block.triangle[e] = c[2] == c[3] ? 1 : 0;
+    const int distinct = distinct_nodes(c);
+    double tsum = 0.0;
+    for (int I = 0; I < distinct; ++I) {
+      const double ti = block.thickness[4 * e + static_cast<std::size_t>(I)];
+      if (!(ti > 0.0))
+        throw SolverError(fmt::format("shell element {} of part {}: thickness T{} = {:.6g} is not "
+                                      "positive",
+                                      block.element_id[e], block.part_id, I + 1, ti));
+      tsum += ti;
+    }
+    block.element_thickness[e] = tsum / distinct;
+    double p[4][3];
+    for (int I = 0; I < 4; ++I) {
+      p[I][0] = nodes.x[c[I]];
+      p[I][1] = nodes.y[c[I]];
+      p[I][2] = nodes.z[c[I]];
+    }
+    Frame<double> f;
+    make_frame(p, f);
+    if (!(f.area > 0.0))
+      throw SolverError(fmt::format(
+          "shell element {} of part {} is degenerate (area {:.6g}): check that its nodes are "
+          "distinct (a triangle repeats N3 as N4) and not collinear",
+          block.element_id[e], block.part_id, f.area));
+    block.area0[e] = f.area;
+    block.area[e] = f.area;
+  }
+}
+
+KernelResult compute_shell_forces(ShellBlock& block, const NodalView& nodes,
+                                  const RotationalView& rotations, double dt) {
+  std::array<Partial, kMaxThreads> partials;
+  const std::int64_t n = static_cast<std::int64_t>(block.size());
+  const BlockConstants k = block_constants(block);
+  int threads = 1;
+#pragma omp parallel num_threads(thread_count())
+  {
+    Partial local;
+    material::with_material(block.material_index, [&]<class M>(std::type_identity<M>) {
+      if constexpr (material::history_size<M>() == 0) {
+        // Elastic: batches of kLanes elements; a static schedule over batches still gives each
+        // thread a contiguous element range.
+        const std::int64_t batches = (n + kLanes - 1) / kLanes;
+#pragma omp for schedule(static)
+        for (std::int64_t bi = 0; bi < batches; ++bi) {
+          const std::size_t first = static_cast<std::size_t>(bi) * kLanes;
+          const int count = static_cast<int>(std::min<std::int64_t>(kLanes, n - bi * kLanes));
+          shell_batch<M, Lanes>(block, k, first, count, nodes, rotations, dt, local);
+        }
+      } else {
+#pragma omp for schedule(static)
+        for (std::int64_t e = 0; e < n; ++e)
+          shell_batch<M, double>(block, k, static_cast<std::size_t>(e), 1, nodes, rotations, dt,
+                                 local);
+      }
+    });
+    partials[omp_get_thread_num()] = local;
+#pragma omp single
+    threads = omp_get_num_threads();
+  }
+  KernelResult r = combine(partials, threads);
+  if (r.min_dt_element >= 0) r.min_dt = std::sqrt(r.min_dt);  // partials hold squared steps
+  return r;
+}
+
+KernelResult shell_critical_timestep(const ShellBlock& block, const NodalView& nodes) {
+  std::array<Partial, kMaxThreads> partials;
+  const std::int64_t n = static_cast<std::int64_t>(block.size());
+  const double c = plate_wave_speed(block.material);
+  int threads = 1;
+#pragma omp parallel num_threads(thread_count())
+  {
+    Partial local;
+#pragma omp for schedule(static)
+    for (std::int64_t e = 0; e < n; ++e) {
+      const std::int32_t* cn = &block.conn[4 * static_cast<std::size_t>(e)];
+      double p[4][3];
+      for (int I = 0; I < 4; ++I) {
+        p[I][0] = nodes.x[cn[I]];
+        p[I][1] = nodes.y[cn[I]];
+        p[I][2] = nodes.z[cn[I]];
+      }
+      Frame<double> f;
+      make_frame(p, f);
+      if (!(f.area > 0.0)) {
+        local.record_failure(e, f.area);
+        continue;
+      }
+      const double beta = cn[2] == cn[3] ? 1.0 : 0.0;
+      local.record_dt((1.0 + beta) * f.area / (std::sqrt(max_side_squared(p)) * c), e);
+    }
+    partials[omp_get_thread_num()] = local;
+#pragma omp single
+    threads = omp_get_num_threads();
+  }
+  return combine(partials, threads);
+}
+
+void add_shell_lumped_mass(const ShellBlock& block, std::vector<double>& nodal_mass,
+                           std::vector<double>& rotational_inertia) {
+  for (std::size_t e = 0; e < block.size(); ++e) {
+    const std::int32_t* c = &block.conn[4 * e];
+    const std::int32_t* rc = &block.rotation_conn[4 * e];
+    const int distinct = distinct_nodes(c);
+    const double t = block.element_thickness[e];
+    const double a = block.area0[e];
+    const double m = block.material.rho * t * a / distinct;
+    const double inertia = m * (a / 8.0 + t * t / 12.0);
+    for (int I = 0; I < distinct; ++I) {
+      nodal_mass[static_cast<std::size_t>(c[I])] += m;
+      rotational_inertia[static_cast<std::size_t>(rc[I])] += inertia;
+    }
+  }
+}
+
+}  // namespace rf::element
