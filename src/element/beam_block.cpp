@@ -1,0 +1,504 @@
+// Two-node beam and truss kernels for the explicit central-difference solver (issue 16).
+//
+// Both formulations are CO-ROTATIONAL: every step the element gets a local orthonormal frame
+// (e1 along the current chord x2 - x1, e2 = s and e3 = t across it), deformations are measured
+// relative to the rigid motion of that frame, and the resultants are stored as components in it.
+// A rigid motion of the element therefore leaves the resultants unchanged (objectivity) without
+// any stress rotation. References: Belytschko & Hsieh (1973), Belytschko & Schwer (1977, "Large
+// displacement, transient analysis of space frames", IJNME 11:65) and the LS-DYNA Theory
+// Manual, beam chapter (Belytschko resultant beam, truss); the chord-relative (natural
+// deformation) form of the Timoshenko beam stiffness follows e.g. Przemieniecki, "Theory of
+// Matrix Structural Analysis" (1968), sec. 5.4.
+//
+// STEP STRUCTURE. The solver hands us x^{n+1}, v^{n+1/2} and omega^{n+1/2}. The chord at the
+// start of the step is c^n = c^{n+1} - dt (v2 - v1) (exact for central differences), so the
+// increments below are differences between two configurations:
+//   frame rotation     R_f = R(chi) R(theta_m): the stored frame turned by the mean nodal
+//                      rotation theta_m = (dth_1 + dth_2) / 2, then by the smallest rotation
+//                      chi that takes its turned axis onto the new chord e1 = c^{n+1}/|c^{n+1}| (1)
+//   elongation         dL = |c^{n+1}| - |c^n|, axial strain increment dL / L_mid          (2)
+//   nodal rotation     dth_I = omega_I dt                                                (3)
+//   deformational rot. dphi_I = dth_I - theta_m - chi  (relative to the frame)            (4)
+//   torsion increment  dtau = (dth_2 - dth_1) . e1                                       (5)
+// For a rigid rotation R of the element, R(theta_m) = R already takes the old chord onto the
+// new one, so chi = 0, the frame turns by exactly R, and (4), (5) vanish to round-off at any
+// step size and about any axis (a decomposition "chord swing + twist" instead would leave an
+// O(dt^2) error per step that accumulates for a beam spinning about an oblique axis). For a
+// deforming element chi is the chord's rotation relative to the mean nodal rotation and (4) is
+// the chord-relative rotation of Belytschko & Schwer to first order in the increment.
+//
+// FRAME (the s axis). The frame is carried from step to step in block.frame by (1): the
+// cross-section turns with the mean nodal rotation about every axis (LS-DYNA and Radioss
+// carry their orientation by the mean axial nodal rotation), and s is re-orthogonalised to e1
+// and renormalised every step, t = e1 x s.
+//
+// ELFORM 2, Belytschko-Schwer resultant beam (elastic). Incremental resultants in the local
+// frame (N, Qs, Qt, T, Ms, Mt; block.resultant). With the chord-relative nodal rotations
+// theta_a, theta_b about one local bending axis, the Timoshenko beam's end moments are (two-node
+// element with cubic deflection and constant shear, Przemieniecki sec. 5.4)
+//   M_a = k0 [(4 + phi) theta_a + (2 - phi) theta_b],  M_b = k0 [(2 - phi) theta_a + (4 + phi)
+//   theta_b],   k0 = E I / (L (1 + phi)),   phi = 12 E I / (kappa G A L^2)               (6)
+// (kappa A = SA, the shear area, or SHRF A). We store their two independent combinations
+//   midpoint bending moment  M   = (M_b - M_a) / 2 = E I (theta_b - theta_a) / L        (7)
+//   shear force              Q   = (M_a + M_b) / L = 6 E I (theta_a + theta_b)/(L^2(1+phi)) (8)
+// and update them incrementally with dphi from (4) projected on the local axes. Axial force
+// N += E A dL / L_mid (so that N = E A ln(L / L0) for a monotonic stretch: length-based, exact
+// for any rotation), torsion T += G J dtau / L_mid. This element is exact for a linear elastic
+// beam loaded at its nodes (nodal deflections of a cantilever are P L^3 / 3EI + P L / kGA
+// with any number of elements).
+//
+// NODAL FORCES follow from the power of the resultants (W' = N L' + T tau' + sum M_I phi_I'),
+// with phi_I' = omega_I . t - (v2 - v1) . s / L about t and omega_I . s + (v2 - v1) . t / L
+// about s (the chord's angular velocity is e1 x (v2 - v1) / L):
+//   f_2 = N e1 - Qs s + Qt t = -f_1,
+//   m_I = M_tI t + M_sI s -/+ T e1,   M_t1,2 = Qs L / 2 -/+ Mt,  M_s1,2 = Qt L / 2 -/+ Ms.
+// They balance exactly: sum f = 0 and (x2 - x1) x f_2 + m_1 + m_2 = 0 (tested).
+// Sign conventions of the stored resultants (also the output): N > 0 tension; T the moment
+// of the element on node 2 about e1; Mt, Ms the midpoint bending moments about t and s with
+// the sign of the moment the element exerts on node 2; Qs, Qt the shear force the element
+// exerts on node 1 along s, t (= -Qs, -Qt on node 2 ... see f_2 above).
+//
+// ELFORM 3, truss: axial force only, N = sigma A with sigma += E dL / L_mid (elastic,
+// sigma = E ln(L / L0)); the cross-section area A is kept constant. No rotations.
+//
+// MASS. Translational: rho A L0 / 2 to each node (both formulations). Rotational inertia of a
+// beam node (ELFORM 2), the same about every axis because the solver stores one scalar per
+// rotational DOF set:
+//   J = rho L0 max(1.5 max(Iss, Itt), 0.25 J_torsion)                                    (9)
+// The physical lumped value about a transverse axis is rho I L0 / 2; we take three times it
+// (rotary inertia changes the low bending frequencies of a slender member by O((r/lambda)^2),
+// a negligible amount, but it sets the highest element frequencies). With (9) the element's
+// rotational frequencies stay below the axial one (see (10)), so for slender elements the step
+// is LS-DYNA's axial beam step L / c, as for the truss.
+//
+// TIME STEP. Truss: L / c, c = sqrt(E / rho) (LS-DYNA's rule). Beam: 2 / omega_max with
+// omega_max the highest frequency of the free element (an upper bound of the mesh's highest
+// frequency, Irons' theorem), which for the lumped masses m = rho A L0 / 2, J from (9) is the
+// largest of (derived from (6) in the chord-relative coordinates):
+//   axial    omega^2 = 2 E A / (L m)            (-> dt = L / c)
+//   torsion  omega^2 = 2 G J_t / (L J)
+//   bending, per plane: antisymmetric  omega^2 = 2 E I / (L J)
+//                       symmetric      omega^2 = 6 k0 (1 / J + 4 / (m L^2))             (10)
+// For slender elements the axial value governs (dt = L / c); stubby elements get a smaller
+// step from the symmetric bending-shear mode.
+//
+// ELFORM 1 (Hughes-Liu with cross-section integration) is not implemented:
+// initialize_beam_block rejects it with a SolverError naming the part.
+#include "element/beam_block.hpp"
+
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "material/registry.hpp"
+#include "model/error.hpp"
+
+namespace rf::element {
+namespace {
+
+struct Partial {
+  double min_dt = 1e300;
+  std::int64_t min_dt_element = -1;
+  std::int64_t failed_element = -1;
+  double failed_length = 0.0;
+
+  void record_dt(double dt, std::int64_t e) {
+    if (dt < min_dt) {
+      min_dt = dt;
+      min_dt_element = e;
+    }
+  }
+  void record_failure(std::int64_t e, double length) {
+    if (failed_element < 0) {
+      failed_element = e;
+      failed_length = length;
+    }
+  }
+};
+
+constexpr int kMaxThreads = 256;
+
+// Per-thread partials combined in thread order: with a static schedule thread t owns a
+// contiguous, increasing range of elements, so the result is deterministic for a fixed thread
+// count and "first" means "lowest element index" (as in hex_block.cpp).
+KernelResult combine(const std::array<Partial, kMaxThreads>& partials, int threads) {
+  KernelResult r;
+  for (int t = 0; t < threads; ++t) {
+    const Partial& p = partials[t];
+    if (p.min_dt < r.min_dt) {
+      r.min_dt = p.min_dt;
+      r.min_dt_element = p.min_dt_element;
+    }
+    if (!r.failed && p.failed_element >= 0) {
+      r.failed = true;
+      r.failed_element = p.failed_element;
+      r.failed_volume = p.failed_length;
+    }
+  }
+  return r;
+}
+
+inline int thread_count() {
+  const int n = omp_get_max_threads();
+  return n < kMaxThreads ? n : kMaxThreads;
+}
+
+inline double dot(const double a[3], const double b[3]) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+inline void cross(const double a[3], const double b[3], double out[3]) {
+  out[0] = a[1] * b[2] - a[2] * b[1];
+  out[1] = a[2] * b[0] - a[0] * b[2];
+  out[2] = a[0] * b[1] - a[1] * b[0];
+}
+inline double norm(const double a[3]) {
+  return std::sqrt(dot(a, a));
+}
+
+// Rotates v by the rotation vector th (Rodrigues' formula, exact finite rotation).
+inline void rotate(const double th[3], double v[3]) {
+  const double angle = norm(th);
+  if (angle == 0.0) return;
+  const double k[3] = {th[0] / angle, th[1] / angle, th[2] / angle};
+  const double c = std::cos(angle), s = std::sin(angle);
+  double kxv[3];
+  cross(k, v, kxv);
+  const double kv = dot(k, v) * (1.0 - c);
+  for (int i = 0; i < 3; ++i) v[i] = v[i] * c + kxv[i] * s + k[i] * kv;
+}
+
+// Rotation vector of the smallest rotation that turns direction a onto direction b (any
+// lengths): angle atan2(|a x b|, a . b) about unit(a x b). Exact for any angle below pi.
+inline void rotation_between(const double a[3], const double b[3], double out[3]) {
+  cross(a, b, out);
+  const double sn = norm(out);
+  if (sn == 0.0) {
+    out[0] = out[1] = out[2] = 0.0;
+    return;
+  }
+  const double angle = std::atan2(sn, dot(a, b));
+  for (int i = 0; i < 3; ++i) out[i] *= angle / sn;
+}
+
+// A unit vector perpendicular to e1: the global axis least aligned with e1, orthogonalised.
+inline void default_s_axis(const double e1[3], double s[3]) {
+  int k = 0;
+  for (int i = 1; i < 3; ++i)
+    if (std::fabs(e1[i]) < std::fabs(e1[k])) k = i;
+  s[0] = s[1] = s[2] = 0.0;
+  s[k] = 1.0;
+  const double p = dot(s, e1);
+  for (int i = 0; i < 3; ++i) s[i] -= p * e1[i];
+  const double n = norm(s);
+  for (int i = 0; i < 3; ++i) s[i] /= n;
+}
+
+// Section stiffnesses of a block.
+struct SectionStiffness {
+  double ea = 0.0, gj = 0.0, ei_s = 0.0, ei_t = 0.0, kga = 0.0;
+};
+
+inline SectionStiffness section_stiffness(const BeamBlock& b) {
+  SectionStiffness k;
+  k.ea = b.material.young * b.area;
+  k.gj = b.material.shear * b.torsion;
+  k.ei_s = b.material.young * b.iss;
+  k.ei_t = b.material.young * b.itt;
+  const double shear_area = b.shear_area > 0.0 ? b.shear_area : b.shear_factor * b.area;
+  k.kga = b.material.shear * shear_area;
+  return k;
+}
+
+// Lumped rotational inertia of one node of a resultant beam, eq. (9) of the header comment.
+inline double node_rotational_inertia(const BeamBlock& b, double length0) {
+  return b.material.rho * length0 * std::max(1.5 * std::max(b.iss, b.itt), 0.25 * b.torsion);
+}
+
+// Shear parameter phi = 12 E I / (kappa G A L^2) of eq. (6); 0 without shear flexibility.
+inline double shear_parameter(double ei, double kga, double length) {
+  return kga > 0.0 ? 12.0 * ei / (kga * length * length) : 0.0;
+}
+
+inline bool finite3(const double a[3]) {
+  return std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]);
+}
+
+// One element of either formulation. Returns false (forces zeroed) for a collapsed element.
+inline bool beam_element(BeamBlock& b, std::size_t e, const NodalView& nv, const RotationalView& rv,
+                         double dt, const SectionStiffness& k, bool truss) {
+  double* f = &b.force[kBeamSlot * e];
+  const std::int32_t n1 = b.conn[2 * e], n2 = b.conn[2 * e + 1];
+  const double c1[3] = {nv.x[n2] - nv.x[n1], nv.y[n2] - nv.y[n1], nv.z[n2] - nv.z[n1]};
+  const double dv[3] = {nv.vx[n2] - nv.vx[n1], nv.vy[n2] - nv.vy[n1], nv.vz[n2] - nv.vz[n1]};
+  const double c0[3] = {c1[0] - dt * dv[0], c1[1] - dt * dv[1], c1[2] - dt * dv[2]};
+  const double length1 = norm(c1), length0 = norm(c0);
+  if (!(length1 > 0.0) || !(length0 > 0.0) || !std::isfinite(length1)) {
+    for (int i = 0; i < kBeamSlot; ++i) f[i] = 0.0;
+    b.length[e] = length1;
+    return false;
+  }
+  b.length[e] = length1;
+  const double e1[3] = {c1[0] / length1, c1[1] / length1, c1[2] / length1};
+  const double length_mid = 0.5 * (length0 + length1);
+  const double strain_increment = (length1 - length0) / length_mid;  // eq. (2)
+  double* frame = &b.frame[9 * e];
+  double* r = &b.resultant[6 * e];
+
+  if (truss) {
+    double& sigma = b.stress[e];
+    sigma += b.material.young * strain_increment;
+    const double axial = sigma * b.area;
+    r[0] = axial;
+    for (int i = 0; i < 3; ++i) {
+      f[i] = -axial * e1[i];
+      f[3 + i] = 0.0;
+      f[6 + i] = axial * e1[i];
+      f[9 + i] = 0.0;
+      frame[i] = e1[i];
+    }
+    return std::isfinite(axial);
+  }
+
+  // Nodal rotation increments (3) and their mean.
+  const std::int32_t r1 = b.rotation_conn[2 * e], r2 = b.rotation_conn[2 * e + 1];
+  const double th1[3] = {rv.wx[r1] * dt, rv.wy[r1] * dt, rv.wz[r1] * dt};
+  const double th2[3] = {rv.wx[r2] * dt, rv.wy[r2] * dt, rv.wz[r2] * dt};
+  const double mean[3] = {0.5 * (th1[0] + th2[0]), 0.5 * (th1[1] + th2[1]),
+                          0.5 * (th1[2] + th2[2])};
+
+  // Frame update (1): turn the stored frame by the mean nodal rotation, then by the smallest
+  // rotation chi that takes the turned axis onto the new chord.
+  double s[3] = {frame[3], frame[4], frame[5]};
+  double chi[3];
+  {
+    double a[3] = {frame[0], frame[1], frame[2]};
+    rotate(mean, a);
+    rotate(mean, s);
+    rotation_between(a, e1, chi);
+    rotate(chi, s);
+    const double p = dot(s, e1);
+    for (int i = 0; i < 3; ++i) s[i] -= p * e1[i];
+    const double sn = norm(s);
+    if (!(sn > 0.0) || !std::isfinite(sn)) return false;
+    for (int i = 0; i < 3; ++i) s[i] /= sn;
+  }
+  double t[3];
+  cross(e1, s, t);
+  for (int i = 0; i < 3; ++i) {
+    frame[i] = e1[i];
+    frame[3 + i] = s[i];
+    frame[6 + i] = t[i];
+  }
+
+  // Deformational rotations (4) in the local frame, torsion (5).
+  double d1[3], d2[3];
+  for (int i = 0; i < 3; ++i) {
+    d1[i] = th1[i] - mean[i] - chi[i];
+    d2[i] = th2[i] - mean[i] - chi[i];
+  }
+  const double ds1 = dot(d1, s), ds2 = dot(d2, s);
+  const double dt1 = dot(d1, t), dt2 = dot(d2, t);
+  const double dtau = dot(th2, e1) - dot(th1, e1);
+
+  // Resultant increments, eqs. (6)-(8) per bending plane.
+  const double phi_s = shear_parameter(k.ei_s, k.kga, length_mid);  // bending about s
+  const double phi_t = shear_parameter(k.ei_t, k.kga, length_mid);  // bending about t
+  const double l2 = length_mid * length_mid;
+  r[0] += k.ea * strain_increment;                            // N
+  r[1] += 6.0 * k.ei_t / (l2 * (1.0 + phi_t)) * (dt1 + dt2);  // Qs (bending about t)
+  r[2] += 6.0 * k.ei_s / (l2 * (1.0 + phi_s)) * (ds1 + ds2);  // Qt (bending about s)
+  r[3] += k.gj * dtau / length_mid;                           // T
+  r[4] += k.ei_s * (ds2 - ds1) / length_mid;                  // Ms
+  r[5] += k.ei_t * (dt2 - dt1) / length_mid;                  // Mt
+
+  // Nodal forces and moments from the power of the resultants (header comment).
+  const double axial = r[0], qs = r[1], qt = r[2], torque = r[3], ms = r[4], mt = r[5];
+  const double half = 0.5 * length1;
+  const double mt1 = qs * half - mt, mt2 = qs * half + mt;
+  const double ms1 = qt * half - ms, ms2 = qt * half + ms;
+  for (int i = 0; i < 3; ++i) {
+    const double f2 = axial * e1[i] - qs * s[i] + qt * t[i];
+    f[i] = -f2;
+    f[6 + i] = f2;
+    f[3 + i] = mt1 * t[i] + ms1 * s[i] - torque * e1[i];
+    f[9 + i] = mt2 * t[i] + ms2 * s[i] + torque * e1[i];
+  }
+  return finite3(f) && finite3(f + 3) && finite3(r) && finite3(r + 3);
+}
+
+}  // namespace
+
+void initialize_beam_block(BeamBlock& block, const NodalView& nodes) {
+  const std::size_t n = block.size();
+  const auto part_error = [&](const std::string& what) {
+    return SolverError(
+        fmt::format("part {} (beam, ELFORM {}): {}", block.part_id, block.elform, what));
+  };
+  if (block.conn.size() != 2 * n)
+    throw part_error(fmt::format("{} elements but {} connectivity entries (expected 2 each)", n,
+                                 block.conn.size()));
+  if (block.elform == 1)
+    throw part_error(
+        "the Hughes-Liu beam with cross-section integration (ELFORM 1) is not implemented; use "
+        "ELFORM 2 (resultant beam) or 3 (truss)");
+  if (block.elform != 2 && block.elform != 3)
+    throw part_error("unsupported beam formulation (supported: ELFORM 2, 3)");
+  if (!block.rigid &&
+      block.material_index != material::material_index(model::MaterialKind::Elastic))
+    throw part_error("beams and trusses support *MAT_ELASTIC only");
+  const bool truss = block.elform == 3;
+  if (!(block.area > 0.0))
+    throw part_error(fmt::format("cross-section area A = {:.6g} must be positive", block.area));
+  if (!truss) {
+    if (block.rotation_conn.size() != 2 * n)
+      throw part_error(fmt::format("{} elements but {} rotational indices (expected 2 each)", n,
+                                   block.rotation_conn.size()));
+    if (!(block.iss > 0.0) || !(block.itt > 0.0) || !(block.torsion > 0.0))
+      throw part_error(fmt::format(
+          "the resultant beam needs positive ISS, ITT and J (IRR); got {:.6g}, {:.6g}, {:.6g}",
+          block.iss, block.itt, block.torsion));
+    if (block.shear_area < 0.0 || block.shear_factor < 0.0)
+      throw part_error("shear area SA and shear factor SHRF must not be negative");
+  }
+  if (!block.orientation.empty() && block.orientation.size() != 3 * n)
+    throw part_error(fmt::format("{} elements but {} orientation entries (expected 3 each)", n,
+                                 block.orientation.size()));
+
+  block.frame.assign(9 * n, 0.0);
+  block.resultant.assign(6 * n, 0.0);
+  block.stress.assign(truss ? n : 0, 0.0);
+  block.history.clear();
+  block.length0.assign(n, 0.0);
+  block.length.assign(n, 0.0);
+  block.force.assign(kBeamSlot * n, 0.0);
+  for (std::size_t e = 0; e < n; ++e) {
+    const std::int32_t n1 = block.conn[2 * e], n2 = block.conn[2 * e + 1];
+    const double c[3] = {nodes.x[n2] - nodes.x[n1], nodes.y[n2] - nodes.y[n1],
+                         nodes.z[n2] - nodes.z[n1]};
+    const double length = norm(c);
+    if (!(length > 0.0))
+      throw SolverError(
+          fmt::format("element {} of part {} (beam) has zero length: its nodes 1 and 2 coincide",
+                      block.element_id[e], block.part_id));
+    block.length0[e] = block.length[e] = length;
+    const double e1[3] = {c[0] / length, c[1] / length, c[2] / length};
+    double s[3];
+    bool have_s = false;
+    if (!block.orientation.empty()) {
+      const double* o = &block.orientation[3 * e];
+      const double p = o[0] * e1[0] + o[1] * e1[1] + o[2] * e1[2];
+      for (int i = 0; i < 3; ++i) s[i] = o[i] - p * e1[i];
+      const double sn = norm(s);
+      const double on = std::sqrt(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]);
+      // An orientation (nearly) parallel to the axis defines no s axis.
+      if (sn > 1e-8 * on && on > 0.0) {
+        for (int i = 0; i < 3; ++i) s[i] /= sn;
+        have_s = true;
+      } else if (!truss && on > 0.0) {
+        throw SolverError(fmt::format(
+            "element {} of part {} (beam): the orientation (third node or vector) is parallel "
+            "to the beam axis, so it defines no local s axis",
+            block.element_id[e], block.part_id));
+      }
+    }
+    if (!have_s) default_s_axis(e1, s);
+    double t[3];
+    cross(e1, s, t);
+    double* frame = &block.frame[9 * e];
+    for (int i = 0; i < 3; ++i) {
+      frame[i] = e1[i];
+      frame[3 + i] = s[i];
+      frame[6 + i] = t[i];
+    }
+  }
+}
+
+KernelResult compute_beam_forces(BeamBlock& block, const NodalView& nodes,
+                                 const RotationalView& rotations, double dt) {
+  std::array<Partial, kMaxThreads> partials;
+  const std::int64_t n = static_cast<std::int64_t>(block.size());
+  const bool truss = block.elform == 3;
+  const SectionStiffness k = section_stiffness(block);
+  int threads = 1;
+#pragma omp parallel num_threads(thread_count())
+  {
+    Partial local;
+#pragma omp for schedule(static)
+    for (std::int64_t e = 0; e < n; ++e) {
+      const std::size_t ue = static_cast<std::size_t>(e);
+      if (!beam_element(block, ue, nodes, rotations, dt, k, truss))
+        local.record_failure(e, block.length[ue]);
+    }
+    partials[omp_get_thread_num()] = local;
+#pragma omp single
+    threads = omp_get_num_threads();
+  }
+  return combine(partials, threads);
+}
+
+KernelResult beam_critical_timestep(const BeamBlock& block, const NodalView& nodes) {
+  std::array<Partial, kMaxThreads> partials;
+  const std::int64_t n = static_cast<std::int64_t>(block.size());
+  const bool truss = block.elform == 3;
+  const SectionStiffness k = section_stiffness(block);
+  const double c = std::sqrt(block.material.young / block.material.rho);
+  int threads = 1;
+#pragma omp parallel num_threads(thread_count())
+  {
+    Partial local;
+#pragma omp for schedule(static)
+    for (std::int64_t e = 0; e < n; ++e) {
+      const std::size_t ue = static_cast<std::size_t>(e);
+      const std::int32_t n1 = block.conn[2 * ue], n2 = block.conn[2 * ue + 1];
+      const double ch[3] = {nodes.x[n2] - nodes.x[n1], nodes.y[n2] - nodes.y[n1],
+                            nodes.z[n2] - nodes.z[n1]};
+      const double length = norm(ch);
+      if (!(length > 0.0) || !std::isfinite(length)) {
+        local.record_failure(e, length);
+        continue;
+      }
+      if (truss) {
+        local.record_dt(length / c, e);
+        continue;
+      }
+      // Eq. (10): highest frequency of the free element with lumped masses m and J.
+      const double length0 = block.length0[ue];
+      const double m = 0.5 * block.material.rho * block.area * length0;
+      const double j = node_rotational_inertia(block, length0);
+      double w2 = 2.0 * k.ea / (length * m);
+      w2 = std::max(w2, 2.0 * k.gj / (length * j));
+      for (const double ei : {k.ei_s, k.ei_t}) {
+        const double phi = shear_parameter(ei, k.kga, length);
+        const double k0 = ei / (length * (1.0 + phi));
+        w2 = std::max(w2, 2.0 * ei / (length * j));
+        w2 = std::max(w2, 6.0 * k0 * (1.0 / j + 4.0 / (m * length * length)));
+      }
+      local.record_dt(2.0 / std::sqrt(w2), e);
+    }
+    partials[omp_get_thread_num()] = local;
+#pragma omp single
+    threads = omp_get_num_threads();
+  }
+  return combine(partials, threads);
+}
+
+void add_beam_lumped_mass(const BeamBlock& block, std::vector<double>& nodal_mass,
+                          std::vector<double>& rotational_inertia) {
+  const bool truss = block.elform == 3;
+  for (std::size_t e = 0; e < block.size(); ++e) {
+    const double share = 0.5 * block.material.rho * block.area * block.length0[e];
+    nodal_mass[static_cast<std::size_t>(block.conn[2 * e])] += share;
+    nodal_mass[static_cast<std::size_t>(block.conn[2 * e + 1])] += share;
+    if (truss) continue;
+    const double j = node_rotational_inertia(block, block.length0[e]);
+    for (int a = 0; a < 2; ++a) {
+      const std::int32_t r = block.rotation_conn[2 * e + a];
+      if (r >= 0) rotational_inertia[static_cast<std::size_t>(r)] += j;
+    }
+  }
+}
+
+}  // namespace rf::element
