@@ -58,32 +58,69 @@
 // the sign of the moment the element exerts on node 2; Qs, Qt the shear force the element
 // exerts on node 1 along s, t (= -Qs, -Qt on node 2 ... see f_2 above).
 //
-// ELFORM 3, truss: axial force only, N = sigma A with sigma += E dL / L_mid (elastic,
-// sigma = E ln(L / L0)); the cross-section area A is kept constant. No rotations.
+// ELFORM 3, truss: axial force only, N = sigma A, with the axial stress updated by the axial
+// strain increment dL / L_mid (length-based: sigma = E ln(L / L0) for an elastic material); the
+// cross-section area A is kept constant. No rotations.
 //
-// MASS. Translational: rho A L0 / 2 to each node (both formulations). Rotational inertia of a
-// beam node (ELFORM 2), the same about every axis because the solver stores one scalar per
+// ELFORM 1, integrated beam (our substitute for LS-DYNA's Hughes-Liu beam, see below). The
+// kinematics and the frame are those of (1)-(5); the element has ONE stress section at
+// mid-length (like Hughes-Liu's single point along the axis) whose axial stress is integrated
+// over section points:
+//   rectangle (CST 0, sides TS along s and TT along t): 2 x 2 Gauss points at
+//             (+-TS, +-TT) / (2 sqrt 3), weight A / 4 each;
+//   tube      (CST 1, outer diameter TS, inner TT, TT = 0 a solid bar): a ring rule of 8
+//             points equally spaced on the circle of radius r_p = sqrt((R^2 + r^2) / 2),
+//             weight A / 8 each (integrates A, I = A (R^2 + r^2) / 4 and every linear strain
+//             field exactly).
+// The dimensions are the means of the two nodal values. Fibre strain increment at (s, t):
+//   d eps = dL / L_mid - s dkappa_t + t dkappa_s,  dkappa = (dphi_2 - dphi_1) / L_mid     (11)
+// (rotation about t turns the axis towards +s; about s towards -t), the uniaxial stress update
+// per point, then N = sum w sigma, Mt = -sum w sigma s, Ms = sum w sigma t. Transverse shear
+// and torsion stay elastic resultants: Q += kappa G A (dphi_1 + dphi_2) / 2 (constant shear
+// strain of the one-point element, the phi -> infinity form of (8)), T += G J dtau / L_mid
+// with J of the section (tube: pi (D^4 - d^4) / 32; rectangle: the Saint-Venant series of
+// Timoshenko & Goodier, J = a b^3 (1/3 - 0.21 (b/a)(1 - (b/a)^4 / 12)), b <= a). The nodal
+// forces are those of ELFORM 2 with these resultants. Differences from LS-DYNA's Hughes-Liu
+// element (Hughes & Liu 1981, a degenerated continuum): no fibre-thickness update, transverse
+// shear and torsion not integrated over the section (so they do not yield), and the frame and
+// rotations are those of our co-rotational ELFORM 2. Like any one-point Timoshenko element it
+// is stiffer in bending than ELFORM 2: a cantilever's tip deflection is
+// P L^3 / 3EI (1 - 1 / (4 n^2)) + P L / kappa G A for n elements (tested).
+//
+// MATERIALS. ELFORM 2: *MAT_ELASTIC. Truss and ELFORM 1: *MAT_ELASTIC and the J2 materials
+// (*MAT_PLASTIC_KINEMATIC, *MAT_PIECEWISE_LINEAR_PLASTICITY) in uniaxial stress: trial
+// sigma_tr = sigma + E d eps, xi = sigma_tr - alpha; if |xi| > k sigma_y(eps_p) the plastic
+// increment dl solves |xi| - (E + H_k) dl = k sigma_y(eps_p + dl) (the one-dimensional radial
+// return, Simo & Hughes 1998, ch. 1, with mixed hardening), sigma = sigma_tr - E dl sign(xi),
+// alpha += H_k dl sign(xi). The rate factor k of VP 0 (Cowper-Symonds, LCSR) uses the axial
+// strain rate |d eps| / dt; viscoplastic VP 1 and failure strains are rejected at
+// initialisation (not implemented for beams).
+//
+// MASS. Translational: rho A L0 / 2 to each node (all formulations). Rotational inertia of a
+// beam node (ELFORM 1, 2), the same about every axis because the solver stores one scalar per
 // rotational DOF set:
-//   J = rho L0 max(1.5 max(Iss, Itt), 0.25 J_torsion)                                    (9)
-// The physical lumped value about a transverse axis is rho I L0 / 2; we take three times it
+//   ELFORM 2: J = rho L0 max(1.5 max(Iss, Itt), 0.25 J_torsion)                          (9)
+//   ELFORM 1: the larger of (9) and rho L0^3 kappa G A / (8 (E - kappa G))               (9')
+// The physical lumped value about a transverse axis is rho I L0 / 2; (9) takes three times it
 // (rotary inertia changes the low bending frequencies of a slender member by O((r/lambda)^2),
 // a negligible amount, but it sets the highest element frequencies). With (9) the element's
 // rotational frequencies stay below the axial one (see (10)), so for slender elements the step
-// is LS-DYNA's axial beam step L / c, as for the truss.
+// is LS-DYNA's axial beam step L / c, as for the truss. The one-point element's shear mode is
+// stiffer (kappa G A L / 2 against 6 E I / L): (9') is the inertia that puts it at the axial
+// frequency, the rotary-inertia scaling that explicit codes apply to Hughes-Liu beams. It
+// lowers the first bending frequency of a cantilever of 10 elements by about 0.1 %.
 //
-// TIME STEP. Truss: L / c, c = sqrt(E / rho) (LS-DYNA's rule). Beam: 2 / omega_max with
+// TIME STEP. Truss: L / c, c = sqrt(E / rho) (LS-DYNA's rule). Beams: 2 / omega_max with
 // omega_max the highest frequency of the free element (an upper bound of the mesh's highest
-// frequency, Irons' theorem), which for the lumped masses m = rho A L0 / 2, J from (9) is the
+// frequency, Irons' theorem), which for the lumped masses m = rho A L0 / 2 and J is the
 // largest of (derived from (6) in the chord-relative coordinates):
 //   axial    omega^2 = 2 E A / (L m)            (-> dt = L / c)
 //   torsion  omega^2 = 2 G J_t / (L J)
 //   bending, per plane: antisymmetric  omega^2 = 2 E I / (L J)
-//                       symmetric      omega^2 = 6 k0 (1 / J + 4 / (m L^2))             (10)
-// For slender elements the axial value governs (dt = L / c); stubby elements get a smaller
-// step from the symmetric bending-shear mode.
-//
-// ELFORM 1 (Hughes-Liu with cross-section integration) is not implemented:
-// initialize_beam_block rejects it with a SolverError naming the part.
+//                       symmetric      omega^2 = K (1 / J + 4 / (m L^2))                 (10)
+// with K = 6 k0 (ELFORM 2) or kappa G A L / 2 (ELFORM 1). For slender elements the axial value
+// governs (dt = L / c, as LS-DYNA's beam step); stubby shear-stiff elements get a smaller step
+// from the symmetric bending-shear mode (tested against a numerical eigen-analysis).
 #include "element/beam_block.hpp"
 
 #include <fmt/format.h>
@@ -93,6 +130,7 @@
 #include <array>
 #include <cmath>
 
+#include "material/j2_plasticity.hpp"
 #include "material/registry.hpp"
 #include "model/error.hpp"
 
@@ -212,9 +250,17 @@ inline SectionStiffness section_stiffness(const BeamBlock& b) {
   return k;
 }
 
-// Lumped rotational inertia of one node of a resultant beam, eq. (9) of the header comment.
+// Lumped rotational inertia of one node, eqs. (9) and (9') of the header comment.
 inline double node_rotational_inertia(const BeamBlock& b, double length0) {
-  return b.material.rho * length0 * std::max(1.5 * std::max(b.iss, b.itt), 0.25 * b.torsion);
+  const double rho = b.material.rho;
+  double j = rho * length0 * std::max(1.5 * std::max(b.iss, b.itt), 0.25 * b.torsion);
+  if (b.elform == 1) {
+    const SectionStiffness k = section_stiffness(b);
+    const double e = b.material.young;
+    const double kg = k.kga / b.area;
+    j = std::max(j, rho * length0 * length0 * length0 * k.kga / (8.0 * std::max(e - kg, 0.1 * e)));
+  }
+  return j;
 }
 
 // Shear parameter phi = 12 E I / (kappa G A L^2) of eq. (6); 0 without shear flexibility.
@@ -222,13 +268,57 @@ inline double shear_parameter(double ei, double kga, double length) {
   return kga > 0.0 ? 12.0 * ei / (kga * length * length) : 0.0;
 }
 
+// The uniaxial stress update of the header comment (MATERIALS) at one point. eps_p and back
+// are null for an elastic material.
+struct Uniaxial {
+  double young = 0.0;
+  const material::PlasticParameters* plastic = nullptr;  // null: elastic
+};
+
+inline void uniaxial_update(const Uniaxial& m, double de, double dt, double& sigma, double* eps_p,
+                            double* back) {
+  sigma += m.young * de;
+  if (!m.plastic) return;
+  const material::PlasticParameters& p = *m.plastic;
+  const double xi = sigma - *back;
+  const double magnitude = std::fabs(xi);
+  const double k = dt > 0.0 ? material::j2::rate_factor(p, std::fabs(de) / dt) : 1.0;
+  double slope = 0.0;
+  const double yield = k * material::j2::static_yield(p, *eps_p, &slope);
+  if (magnitude <= yield) return;
+  const double stiff = m.young + p.kinematic_modulus;
+  // Newton on g(dl) = |xi| - stiff dl - k sigma_y(eps_p + dl), decreasing in dl for a
+  // hardening curve; exact after one iteration for a linear law (piecewise linear: a few).
+  double dl = (magnitude - yield) / (stiff + k * slope);
+  for (int it = 0; it < 30; ++it) {
+    double h = 0.0;
+    const double g = magnitude - stiff * dl - k * material::j2::static_yield(p, *eps_p + dl, &h);
+    const double dg = stiff + k * h;
+    if (!(dg > 0.0)) break;
+    const double step = g / dg;
+    dl = std::max(dl + step, 0.0);
+    if (std::fabs(step) <= 1e-14 * (dl + 1e-300) || std::fabs(g) <= 1e-13 * yield) break;
+  }
+  const double sign = xi > 0.0 ? 1.0 : -1.0;
+  sigma -= m.young * dl * sign;
+  *back += p.kinematic_modulus * dl * sign;
+  *eps_p += dl;
+}
+
 inline bool finite3(const double a[3]) {
   return std::isfinite(a[0]) && std::isfinite(a[1]) && std::isfinite(a[2]);
 }
 
 // One element of either formulation. Returns false (forces zeroed) for a collapsed element.
+// Pointers to the per-point history of the J2 materials (null for elastic blocks).
+struct HistoryPointers {
+  double* eps_p = nullptr;
+  double* back = nullptr;
+};
+
 inline bool beam_element(BeamBlock& b, std::size_t e, const NodalView& nv, const RotationalView& rv,
-                         double dt, const SectionStiffness& k, bool truss) {
+                         double dt, const SectionStiffness& k, const Uniaxial& um,
+                         const HistoryPointers& hp) {
   double* f = &b.force[kBeamSlot * e];
   const std::int32_t n1 = b.conn[2 * e], n2 = b.conn[2 * e + 1];
   const double c1[3] = {nv.x[n2] - nv.x[n1], nv.y[n2] - nv.y[n1], nv.z[n2] - nv.z[n1]};
@@ -247,9 +337,10 @@ inline bool beam_element(BeamBlock& b, std::size_t e, const NodalView& nv, const
   double* frame = &b.frame[9 * e];
   double* r = &b.resultant[6 * e];
 
-  if (truss) {
+  if (b.elform == 3) {
     double& sigma = b.stress[e];
-    sigma += b.material.young * strain_increment;
+    uniaxial_update(um, strain_increment, dt, sigma, hp.eps_p ? hp.eps_p + e : nullptr,
+                    hp.back ? hp.back + e : nullptr);
     const double axial = sigma * b.area;
     r[0] = axial;
     for (int i = 0; i < 3; ++i) {
@@ -303,16 +394,39 @@ inline bool beam_element(BeamBlock& b, std::size_t e, const NodalView& nv, const
   const double dt1 = dot(d1, t), dt2 = dot(d2, t);
   const double dtau = dot(th2, e1) - dot(th1, e1);
 
-  // Resultant increments, eqs. (6)-(8) per bending plane.
-  const double phi_s = shear_parameter(k.ei_s, k.kga, length_mid);  // bending about s
-  const double phi_t = shear_parameter(k.ei_t, k.kga, length_mid);  // bending about t
-  const double l2 = length_mid * length_mid;
-  r[0] += k.ea * strain_increment;                            // N
-  r[1] += 6.0 * k.ei_t / (l2 * (1.0 + phi_t)) * (dt1 + dt2);  // Qs (bending about t)
-  r[2] += 6.0 * k.ei_s / (l2 * (1.0 + phi_s)) * (ds1 + ds2);  // Qt (bending about s)
-  r[3] += k.gj * dtau / length_mid;                           // T
-  r[4] += k.ei_s * (ds2 - ds1) / length_mid;                  // Ms
-  r[5] += k.ei_t * (dt2 - dt1) / length_mid;                  // Mt
+  if (b.elform == 2) {
+    // Resultant increments, eqs. (6)-(8) per bending plane.
+    const double phi_s = shear_parameter(k.ei_s, k.kga, length_mid);  // bending about s
+    const double phi_t = shear_parameter(k.ei_t, k.kga, length_mid);  // bending about t
+    const double l2 = length_mid * length_mid;
+    r[0] += k.ea * strain_increment;                            // N
+    r[1] += 6.0 * k.ei_t / (l2 * (1.0 + phi_t)) * (dt1 + dt2);  // Qs (bending about t)
+    r[2] += 6.0 * k.ei_s / (l2 * (1.0 + phi_s)) * (ds1 + ds2);  // Qt (bending about s)
+    r[3] += k.gj * dtau / length_mid;                           // T
+    r[4] += k.ei_s * (ds2 - ds1) / length_mid;                  // Ms
+    r[5] += k.ei_t * (dt2 - dt1) / length_mid;                  // Mt
+  } else {
+    // ELFORM 1: section points, eq. (11); shear and torsion elastic resultants.
+    const double dkappa_s = (ds2 - ds1) / length_mid, dkappa_t = (dt2 - dt1) / length_mid;
+    const std::size_t np = b.section_weight.size();
+    double* sigma = &b.stress[np * e];
+    double axial = 0.0, ms = 0.0, mt = 0.0;
+    for (std::size_t q = 0; q < np; ++q) {
+      const double ps = b.section_s[q], pt = b.section_t[q], w = b.section_weight[q];
+      const double de = strain_increment - ps * dkappa_t + pt * dkappa_s;
+      uniaxial_update(um, de, dt, sigma[q], hp.eps_p ? hp.eps_p + np * e + q : nullptr,
+                      hp.back ? hp.back + np * e + q : nullptr);
+      axial += w * sigma[q];
+      ms += w * sigma[q] * pt;
+      mt -= w * sigma[q] * ps;
+    }
+    r[0] = axial;
+    r[1] += 0.5 * k.kga * (dt1 + dt2);  // Qs
+    r[2] += 0.5 * k.kga * (ds1 + ds2);  // Qt
+    r[3] += k.gj * dtau / length_mid;   // T
+    r[4] = ms;
+    r[5] = mt;
+  }
 
   // Nodal forces and moments from the power of the resultants (header comment).
   const double axial = r[0], qs = r[1], qt = r[2], torque = r[3], ms = r[4], mt = r[5];
@@ -340,26 +454,89 @@ void initialize_beam_block(BeamBlock& block, const NodalView& nodes) {
   if (block.conn.size() != 2 * n)
     throw part_error(fmt::format("{} elements but {} connectivity entries (expected 2 each)", n,
                                  block.conn.size()));
-  if (block.elform == 1)
-    throw part_error(
-        "the Hughes-Liu beam with cross-section integration (ELFORM 1) is not implemented; use "
-        "ELFORM 2 (resultant beam) or 3 (truss)");
-  if (block.elform != 2 && block.elform != 3)
-    throw part_error("unsupported beam formulation (supported: ELFORM 2, 3)");
-  if (!block.rigid &&
-      block.material_index != material::material_index(model::MaterialKind::Elastic))
-    throw part_error("beams and trusses support *MAT_ELASTIC only");
+  if (block.elform != 1 && block.elform != 2 && block.elform != 3)
+    throw part_error("unsupported beam formulation (supported: ELFORM 1, 2, 3)");
   const bool truss = block.elform == 3;
+  const int elastic = material::material_index(model::MaterialKind::Elastic);
+  const bool plastic =
+      block.material_index == material::material_index(model::MaterialKind::PlasticKinematic) ||
+      block.material_index ==
+          material::material_index(model::MaterialKind::PiecewiseLinearPlasticity);
+  if (!block.rigid) {
+    if (block.elform == 2 && block.material_index != elastic)
+      throw part_error(
+          "the resultant beam supports *MAT_ELASTIC only (use ELFORM 1 or 3 for "
+          "*MAT_PLASTIC_KINEMATIC and *MAT_PIECEWISE_LINEAR_PLASTICITY)");
+    if (block.material_index != elastic && !plastic)
+      throw part_error(
+          "beams and trusses support *MAT_ELASTIC, *MAT_PLASTIC_KINEMATIC and "
+          "*MAT_PIECEWISE_LINEAR_PLASTICITY only");
+    if (plastic && (block.plastic.vp == 1 || block.plastic.additive_overstress))
+      throw part_error("viscoplastic rate form VP = 1 is not implemented for beams");
+    if (plastic && block.plastic.failure_strain > 0.0)
+      throw part_error("failure strain (element deletion) is not implemented for beams");
+  }
+  if (block.elform == 1) {
+    // Section points and properties, header comment (ELFORM 1).
+    const auto mean_dimension = [](double d1, double d2) {
+      return d2 > 0.0 ? 0.5 * (d1 + d2) : d1;
+    };
+    const double ds = mean_dimension(block.ts1, block.ts2),
+                 dt = mean_dimension(block.tt1, block.tt2);
+    block.section_s.clear();
+    block.section_t.clear();
+    block.section_weight.clear();
+    if (block.cross_section == BeamCrossSection::kRectangular) {
+      if (!(ds > 0.0) || !(dt > 0.0))
+        throw part_error(fmt::format(
+            "rectangular section (CST 0) needs positive TS1 and TT1; got {:.6g}, {:.6g}", block.ts1,
+            block.tt1));
+      block.area = ds * dt;
+      block.iss = ds * dt * dt * dt / 12.0;
+      block.itt = dt * ds * ds * ds / 12.0;
+      const double a = std::max(ds, dt), b = std::min(ds, dt), r = b / a;
+      block.torsion = a * b * b * b * (1.0 / 3.0 - 0.21 * r * (1.0 - r * r * r * r / 12.0));
+      const double g = 1.0 / (2.0 * std::sqrt(3.0));
+      for (const double gs : {-g, g})
+        for (const double gt : {-g, g}) {
+          block.section_s.push_back(gs * ds);
+          block.section_t.push_back(gt * dt);
+          block.section_weight.push_back(0.25 * block.area);
+        }
+    } else {
+      const double outer = 0.5 * ds, inner = 0.5 * dt;
+      if (!(outer > 0.0) || inner < 0.0 || !(inner < outer))
+        throw part_error(fmt::format(
+            "tubular section (CST 1) needs outer diameter TS1 > inner diameter TT1 >= 0; got "
+            "{:.6g}, {:.6g}",
+            block.ts1, block.tt1));
+      const double pi = 3.14159265358979323846;
+      block.area = pi * (outer * outer - inner * inner);
+      block.iss = block.itt = 0.25 * block.area * (outer * outer + inner * inner);
+      block.torsion = 2.0 * block.iss;
+      const double rp = std::sqrt(0.5 * (outer * outer + inner * inner));
+      for (int q = 0; q < 8; ++q) {
+        const double angle = 2.0 * pi * q / 8.0;
+        block.section_s.push_back(rp * std::cos(angle));
+        block.section_t.push_back(rp * std::sin(angle));
+        block.section_weight.push_back(block.area / 8.0);
+      }
+    }
+  }
   if (!(block.area > 0.0))
     throw part_error(fmt::format("cross-section area A = {:.6g} must be positive", block.area));
   if (!truss) {
     if (block.rotation_conn.size() != 2 * n)
       throw part_error(fmt::format("{} elements but {} rotational indices (expected 2 each)", n,
                                    block.rotation_conn.size()));
+    for (std::size_t i = 0; i < 2 * n; ++i)
+      if (block.rotation_conn[i] < 0)
+        throw part_error(fmt::format("element {} has no rotational index at its node {}",
+                                     block.element_id[i / 2], i % 2 + 1));
     if (!(block.iss > 0.0) || !(block.itt > 0.0) || !(block.torsion > 0.0))
-      throw part_error(fmt::format(
-          "the resultant beam needs positive ISS, ITT and J (IRR); got {:.6g}, {:.6g}, {:.6g}",
-          block.iss, block.itt, block.torsion));
+      throw part_error(
+          fmt::format("the beam needs positive ISS, ITT and J (IRR); got {:.6g}, {:.6g}, {:.6g}",
+                      block.iss, block.itt, block.torsion));
     if (block.shear_area < 0.0 || block.shear_factor < 0.0)
       throw part_error("shear area SA and shear factor SHRF must not be negative");
   }
@@ -367,10 +544,15 @@ void initialize_beam_block(BeamBlock& block, const NodalView& nodes) {
     throw part_error(fmt::format("{} elements but {} orientation entries (expected 3 each)", n,
                                  block.orientation.size()));
 
+  const std::size_t points = static_cast<std::size_t>(block.points_per_element()) * n;
   block.frame.assign(9 * n, 0.0);
   block.resultant.assign(6 * n, 0.0);
-  block.stress.assign(truss ? n : 0, 0.0);
+  block.stress.assign(points, 0.0);
   block.history.clear();
+  if (plastic && !block.rigid && points > 0) {
+    block.history.push_back({{"effective_plastic_strain", 1, false}, std::vector<double>(points)});
+    block.history.push_back({{"uniaxial_back_stress", 1, false}, std::vector<double>(points)});
+  }
   block.length0.assign(n, 0.0);
   block.length.assign(n, 0.0);
   block.force.assign(kBeamSlot * n, 0.0);
@@ -420,8 +602,15 @@ KernelResult compute_beam_forces(BeamBlock& block, const NodalView& nodes,
                                  const RotationalView& rotations, double dt) {
   std::array<Partial, kMaxThreads> partials;
   const std::int64_t n = static_cast<std::int64_t>(block.size());
-  const bool truss = block.elform == 3;
   const SectionStiffness k = section_stiffness(block);
+  Uniaxial um;
+  um.young = block.material.young;
+  HistoryPointers hp;
+  if (block.history.size() == 2) {
+    um.plastic = &block.plastic;
+    hp.eps_p = block.history[0].values.data();
+    hp.back = block.history[1].values.data();
+  }
   int threads = 1;
 #pragma omp parallel num_threads(thread_count())
   {
@@ -429,7 +618,7 @@ KernelResult compute_beam_forces(BeamBlock& block, const NodalView& nodes,
 #pragma omp for schedule(static)
     for (std::int64_t e = 0; e < n; ++e) {
       const std::size_t ue = static_cast<std::size_t>(e);
-      if (!beam_element(block, ue, nodes, rotations, dt, k, truss))
+      if (!beam_element(block, ue, nodes, rotations, dt, k, um, hp))
         local.record_failure(e, block.length[ue]);
     }
     partials[omp_get_thread_num()] = local;
@@ -472,9 +661,10 @@ KernelResult beam_critical_timestep(const BeamBlock& block, const NodalView& nod
       w2 = std::max(w2, 2.0 * k.gj / (length * j));
       for (const double ei : {k.ei_s, k.ei_t}) {
         const double phi = shear_parameter(ei, k.kga, length);
-        const double k0 = ei / (length * (1.0 + phi));
+        const double symmetric =
+            block.elform == 1 ? 0.5 * k.kga * length : 6.0 * ei / (length * (1.0 + phi));
         w2 = std::max(w2, 2.0 * ei / (length * j));
-        w2 = std::max(w2, 6.0 * k0 * (1.0 / j + 4.0 / (m * length * length)));
+        w2 = std::max(w2, symmetric * (1.0 / j + 4.0 / (m * length * length)));
       }
       local.record_dt(2.0 / std::sqrt(w2), e);
     }
