@@ -197,28 +197,57 @@ inline double norm(const double a[3]) {
 }
 
 // Rotates v by the rotation vector th (Rodrigues' formula, exact finite rotation).
-inline void rotate(const double th[3], double v[3]) {
-  const double angle = norm(th);
-  if (angle == 0.0) return;
-  const double k[3] = {th[0] / angle, th[1] / angle, th[2] / angle};
-  const double c = std::cos(angle), s = std::sin(angle);
-  double kxv[3];
-  cross(k, v, kxv);
-  const double kv = dot(k, v) * (1.0 - c);
-  for (int i = 0; i < 3; ++i) v[i] = v[i] * c + kxv[i] * s + k[i] * kv;
+// Rotation by the rotation vector th in Rodrigues' form R v = v + a th x v + b th x (th x v),
+// a = sin|th| / |th|, b = (1 - cos|th|) / |th|^2. Per-step rotations are tiny, so below
+// |th| = 0.05 the coefficients come from their Taylor series, exact to round-off there (the
+// first omitted terms are |th|^8 / 9! and |th|^8 / 10!), which avoids the libm calls.
+struct Rotation {
+  double th[3];
+  double a, b;
+};
+
+inline Rotation make_rotation(const double th[3]) {
+  Rotation r{{th[0], th[1], th[2]}, 1.0, 0.5};
+  const double q = dot(th, th);
+  if (q < 0.0025) {
+    r.a = 1.0 - q / 6.0 * (1.0 - q / 20.0 * (1.0 - q / 42.0));
+    r.b = 0.5 * (1.0 - q / 12.0 * (1.0 - q / 30.0 * (1.0 - q / 56.0)));
+  } else {
+    const double angle = std::sqrt(q);
+    r.a = std::sin(angle) / angle;
+    r.b = (1.0 - std::cos(angle)) / q;
+  }
+  return r;
+}
+
+inline void rotate(const Rotation& r, double v[3]) {
+  double txv[3], txtxv[3];
+  cross(r.th, v, txv);
+  cross(r.th, txv, txtxv);
+  for (int i = 0; i < 3; ++i) v[i] += r.a * txv[i] + r.b * txtxv[i];
 }
 
 // Rotation vector of the smallest rotation that turns direction a onto direction b (any
-// lengths): angle atan2(|a x b|, a . b) about unit(a x b). Exact for any angle below pi.
+// lengths): angle atan2(|a x b|, a . b) about unit(a x b). Exact for any angle below pi; for
+// small angles (x = |a x b| / a . b < 0.02) atan(x) / x from its series (first omitted term
+// x^10 / 11).
 inline void rotation_between(const double a[3], const double b[3], double out[3]) {
   cross(a, b, out);
-  const double sn = norm(out);
-  if (sn == 0.0) {
+  const double sn2 = dot(out, out);
+  if (sn2 == 0.0) {
     out[0] = out[1] = out[2] = 0.0;
     return;
   }
-  const double angle = std::atan2(sn, dot(a, b));
-  for (int i = 0; i < 3; ++i) out[i] *= angle / sn;
+  const double c = dot(a, b);
+  double scale;
+  if (c > 0.0 && sn2 < 4e-4 * c * c) {
+    const double x2 = sn2 / (c * c);
+    scale = (1.0 - x2 * (1.0 / 3.0 - x2 * (1.0 / 5.0 - x2 * (1.0 / 7.0 - x2 / 9.0)))) / c;
+  } else {
+    const double sn = std::sqrt(sn2);
+    scale = std::atan2(sn, c) / sn;
+  }
+  for (int i = 0; i < 3; ++i) out[i] *= scale;
 }
 
 // A unit vector perpendicular to e1: the global axis least aligned with e1, orthogonalised.
@@ -366,10 +395,11 @@ inline bool beam_element(BeamBlock& b, std::size_t e, const NodalView& nv, const
   double chi[3];
   {
     double a[3] = {frame[0], frame[1], frame[2]};
-    rotate(mean, a);
-    rotate(mean, s);
+    const Rotation turn = make_rotation(mean);
+    rotate(turn, a);
+    rotate(turn, s);
     rotation_between(a, e1, chi);
-    rotate(chi, s);
+    rotate(make_rotation(chi), s);
     const double p = dot(s, e1);
     for (int i = 0; i < 3; ++i) s[i] -= p * e1[i];
     const double sn = norm(s);
