@@ -40,25 +40,32 @@ struct BeamBlock {
 
   // Section (*SECTION_BEAM). Resultant and truss: A, ISS, ITT, J (IRR), SA (shear area).
   double area = 0.0;
-  double iss = 0.0;  // second moment about the local s axis
-  double itt = 0.0;  // second moment about the local t axis
+  double iss = 0.0;      // second moment about the local s axis
+  double itt = 0.0;      // second moment about the local t axis
   double torsion = 0.0;  // J
   double shear_area = 0.0;
   double shear_factor = 1.0;  // SHRF
   // Hughes-Liu: cross-section shape and dimensions at node 1 (s, t) and node 2.
   BeamCrossSection cross_section = BeamCrossSection::kRectangular;
   double ts1 = 0.0, ts2 = 0.0, tt1 = 0.0, tt2 = 0.0;
+  // ELFORM 1: stress points of the mid-length cross-section (filled by initialize_beam_block
+  // from the shape and the mean of the nodal dimensions): coordinates along s and t and
+  // weights (areas). ELFORM 1 also gets area, iss, itt and torsion computed from the section.
+  std::vector<double> section_s, section_t, section_weight;
 
-  std::vector<model::Id> element_id;         // user IDs, size n
-  std::vector<std::int32_t> conn;            // dense node indices, 2 per element
-  std::vector<std::int32_t> rotation_conn;   // rotational indices, 2 per element (-1 truss)
+  std::vector<model::Id> element_id;        // user IDs, size n
+  std::vector<std::int32_t> conn;           // dense node indices, 2 per element
+  std::vector<std::int32_t> rotation_conn;  // rotational indices, 2 per element (-1 truss)
   // Orientation of the local s axis at the reference configuration, 3 per element: from the
   // third node (N3) or the orientation vector of *ELEMENT_BEAM_ORIENTATION; a default
   // perpendicular to the axis otherwise.
   std::vector<double> orientation;
 
   // Per-element state: the co-rotational local frame (9 per element, rows e1 e2 e3, e1 along
-  // the axis), resultants (6 per element: N, Qs, Qt, Mtorsion, Ms, Mt) or stresses per point.
+  // the axis), resultants (6 per element: N, Qs, Qt, Mtorsion, Ms, Mt; every formulation, the
+  // truss only N) and the axial stress per point (truss: 1 per element; ELFORM 1: one per
+  // section point; ELFORM 2: none). History of the J2 materials (truss and ELFORM 1), per
+  // point: "effective_plastic_strain" and "uniaxial_back_stress" (1 component each).
   std::vector<double> frame;
   std::vector<double> resultant;
   std::vector<double> stress;
@@ -68,8 +75,16 @@ struct BeamBlock {
   std::vector<double> force;    // kBeamSlot per element
 
   std::size_t size() const { return element_id.size(); }
+  // Axial stress points per element (truss 1, ELFORM 1 the section points, ELFORM 2 none).
+  int points_per_element() const {
+    return elform == 3 ? 1 : (elform == 1 ? static_cast<int>(section_weight.size()) : 0);
+  }
 };
 
+// Checks the block (formulation, material, section, connectivity), fills ELFORM 1 section
+// points and properties, allocates per-element state and computes reference lengths and the
+// initial local frames. Throws rf::SolverError naming the part (or the element for a zero
+// length or an orientation along the axis).
 void initialize_beam_block(BeamBlock& block, const NodalView& nodes);
 KernelResult compute_beam_forces(BeamBlock& block, const NodalView& nodes,
                                  const RotationalView& rotations, double dt);
