@@ -75,10 +75,18 @@ void run(benchmark::State& state, int nip, int ihq, int material_index) {
       elements * 1e-9, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
-void BM_ShellBltNip2Ihq1(benchmark::State& s) { run(s, 2, 1, 0); }
-void BM_ShellBltNip2Ihq4(benchmark::State& s) { run(s, 2, 4, 0); }
-void BM_ShellBltNip5Ihq1(benchmark::State& s) { run(s, 5, 1, 0); }
-void BM_ShellBltNip5Mat024(benchmark::State& s) { run(s, 5, 1, 2); }
+void BM_ShellBltNip2Ihq1(benchmark::State& s) {
+  run(s, 2, 1, 0);
+}
+void BM_ShellBltNip2Ihq4(benchmark::State& s) {
+  run(s, 2, 4, 0);
+}
+void BM_ShellBltNip5Ihq1(benchmark::State& s) {
+  run(s, 5, 1, 0);
+}
+void BM_ShellBltNip5Mat024(benchmark::State& s) {
+  run(s, 5, 1, 2);
+}
 
 BENCHMARK(BM_ShellBltNip2Ihq1)->Arg(100)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ShellBltNip2Ihq4)->Arg(100)->Unit(benchmark::kMicrosecond);

@@ -238,7 +238,6 @@ inline double plate_wave_speed(const material::ElasticConstants& m) {
   return std::sqrt(m.young / (m.rho * (1.0 - m.poisson * m.poisson)));
 }
 
-
 struct alignas(64) Partial {
   double hourglass_work = 0.0;
   double min_dt = 1e300;
@@ -291,9 +290,9 @@ inline int thread_count() {
 struct BlockConstants {
   double plane_modulus;  // E / (1 - nu^2)
   double nu;
-  double shear;             // G
-  double transverse_shear;  // SHRF G
-  double wave_speed;        // plate wave speed
+  double shear;              // G
+  double transverse_shear;   // SHRF G
+  double wave_speed;         // plate wave speed
   double shear_to_membrane;  // sqrt(K_w / K_m) = sqrt(4 SHRF G / (E' + G))
   int ihq;
   double qm;
@@ -386,7 +385,8 @@ void shell_batch(ShellBlock& block, const BlockConstants& k, std::size_t first, 
     std::size_t n[L], r[L];
     for (int l = 0; l < L; ++l) {
       n[l] = static_cast<std::size_t>(block.conn[4 * elem[l] + static_cast<std::size_t>(I)]);
-      r[l] = static_cast<std::size_t>(block.rotation_conn[4 * elem[l] + static_cast<std::size_t>(I)]);
+      r[l] =
+          static_cast<std::size_t>(block.rotation_conn[4 * elem[l] + static_cast<std::size_t>(I)]);
     }
     p[I][0] = gather<T>(nv.x, n);
     p[I][1] = gather<T>(nv.y, n);
@@ -451,14 +451,16 @@ void shell_batch(ShellBlock& block, const BlockConstants& k, std::size_t first, 
   const double gs_dt = k.transverse_shear * dt;
   for (int q = 0; q < nip; ++q) {
     std::size_t off[L];
-    for (int l = 0; l < L; ++l) off[l] = stride * elem[l] + static_cast<std::size_t>(kShellStress * q);
+    for (int l = 0; l < L; ++l)
+      off[l] = stride * elem[l] + static_cast<std::size_t>(kShellStress * q);
     T sp[5];
     for (int c = 0; c < 5; ++c) sp[c] = gather<T>(block.stress.data() + c, off);
     const T z = block.zeta[q] * half_t;
     const T d[3] = {em[0] + z * kp[0], em[1] + z * kp[1], em[2] + z * kp[2]};
     if constexpr (kHist > 0) {
       double h[kHist];
-      const std::size_t point = static_cast<std::size_t>(nip) * elem[0] + static_cast<std::size_t>(q);
+      const std::size_t point =
+          static_cast<std::size_t>(nip) * elem[0] + static_cast<std::size_t>(q);
       int slot = 0;
       for (std::size_t fi = 0; fi < M::kHistory.size(); ++fi) {
         const int nc = M::kHistory[fi].components;
@@ -528,7 +530,8 @@ void shell_batch(ShellBlock& block, const BlockConstants& k, std::size_t first, 
         hq[m] = old + (k.qm * dt) * kk[m] * qd[m];
         work += 0.5 * (old + hq[m]) * qd[m] * dt;
         for (int l = 0; l < count; ++l)
-          block.hourglass_state[off[l] + static_cast<std::size_t>(m)] = material::get_lane(hq[m], l);
+          block.hourglass_state[off[l] + static_cast<std::size_t>(m)] =
+              material::get_lane(hq[m], l);
       }
     } else {
       // sqrt(K_k M_k), M_k the lumped mass (inertia) of the mode: K_w / K_m and the inertia
@@ -611,7 +614,9 @@ inline void legendre(int n, double x, double& p, double& dp) {
   dp = n * (x * p1 - p0) / (x * x - 1.0);
 }
 
-int distinct_nodes(const std::int32_t* c) { return c[2] == c[3] ? 3 : 4; }
+int distinct_nodes(const std::int32_t* c) {
+  return c[2] == c[3] ? 3 : 4;
+}
 
 }  // namespace
 
@@ -724,9 +729,10 @@ void initialize_shell_block(ShellBlock& block, const NodalView& nodes) {
     for (int I = 0; I < distinct; ++I) {
       const double ti = block.thickness[4 * e + static_cast<std::size_t>(I)];
       if (!(ti > 0.0))
-        throw SolverError(fmt::format("shell element {} of part {}: thickness T{} = {:.6g} is not "
-                                      "positive",
-                                      block.element_id[e], block.part_id, I + 1, ti));
+        throw SolverError(
+            fmt::format("shell element {} of part {}: thickness T{} = {:.6g} is not "
+                        "positive",
+                        block.element_id[e], block.part_id, I + 1, ti));
       tsum += ti;
     }
     block.element_thickness[e] = tsum / distinct;

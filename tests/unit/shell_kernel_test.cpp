@@ -127,8 +127,8 @@ struct Patch {
 Patch make_patch(const double u[3], const double w[3], double t) {
   Patch p;
   const double o[3] = {0.3, -0.2, 0.5};
-  const double pts[9][2] = {{0, 0},   {0.5, 0}, {1, 0},   {0, 0.5}, {0.45, 0.58},
-                            {1, 0.42}, {0, 1},  {0.55, 1}, {1, 1}};
+  const double pts[9][2] = {{0, 0},    {0.5, 0}, {1, 0},    {0, 0.5}, {0.45, 0.58},
+                            {1, 0.42}, {0, 1},   {0.55, 1}, {1, 1}};
   for (const auto& q : pts)
     p.mesh.add_node(o[0] + q[0] * u[0] + q[1] * w[0], o[1] + q[0] * u[1] + q[1] * w[1],
                     o[2] + q[0] * u[2] + q[1] * w[2]);
@@ -201,8 +201,7 @@ TEST(ShellPatch, MembraneLinearFieldGivesUniformPlaneStress) {
     const auto r = m.step(dt);
     ASSERT_FALSE(r.failed);
     // Analytic plane stress in plane axes, then in each element's axes (at X, the mid-step).
-    const double exx = Lab[0][0] * dt, eyy = Lab[1][1] * dt,
-                 gxy = (Lab[0][1] + Lab[1][0]) * dt;
+    const double exx = Lab[0][0] * dt, eyy = Lab[1][1] * dt, gxy = (Lab[0][1] + Lab[1][0]) * dt;
     const double ep = kE / (1 - kNu * kNu), G = kE / (2 * (1 + kNu));
     const double sa = ep * (exx + kNu * eyy), sb = ep * (eyy + kNu * exx), sab = G * gxy;
     double T[3][3];
@@ -280,7 +279,8 @@ TEST_P(ShellBending, UniformCurvatureGivesPlateMoment) {
     double M[3] = {0, 0, 0};
     for (int q = 0; q < nip; ++q) {
       const double z = m.block.zeta[q] * t / 2;
-      for (int k = 0; k < 3; ++k) M[k] += t / 2 * m.block.weight[q] * z * m.block.stress[5 * (nip * e + q) + k];
+      for (int k = 0; k < 3; ++k)
+        M[k] += t / 2 * m.block.weight[q] * z * m.block.stress[5 * (nip * e + q) + k];
     }
     for (int k = 0; k < 3; ++k)
       EXPECT_NEAR(M[k], c.expected_factor * expect[k], 1e-10 * D * kappa) << "element " << e;
@@ -420,12 +420,14 @@ TEST_P(ShellObjectivity, RigidRotationLeavesStressAndEnergyUnchanged) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Rotations, ShellObjectivity,
-    ::testing::Values(RotationCase{false, true, 0, 12, 108.0}, RotationCase{false, true, 1, 12, 108.0},
-                      RotationCase{false, false, 2, 3, 150.0}, RotationCase{false, true, 2, 2, 170.0},
-                      RotationCase{true, true, 0, 10, 95.0}, RotationCase{true, true, 1, 10, 95.0},
-                      RotationCase{true, false, 2, 4, 120.0}));
+INSTANTIATE_TEST_SUITE_P(Rotations, ShellObjectivity,
+                         ::testing::Values(RotationCase{false, true, 0, 12, 108.0},
+                                           RotationCase{false, true, 1, 12, 108.0},
+                                           RotationCase{false, false, 2, 3, 150.0},
+                                           RotationCase{false, true, 2, 2, 170.0},
+                                           RotationCase{true, true, 0, 10, 95.0},
+                                           RotationCase{true, true, 1, 10, 95.0},
+                                           RotationCase{true, false, 2, 4, 120.0}));
 
 // Equibiaxial stretch of a square (equal rates in x and y: sigma_xx = sigma_yy = sigma by
 // symmetry, von Mises stress sigma): with plane stress the bilinear law gives
@@ -485,63 +487,63 @@ TEST(ShellPlasticity, EquibiaxialPlaneStressFollowsBilinearLaw) {
 // monotonic uniaxial curve).
 TEST(ShellPlasticity, UniaxialPlaneStressFollowsBilinearLaw) {
   for (bool kinematic : {false, true}) {
-  ShellMesh m;
-  m.add_node(0, 0, 0);
-  m.add_node(1, 0, 0);
-  m.add_node(1, 1, 0);
-  m.add_node(0, 1, 0);
-  m.add_element({0, 1, 2, 3}, 0.01);
-  set_section(m.block, 1, 2, rf::element::ThroughThicknessRule::kGauss, 1, 0.1);
-  const double sigy = 2.5e8, etan = 1.0e9;
-  const double ep = kE * etan / (kE - etan);
-  m.block.plastic.sigy = sigy;
-  m.block.plastic.isotropic_modulus = kinematic ? 0.0 : ep;
-  m.block.plastic.kinematic_modulus = kinematic ? ep : 0.0;
-  m.block.plastic.linear = true;
-  m.block.plastic.strain = {0.0, 1.0};
-  m.block.plastic.stress = {sigy, sigy + (kinematic ? 0.0 : ep)};
-  m.initialize();
-  const double dt = 1e-5;
-  double lx = 1.0, ly = 1.0;
-  for (int s = 0; s < 400; ++s) {
-    const double nx = lx * std::exp(1.0 * dt);
-    auto trial = [&](double ny, ShellMesh& out) {
-      out = m;
-      const double vx = (nx - lx) / dt, vy = (ny - ly) / dt;
-      out.vx[1] = out.vx[2] = vx;
-      out.vy[2] = out.vy[3] = vy;
-      out.x[1] = out.x[2] = nx;
-      out.y[2] = out.y[3] = ny;
-      EXPECT_FALSE(out.step(dt).failed);
-      return out.block.stress[1];
-    };
-    ShellMesh t0, t1;
-    double y0 = ly * std::exp(-0.3 * dt), y1 = ly * std::exp(-0.5 * dt);
-    double f0 = trial(y0, t0), f1 = trial(y1, t1);
-    for (int it = 0; it < 20 && std::abs(f1) > 1e-3 && f1 != f0; ++it) {
-      const double y2 = y1 - f1 * (y1 - y0) / (f1 - f0);
-      y0 = y1;
-      f0 = f1;
-      y1 = y2;
-      f1 = trial(y1, t1);
+    ShellMesh m;
+    m.add_node(0, 0, 0);
+    m.add_node(1, 0, 0);
+    m.add_node(1, 1, 0);
+    m.add_node(0, 1, 0);
+    m.add_element({0, 1, 2, 3}, 0.01);
+    set_section(m.block, 1, 2, rf::element::ThroughThicknessRule::kGauss, 1, 0.1);
+    const double sigy = 2.5e8, etan = 1.0e9;
+    const double ep = kE * etan / (kE - etan);
+    m.block.plastic.sigy = sigy;
+    m.block.plastic.isotropic_modulus = kinematic ? 0.0 : ep;
+    m.block.plastic.kinematic_modulus = kinematic ? ep : 0.0;
+    m.block.plastic.linear = true;
+    m.block.plastic.strain = {0.0, 1.0};
+    m.block.plastic.stress = {sigy, sigy + (kinematic ? 0.0 : ep)};
+    m.initialize();
+    const double dt = 1e-5;
+    double lx = 1.0, ly = 1.0;
+    for (int s = 0; s < 400; ++s) {
+      const double nx = lx * std::exp(1.0 * dt);
+      auto trial = [&](double ny, ShellMesh& out) {
+        out = m;
+        const double vx = (nx - lx) / dt, vy = (ny - ly) / dt;
+        out.vx[1] = out.vx[2] = vx;
+        out.vy[2] = out.vy[3] = vy;
+        out.x[1] = out.x[2] = nx;
+        out.y[2] = out.y[3] = ny;
+        EXPECT_FALSE(out.step(dt).failed);
+        return out.block.stress[1];
+      };
+      ShellMesh t0, t1;
+      double y0 = ly * std::exp(-0.3 * dt), y1 = ly * std::exp(-0.5 * dt);
+      double f0 = trial(y0, t0), f1 = trial(y1, t1);
+      for (int it = 0; it < 20 && std::abs(f1) > 1e-3 && f1 != f0; ++it) {
+        const double y2 = y1 - f1 * (y1 - y0) / (f1 - f0);
+        y0 = y1;
+        f0 = f1;
+        y1 = y2;
+        f1 = trial(y1, t1);
+      }
+      m = t1;
+      lx = nx;
+      ly = y1;
     }
-    m = t1;
-    lx = nx;
-    ly = y1;
+    const double sigma = m.block.stress[0];
+    const double strain = std::log(lx);
+    EXPECT_NEAR(m.block.stress[1], 0.0, 1e-2);  // vs sigma ~ 3e8
+    const auto* eps = rf::element::find_history(m.block, "effective_plastic_strain");
+    ASSERT_NE(eps, nullptr);
+    const double eps_p = eps->values[0];
+    EXPECT_GT(eps_p, 0.0);
+    EXPECT_NEAR(sigma, sigy + ep * eps_p, 1e-8 * sigma);
+    EXPECT_NEAR(eps_p, strain - sigma / kE, 1e-8 * strain);  // measured 1e-10
+    // Plastic incompressibility + elastic plane stress: the lateral log strain is
+    // -nu sigma / E - eps_p / 2.
+    EXPECT_NEAR(std::log(ly), -kNu * sigma / kE - 0.5 * eps_p, 1e-8 * strain);
   }
-  const double sigma = m.block.stress[0];
-  const double strain = std::log(lx);
-  EXPECT_NEAR(m.block.stress[1], 0.0, 1e-2);  // vs sigma ~ 3e8
-  const auto* eps = rf::element::find_history(m.block, "effective_plastic_strain");
-  ASSERT_NE(eps, nullptr);
-  const double eps_p = eps->values[0];
-  EXPECT_GT(eps_p, 0.0);
-  EXPECT_NEAR(sigma, sigy + ep * eps_p, 1e-8 * sigma);
-  EXPECT_NEAR(eps_p, strain - sigma / kE, 1e-8 * strain);  // measured 1e-10
-  // Plastic incompressibility + elastic plane stress: the lateral log strain is
-  // -nu sigma / E - eps_p / 2.
-  EXPECT_NEAR(std::log(ly), -kNu * sigma / kE - 0.5 * eps_p, 1e-8 * strain);
-}
 }
 
 // Hourglass modes of a square (tau = h): a viscous form opposes the mode's velocity, a
@@ -602,8 +604,8 @@ TEST(ShellHourglass, ModesResistedRigidMotionFree) {
         // QM = 1 stiffness reproduces the in-plane bending energy of u_x = k x y on the
         // square: t k^2 a^4 (E' + G) / 24 with u at the nodes k a^2/4 h (here scaled by QM).
         const double k = 4.0 * c * steps * dt / (a * a);
-        const double exact = t * k * k * std::pow(a, 4) *
-                             (kE / (1 - kNu * kNu) + kE / (2 * (1 + kNu))) / 24.0;
+        const double exact =
+            t * k * k * std::pow(a, 4) * (kE / (1 - kNu * kNu) + kE / (2 * (1 + kNu))) / 24.0;
         EXPECT_NEAR(work, 0.1 * exact, 1e-6 * exact);
       }
     }
@@ -870,7 +872,8 @@ TEST(ShellMass, RotationsDoNotGovernTheStep) {
     }
     Eigen::MatrixXd Ks = 0.5 * (K + K.transpose());
     Eigen::VectorXd minv(24);
-    for (int i = 0; i < 24; ++i) minv(i) = 1.0 / std::sqrt(i % 6 < 3 ? mass[i / 6] : inertia[i / 6]);
+    for (int i = 0; i < 24; ++i)
+      minv(i) = 1.0 / std::sqrt(i % 6 < 3 ? mass[i / 6] : inertia[i / 6]);
     const Eigen::MatrixXd A = minv.asDiagonal() * Ks * minv.asDiagonal();
     auto max_eig = [](const Eigen::MatrixXd& a) {
       return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(a).eigenvalues().maxCoeff();
@@ -1015,8 +1018,8 @@ TEST(ShellDynamics, CantileverStripFirstFrequencyMatchesBeamTheory) {
     prev = vt;
   }
   ASSERT_GE(crossings.size(), 4u);
-  const double measured = 2.0 * (crossings.back() - crossings.front()) /
-                          static_cast<double>(crossings.size() - 1);
+  const double measured =
+      2.0 * (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
   // 20 elements: measured period 0.21% above the beam's (constant curvature per element, the
   // scaled rotary inertia and the transverse shear all lengthen it slightly).
   EXPECT_NEAR(measured / period, 1.0, 0.01) << "measured " << measured << " beam " << period;
@@ -1028,8 +1031,8 @@ TEST(ShellDynamics, CantileverStripFirstFrequencyMatchesBeamTheory) {
 // sigma_x = 2 SIGY / sqrt(3) (von Mises, plane stress); the moment tends to the limit moment
 // M_p = (2 / sqrt 3) SIGY t^2 / 4, exactly so up to the rule's quadrature of |z|.
 TEST(ShellPlasticity, CylindricalBendingReachesLimitMoment) {
-  for (auto rule : {rf::element::ThroughThicknessRule::kGauss,
-                    rf::element::ThroughThicknessRule::kLobatto}) {
+  for (auto rule :
+       {rf::element::ThroughThicknessRule::kGauss, rf::element::ThroughThicknessRule::kLobatto}) {
     ShellMesh m;
     const double a = 0.1, t = 0.01, sigy = 2.5e8;
     m.add_node(-a / 2, -a / 2, 0);
