@@ -494,6 +494,55 @@ TEST(BeamKernelIntegrated, FreeVibrationFrequencyAndEnergyConservation) {
   EXPECT_LT(fine.energy_drift, 1e-6);
 }
 
+// Large rotations: a cantilever under a tip moment M about the fixed y axis bends into a
+// circular arc of radius R = E I / M (the elastica under an end moment, exact for any
+// rotation). M = pi E I / L rolls it into a half circle: the tip ends at (0, 0, -2 L / pi),
+// turned by pi. The moment is ramped up and held with mass-proportional damping. The discrete
+// arc (chords of length L / n turning by M L / (n E I)) differs from the continuous one by
+// O(1 / n^2): about 1e-3 of L for n = 20.
+TEST(BeamKernelResultant, TipMomentRollsTheCantileverIntoAHalfCircle) {
+  for (int elform : {2, 1}) {
+    const int n = 20;
+    const double len = 1.0;
+    // Bending about the WEAK axis (s, the 0.03 side along s): about the strong axis this moment
+    // is far above the lateral-torsional buckling moment, and the beam does buckle sideways
+    // (ELFORM 1, whose section sums break the symmetry at round-off level).
+    BeamModel m = cantilever(n, len, 0.03, 0.02, elform);
+    m.initialize();
+    clamp(m, 0);
+    const double ei = kE * m.block.iss;
+    const double moment = std::numbers::pi * ei / len;
+    const double omega1 = cantilever_omega1(ei, kRho * m.block.area, len);
+    m.damping = 2.0 * omega1;
+    const double dt = 0.9 * stable_dt(m);
+    const double ramp = 10.0 / omega1;
+    const int steps = static_cast<int>((ramp + 60.0 / omega1) / dt);
+    double rotation = 0.0;  // tip rotation about y (the axis stays y)
+    for (int s = 0; s < steps; ++s) {
+      m.fext[6 * n + 4] = moment * std::min(1.0, s * dt / ramp);
+      m.step(dt);
+      rotation += m.wy[n] * dt;
+    }
+    const double tip[3] = {m.x[n], m.y[n], m.z[n]};
+    std::printf(
+        "[measured] ELFORM %d half circle: tip (%.5f, %.2g, %.5f) vs (0, 0, %.5f); "
+        "rotation %.6f vs pi\n",
+        elform, tip[0], tip[1], tip[2], -2.0 * len / std::numbers::pi, rotation);
+    EXPECT_NEAR(tip[0], 0.0, 3e-3 * len);
+    EXPECT_NEAR(tip[1], 0.0, 1e-9 * len);
+    EXPECT_NEAR(tip[2], -2.0 * len / std::numbers::pi, 3e-3 * len);
+    // The discrete arc exactly: n chords of length L / n, each turned by pi / n from the
+    // previous (by pi / 2n at the clamp), span the diameter 2 R_n with L / n = 2 R_n sin(pi/2n).
+    EXPECT_NEAR(tip[2], -len / n / std::sin(std::numbers::pi / (2.0 * n)), 1e-5 * len);
+    EXPECT_NEAR(rotation, std::numbers::pi, 1e-3);
+    // Pure bending: every element carries M about s (s stays y), no axial or shear force.
+    for (int e = 0; e < n; ++e) {
+      EXPECT_NEAR(m.block.resultant[6 * e + 4], moment, 1e-3 * moment) << "element " << e;
+      EXPECT_NEAR(m.block.frame[9 * e + 4], 1.0, 1e-9);
+    }
+  }
+}
+
 TEST(BeamKernelResultant, RigidRotationsStayStressFree) {
   const std::array<std::array<double, 3>, 3> axes = {
       {{1.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, {0.3, -0.8, 0.5}}};
@@ -772,6 +821,34 @@ TEST(BeamKernelTruss, PlasticKinematicBarFollowsUniaxialMixedHardening) {
   std::printf("[measured] plastic bar reversed to -0.5 %%: sigma %.6g vs %.6g\n", b.stress[0],
               sigma2);
   EXPECT_NEAR(b.stress[0], sigma2, 1e-5 * std::fabs(sigma2));
+}
+
+// Cowper-Symonds rate factor (VP 0) on a truss stretched at a constant logarithmic strain rate:
+// perfectly plastic, so the flow stress is SIGY (1 + (rate / C)^(1 / P)).
+TEST(BeamKernelTruss, CowperSymondsFlowStressAtConstantRate) {
+  BeamModel m = chain(1, {1.0, 0.0, 0.0}, 1.0, 3);
+  BeamBlock& b = m.block;
+  b.area = 1e-4;
+  b.material_index = material::material_index(model::MaterialKind::PlasticKinematic);
+  const double sigy = 250e6, rate = 20.0, c = 40.4, pp = 5.0;
+  b.plastic.linear = true;
+  b.plastic.sigy = sigy;
+  b.plastic.strain = {0.0, 1.0};
+  b.plastic.stress = {sigy, sigy};
+  b.plastic.rate_model = material::RateModel::kCowperSymonds;
+  b.plastic.rate_c = c;
+  b.plastic.rate_p = pp;
+  m.initialize();
+  const double dt = 1e-6;
+  for (int s = 1; s <= 1000; ++s) {  // log strain 0.02 at 20 / s
+    const double l = std::exp(rate * dt * s);
+    m.vx[1] = (l - m.x[1]) / dt;
+    m.x[1] = l;
+    m.forces(dt);
+  }
+  const double reference = sigy * (1.0 + std::pow(rate / c, 1.0 / pp));
+  std::printf("[measured] Cowper-Symonds truss: sigma %.8g vs %.8g\n", b.stress[0], reference);
+  EXPECT_NEAR(b.stress[0], reference, 1e-6 * reference);
 }
 
 // Piecewise-linear hardening (*MAT_024 table, no kinematic part): on monotonic loading the
