@@ -494,6 +494,55 @@ TEST(BeamKernelIntegrated, FreeVibrationFrequencyAndEnergyConservation) {
   EXPECT_LT(fine.energy_drift, 1e-6);
 }
 
+// Large rotations: a cantilever under a tip moment M about the fixed y axis bends into a
+// circular arc of radius R = E I / M (the elastica under an end moment, exact for any
+// rotation). M = pi E I / L rolls it into a half circle: the tip ends at (0, 0, -2 L / pi),
+// turned by pi. The moment is ramped up and held with mass-proportional damping. The discrete
+// arc (chords of length L / n turning by M L / (n E I)) differs from the continuous one by
+// O(1 / n^2): about 1e-3 of L for n = 20.
+TEST(BeamKernelResultant, TipMomentRollsTheCantileverIntoAHalfCircle) {
+  for (int elform : {2, 1}) {
+    const int n = 20;
+    const double len = 1.0;
+    // Bending about the WEAK axis (s, the 0.03 side along s): about the strong axis this moment
+    // is far above the lateral-torsional buckling moment, and the beam does buckle sideways
+    // (ELFORM 1, whose section sums break the symmetry at round-off level).
+    BeamModel m = cantilever(n, len, 0.03, 0.02, elform);
+    m.initialize();
+    clamp(m, 0);
+    const double ei = kE * m.block.iss;
+    const double moment = std::numbers::pi * ei / len;
+    const double omega1 = cantilever_omega1(ei, kRho * m.block.area, len);
+    m.damping = 2.0 * omega1;
+    const double dt = 0.9 * stable_dt(m);
+    const double ramp = 10.0 / omega1;
+    const int steps = static_cast<int>((ramp + 60.0 / omega1) / dt);
+    double rotation = 0.0;  // tip rotation about y (the axis stays y)
+    for (int s = 0; s < steps; ++s) {
+      m.fext[6 * n + 4] = moment * std::min(1.0, s * dt / ramp);
+      m.step(dt);
+      rotation += m.wy[n] * dt;
+    }
+    const double tip[3] = {m.x[n], m.y[n], m.z[n]};
+    std::printf(
+        "[measured] ELFORM %d half circle: tip (%.5f, %.2g, %.5f) vs (0, 0, %.5f); "
+        "rotation %.6f vs pi\n",
+        elform, tip[0], tip[1], tip[2], -2.0 * len / std::numbers::pi, rotation);
+    EXPECT_NEAR(tip[0], 0.0, 3e-3 * len);
+    EXPECT_NEAR(tip[1], 0.0, 1e-9 * len);
+    EXPECT_NEAR(tip[2], -2.0 * len / std::numbers::pi, 3e-3 * len);
+    // The discrete arc exactly: n chords of length L / n, each turned by pi / n from the
+    // previous (by pi / 2n at the clamp), span the diameter 2 R_n with L / n = 2 R_n sin(pi/2n).
+    EXPECT_NEAR(tip[2], -len / n / std::sin(std::numbers::pi / (2.0 * n)), 1e-5 * len);
+    EXPECT_NEAR(rotation, std::numbers::pi, 1e-3);
+    // Pure bending: every element carries M about s (s stays y), no axial or shear force.
+    for (int e = 0; e < n; ++e) {
+      EXPECT_NEAR(m.block.resultant[6 * e + 4], moment, 1e-3 * moment) << "element " << e;
+      EXPECT_NEAR(m.block.frame[9 * e + 4], 1.0, 1e-9);
+    }
+  }
+}
+
 TEST(BeamKernelResultant, RigidRotationsStayStressFree) {
   const std::array<std::array<double, 3>, 3> axes = {
       {{1.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, {0.3, -0.8, 0.5}}};
@@ -526,6 +575,56 @@ TEST(BeamKernelResultant, RigidRotationsStayStressFree) {
                                 k[i] * ky * (1.0 - std::cos(angle));
         EXPECT_NEAR(m.block.frame[9 * e + 3 + i], expected, 1e-9);
       }
+    }
+  }
+}
+
+// Objectivity of a stressed beam: impose stretch, bending in both planes, shear and twist in
+// one kinematic step, then turn the whole model rigidly by 1.25 turns about an oblique axis.
+// The resultants (stored in the co-rotational frame) must not change, and the nodal forces
+// must turn with the body: f' = R f.
+TEST(BeamKernelResultant, StressedBeamRotatedRigidlyKeepsItsResultants) {
+  for (int elform : {2, 1}) {
+    BeamModel m = cantilever(2, 1.0, 0.02, 0.03, elform);
+    m.initialize();
+    const double d[3][6] = {{0.0, 0.0, 0.0, 0.0, 0.0, 0.0},
+                            {1e-4, 2e-3, -1e-3, 4e-3, 1e-3, -2e-3},
+                            {3e-4, 1e-3, 2e-3, -3e-3, 2e-3, 5e-3}};
+    for (std::size_t n = 0; n < 3; ++n) {
+      m.vx[n] = d[n][0];
+      m.vy[n] = d[n][1];
+      m.vz[n] = d[n][2];
+      m.wx[n] = d[n][3];
+      m.wy[n] = d[n][4];
+      m.wz[n] = d[n][5];
+      m.x[n] += d[n][0];
+      m.y[n] += d[n][1];
+      m.z[n] += d[n][2];
+    }
+    m.forces(1.0);
+    const std::vector<double> r0 = m.block.resultant, f0 = m.block.force;
+    double scale = 0.0;
+    for (double v : r0) scale = std::max(scale, std::fabs(v));
+    for (int i = 0; i < 6; ++i) ASSERT_GT(std::fabs(r0[i]), 1e-6 * scale) << "component " << i;
+    const std::array<double, 3> axis = {0.3, -0.8, 0.5};
+    const double rate = 100.0, dt = 2.0 * std::numbers::pi / rate / 4000.0;
+    spin(m, axis, {0.1, 0.2, 0.3}, rate, dt, 5000);  // 1.25 turns
+    for (std::size_t i = 0; i < r0.size(); ++i)
+      EXPECT_NEAR(m.block.resultant[i], r0[i], 1e-9 * scale) << "ELFORM " << elform << " " << i;
+    // Forces turned by R (Rodrigues about the unit axis, angle rate dt 5000 = 2.5 pi).
+    const double an = std::sqrt(0.09 + 0.64 + 0.25);
+    const double k[3] = {axis[0] / an, axis[1] / an, axis[2] / an};
+    const double angle = rate * dt * 5000, c = std::cos(angle), sn = std::sin(angle);
+    double fscale = 0.0;
+    for (double v : f0) fscale = std::max(fscale, std::fabs(v));
+    for (std::size_t v = 0; v < f0.size() / 3; ++v) {
+      const double* p = &f0[3 * v];
+      const double kp = k[0] * p[0] + k[1] * p[1] + k[2] * p[2];
+      const double kxp[3] = {k[1] * p[2] - k[2] * p[1], k[2] * p[0] - k[0] * p[2],
+                             k[0] * p[1] - k[1] * p[0]};
+      for (int i = 0; i < 3; ++i)
+        EXPECT_NEAR(m.block.force[3 * v + i], p[i] * c + kxp[i] * sn + k[i] * kp * (1.0 - c),
+                    1e-9 * fscale);
     }
   }
 }
@@ -774,6 +873,34 @@ TEST(BeamKernelTruss, PlasticKinematicBarFollowsUniaxialMixedHardening) {
   EXPECT_NEAR(b.stress[0], sigma2, 1e-5 * std::fabs(sigma2));
 }
 
+// Cowper-Symonds rate factor (VP 0) on a truss stretched at a constant logarithmic strain rate:
+// perfectly plastic, so the flow stress is SIGY (1 + (rate / C)^(1 / P)).
+TEST(BeamKernelTruss, CowperSymondsFlowStressAtConstantRate) {
+  BeamModel m = chain(1, {1.0, 0.0, 0.0}, 1.0, 3);
+  BeamBlock& b = m.block;
+  b.area = 1e-4;
+  b.material_index = material::material_index(model::MaterialKind::PlasticKinematic);
+  const double sigy = 250e6, rate = 20.0, c = 40.4, pp = 5.0;
+  b.plastic.linear = true;
+  b.plastic.sigy = sigy;
+  b.plastic.strain = {0.0, 1.0};
+  b.plastic.stress = {sigy, sigy};
+  b.plastic.rate_model = material::RateModel::kCowperSymonds;
+  b.plastic.rate_c = c;
+  b.plastic.rate_p = pp;
+  m.initialize();
+  const double dt = 1e-6;
+  for (int s = 1; s <= 1000; ++s) {  // log strain 0.02 at 20 / s
+    const double l = std::exp(rate * dt * s);
+    m.vx[1] = (l - m.x[1]) / dt;
+    m.x[1] = l;
+    m.forces(dt);
+  }
+  const double reference = sigy * (1.0 + std::pow(rate / c, 1.0 / pp));
+  std::printf("[measured] Cowper-Symonds truss: sigma %.8g vs %.8g\n", b.stress[0], reference);
+  EXPECT_NEAR(b.stress[0], reference, 1e-6 * reference);
+}
+
 // Piecewise-linear hardening (*MAT_024 table, no kinematic part): on monotonic loading the
 // stress is the curve at the plastic strain, eps_p = eps - sigma / E (log strain); solved by
 // hand for a point on the second segment.
@@ -876,6 +1003,18 @@ TEST(BeamKernelInput, ZeroLengthAndAxialOrientationAreErrorsNamingTheElement) {
   rectangle(q.block, 0.02, 0.03);
   q.block.material_index = material::material_index(model::MaterialKind::PlasticKinematic);
   EXPECT_THROW(q.initialize(), SolverError);  // resultant beam: elastic only
+  // ELFORM 1 sections: a rectangle needs both sides, a tube an inner diameter below the outer.
+  BeamModel r = chain(1, {1.0, 0.0, 0.0}, 1.0, 1);
+  r.block.ts1 = 0.02;
+  EXPECT_THROW(r.initialize(), SolverError);
+  BeamModel t = chain(1, {1.0, 0.0, 0.0}, 1.0, 1);
+  t.block.cross_section = BeamCrossSection::kTubular;
+  t.block.ts1 = 0.02;
+  t.block.tt1 = 0.02;
+  EXPECT_THROW(t.initialize(), SolverError);
+  BeamModel u = chain(1, {1.0, 0.0, 0.0}, 1.0, 4);
+  rectangle(u.block, 0.02, 0.03);
+  EXPECT_THROW(u.initialize(), SolverError);  // ELFORM 4 and up: not implemented
 }
 
 TEST(BeamKernelResultant, ResultsDoNotDependOnTheThreadCount) {
