@@ -91,11 +91,14 @@
 //    wave speed c = sqrt(E / (rho (1 - nu^2))).
 //
 // 9. Lumped mass: rho t A0 / 4 per node (triangles: / 3 per distinct node). Rotary inertia per
-//    node m (A0 / 8 + t^2 / 12): the t^2/12 part is the physical rotary inertia of the slab, the
-//    A0 / 8 part scales it up (as BLT and LS-DYNA scale shell rotary inertia) so that the
+//    node m (A0 / 4 + t^2 / 12): the t^2/12 part is the physical rotary inertia of the slab, the
+//    A0 / 4 part scales it up (as BLT and LS-DYNA scale shell rotary inertia) so that the
 //    rotational frequencies, the transverse-shear one N_I-coupled over the element being the
 //    highest (about SHRF G t A / (4 I)), stay below the membrane frequency: checked in
-//    tests/unit/shell_kernel_test.cpp (RotationsDoNotGovernTheStep).
+//    tests/unit/shell_kernel_test.cpp (RotationsDoNotGovernTheStep). A0 / 8 was enough for a
+//    free element but not for a clamped strip one element wide at TSSFAC 0.9 (the uniform-
+//    rotation shear mode then sits at about 0.91 of the membrane limit, sqrt(8 SHRF G / rho) / h
+//    against 2 c / h, and coupled with w it went unstable): A0 / 4 puts it at 0.65.
 #include "element/shell_block.hpp"
 
 #include <fmt/format.h>
@@ -539,7 +542,7 @@ void shell_batch(ShellBlock& block, const BlockConstants& k, std::size_t first, 
       const T mass = block.material.rho * 0.25 * t * area0;
       const T cm = k.qm * tsqrt(km * mass * tt);
       const T cw = cm * k.shear_to_membrane;
-      const T cr = cm * t * tsqrt((area0 * (1.0 / 8.0) + t * t * (1.0 / 12.0)) * (1.0 / 12.0));
+      const T cr = cm * t * tsqrt((area0 * (1.0 / 4.0) + t * t * (1.0 / 12.0)) * (1.0 / 12.0));
       const T cc[5] = {cm, cm, cw, cr, cr};
       for (int m = 0; m < 5; ++m) {
         hq[m] = cc[m] * qd[m];
@@ -832,7 +835,7 @@ void add_shell_lumped_mass(const ShellBlock& block, std::vector<double>& nodal_m
     const double t = block.element_thickness[e];
     const double a = block.area0[e];
     const double m = block.material.rho * t * a / distinct;
-    const double inertia = m * (a / 8.0 + t * t / 12.0);
+    const double inertia = m * (a / 4.0 + t * t / 12.0);
     for (int I = 0; I < distinct; ++I) {
       nodal_mass[static_cast<std::size_t>(c[I])] += m;
       rotational_inertia[static_cast<std::size_t>(rc[I])] += inertia;

@@ -104,7 +104,7 @@ KernelResult shell_critical_timestep(const ShellBlock& block, const NodalView& n
 
 // Lumped translational mass (to nodal_mass by dense node index) and rotational inertia (to
 // rotational_inertia by rotational index). Per distinct node of an element with mass
-// m = rho t A0 / (number of distinct nodes): rotational inertia m (A0 / 8 + t^2 / 12) about every
+// m = rho t A0 / (number of distinct nodes): rotational inertia m (A0 / 4 + t^2 / 12) about every
 // axis (scaled rotary inertia, see shell_block.cpp), so that rotations never govern the step.
 void add_shell_lumped_mass(const ShellBlock& block, std::vector<double>& nodal_mass,
                            std::vector<double>& rotational_inertia);

@@ -83,11 +83,16 @@ std::vector<std::int32_t> resolve_nodes(const model::Model& model, const NodeInd
   std::vector<std::int32_t> out;
   auto add_part = [&](model::Id pid) {
     bool found = false;
-    for (const auto& block : state.hex_blocks) {
-      if (block.part_id != pid) continue;
-      found = true;
-      out.insert(out.end(), block.conn.begin(), block.conn.end());
-    }
+    auto take = [&](const auto& blocks) {  // every element family
+      for (const auto& block : blocks) {
+        if (block.part_id != pid) continue;
+        found = true;
+        out.insert(out.end(), block.conn.begin(), block.conn.end());
+      }
+    };
+    take(state.hex_blocks);
+    take(state.shell_blocks);
+    take(state.beam_blocks);
     if (!found && model.parts.count(pid) == 0) {
       throw InputError(context_of(where, field), fmt::format("part {} is not defined", pid));
     }

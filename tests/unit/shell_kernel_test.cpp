@@ -774,7 +774,7 @@ TEST(ShellInitialize, RigidBlockHasMass) {
   std::vector<double> mass(4, 0.0), inertia(4, 0.0);
   rf::element::add_shell_lumped_mass(m.block, mass, inertia);
   EXPECT_NEAR(mass[2], kRho * 0.01 * 2.0 / 4, 1e-12);
-  EXPECT_NEAR(inertia[2], mass[2] * (2.0 / 8 + 1e-4 / 12), 1e-12);
+  EXPECT_NEAR(inertia[2], mass[2] * (2.0 / 4 + 1e-4 / 12), 1e-12);
 }
 
 // Arbitrary states: random velocities and angular velocities on distorted elements (flat, and

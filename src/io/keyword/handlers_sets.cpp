@@ -189,6 +189,12 @@ void finish_sets(ReaderContext& context) {
           for (const auto& e : m.solids) {
             if (in(e.pid)) chosen.insert(chosen.end(), e.nodes.begin(), e.nodes.end());
           }
+          for (const auto& e : m.shells) {
+            if (in(e.pid)) chosen.insert(chosen.end(), e.nodes.begin(), e.nodes.end());
+          }
+          for (const auto& e : m.beams) {  // N1 N2 (N3 only orients the section)
+            if (in(e.pid)) chosen.insert(chosen.end(), e.nodes.begin(), e.nodes.begin() + 2);
+          }
         }
       } else if (rule.option == "BOX" || rule.option == "DBOX") {
         for (const model::Id box : v) {
