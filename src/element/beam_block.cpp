@@ -125,6 +125,7 @@
 // with K = 6 k0 (ELFORM 2) or kappa G A L / 2 (ELFORM 1). For slender elements the axial value
 // governs (dt = L / c, as LS-DYNA's beam step); stubby shear-stiff elements get a smaller step
 // from the symmetric bending-shear mode (tested against a numerical eigen-analysis).
+#include "element/kernel_partials.hpp"
 #include "element/beam_block.hpp"
 
 #include <fmt/format.h>
@@ -141,52 +142,14 @@
 namespace rf::element {
 namespace {
 
-struct Partial {
-  double min_dt = 1e300;
-  std::int64_t min_dt_element = -1;
-  std::int64_t failed_element = -1;
-  double failed_length = 0.0;
+using Partial = KernelPartial;
+constexpr int kMaxThreads = kMaxKernelThreads;
 
-  void record_dt(double dt, std::int64_t e) {
-    if (dt < min_dt) {
-      min_dt = dt;
-      min_dt_element = e;
-    }
-  }
-  void record_failure(std::int64_t e, double length) {
-    if (failed_element < 0) {
-      failed_element = e;
-      failed_length = length;
-    }
-  }
-};
-
-constexpr int kMaxThreads = 256;
-
-// Per-thread partials combined in thread order: with a static schedule thread t owns a
-// contiguous, increasing range of elements, so the result is deterministic for a fixed thread
-// count and "first" means "lowest element index" (as in hex_block.cpp).
-KernelResult combine(const std::array<Partial, kMaxThreads>& partials, int threads) {
-  KernelResult r;
-  for (int t = 0; t < threads; ++t) {
-    const Partial& p = partials[t];
-    if (p.min_dt < r.min_dt) {
-      r.min_dt = p.min_dt;
-      r.min_dt_element = p.min_dt_element;
-    }
-    if (!r.failed && p.failed_element >= 0) {
-      r.failed = true;
-      r.failed_element = p.failed_element;
-      r.failed_volume = p.failed_length;
-    }
-  }
-  return r;
+KernelResult combine(const KernelPartials& partials, int threads) {
+  return combine_partials(partials, threads);
 }
 
-inline int thread_count() {
-  const int n = omp_get_max_threads();
-  return n < kMaxThreads ? n : kMaxThreads;
-}
+inline int thread_count() { return kernel_thread_count(); }
 
 inline double dot(const double a[3], const double b[3]) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];

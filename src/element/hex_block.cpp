@@ -53,6 +53,7 @@
 // get zero). Lumped mass: rho V0 / (number of distinct nodes) to each distinct node.
 // Time step: dt_e = L_e / c with L_e = V / A_max (LS-DYNA's solid rule); collapsed faces have zero
 // or triangle area automatically; tetrahedra use the smallest altitude 3 V / A_max.
+#include "element/kernel_partials.hpp"
 #include "element/hex_block.hpp"
 
 #include <fmt/format.h>
@@ -124,54 +125,14 @@ inline double element_time_step(const double x[3][8], double volume, HexShape sh
   return length / wave_speed;
 }
 
-struct alignas(64) Partial {
-  double hourglass_work = 0.0;
-  double min_dt = 1e300;
-  std::int64_t min_dt_element = -1;
-  std::int64_t failed_element = -1;
-  double failed_volume = 0.0;
+using Partial = KernelPartial;
+constexpr int kMaxThreads = kMaxKernelThreads;
 
-  void record_dt(double dt, std::int64_t e) {
-    if (dt < min_dt) {
-      min_dt = dt;
-      min_dt_element = e;
-    }
-  }
-  void record_failure(std::int64_t e, double volume) {
-    if (failed_element < 0) {
-      failed_element = e;
-      failed_volume = volume;
-    }
-  }
-};
-
-constexpr int kMaxThreads = 256;
-
-// Combines per-thread partials in thread order: with a static schedule thread t owns a
-// contiguous, increasing range of elements, so the result is deterministic for a fixed thread
-// count and "first" means "lowest element index".
-KernelResult combine(const std::array<Partial, kMaxThreads>& partials, int threads) {
-  KernelResult r;
-  for (int t = 0; t < threads; ++t) {
-    const Partial& p = partials[t];
-    r.hourglass_work += p.hourglass_work;
-    if (p.min_dt < r.min_dt) {
-      r.min_dt = p.min_dt;
-      r.min_dt_element = p.min_dt_element;
-    }
-    if (!r.failed && p.failed_element >= 0) {
-      r.failed = true;
-      r.failed_element = p.failed_element;
-      r.failed_volume = p.failed_volume;
-    }
-  }
-  return r;
+KernelResult combine(const KernelPartials& partials, int threads) {
+  return combine_partials(partials, threads);
 }
 
-inline int thread_count() {
-  const int n = omp_get_max_threads();
-  return n < kMaxThreads ? n : kMaxThreads;
-}
+inline int thread_count() { return kernel_thread_count(); }
 
 // --- ELFORM 1 -----------------------------------------------------------------------------
 //

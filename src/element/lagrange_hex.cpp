@@ -37,6 +37,7 @@
 // smallest length, so this follows compression of the element at the cost of a few distances per
 // element instead of an eigenvalue solve. It does not follow the neo-Hookean stiffening under
 // strong volumetric compression (lambda (1 - ln J) / J^2 grows); TSSFAC covers moderate strains.
+#include "element/kernel_partials.hpp"
 #include "element/lagrange_hex.hpp"
 
 #include <fmt/format.h>
@@ -207,51 +208,14 @@ inline void gather(const std::int32_t* c, const double* px, const double* py, co
   }
 }
 
-// Per-thread results, combined in thread order (static schedule: thread t owns a contiguous
-// increasing element range, so "first failure" is the lowest element index and the result does
-// not depend on timing). Same scheme as the 8-node kernels.
-struct alignas(64) Partial {
-  double min_dt = 1e300;
-  std::int64_t min_dt_element = -1;
-  std::int64_t failed_element = -1;
-  double failed_volume = 0.0;
-  void record_dt(double dt, std::int64_t e) {
-    if (dt < min_dt) {
-      min_dt = dt;
-      min_dt_element = e;
-    }
-  }
-  void record_failure(std::int64_t e, double volume) {
-    if (failed_element < 0) {
-      failed_element = e;
-      failed_volume = volume;
-    }
-  }
-};
+using Partial = KernelPartial;
+constexpr int kMaxThreads = kMaxKernelThreads;
 
-constexpr int kMaxThreads = 256;
-
-KernelResult combine(const std::array<Partial, kMaxThreads>& partials, int threads) {
-  KernelResult r;
-  for (int t = 0; t < threads; ++t) {
-    const Partial& p = partials[t];
-    if (p.min_dt < r.min_dt) {
-      r.min_dt = p.min_dt;
-      r.min_dt_element = p.min_dt_element;
-    }
-    if (!r.failed && p.failed_element >= 0) {
-      r.failed = true;
-      r.failed_element = p.failed_element;
-      r.failed_volume = p.failed_volume;
-    }
-  }
-  return r;
+KernelResult combine(const KernelPartials& partials, int threads) {
+  return combine_partials(partials, threads);
 }
 
-inline int thread_count() {
-  const int n = omp_get_max_threads();
-  return n < kMaxThreads ? n : kMaxThreads;
-}
+inline int thread_count() { return kernel_thread_count(); }
 
 // --- Element kernels ------------------------------------------------------------------------
 

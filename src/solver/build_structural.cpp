@@ -28,25 +28,49 @@ const model::Part& part_of(const model::Model& model, model::Id pid, model::Id e
   return it->second;
 }
 
+// The elements of one part of a family with the part's section and material resolved.
+template <class Section>
+struct PartGroup {
+  model::Id pid = 0;
+  const model::Part* part = nullptr;
+  const Section* section = nullptr;
+  ResolvedMaterial material;
+  std::vector<std::size_t> elements;  // indices into the model's element list, input order
+};
+
+// Groups a family's elements by part (parts in ID order, elements in input order) and resolves
+// each part's section (which must be of the family) and material.
+template <class Elements, class Sections>
+std::vector<PartGroup<typename Sections::mapped_type>> group_by_part(
+    const model::Model& model, const Elements& elements, const Sections& sections,
+    unsigned family, const char* family_name, const char* section_keyword) {
+  std::map<model::Id, std::vector<std::size_t>> elements_of_part;
+  for (std::size_t e = 0; e < elements.size(); ++e) elements_of_part[elements[e].pid].push_back(e);
+  std::vector<PartGroup<typename Sections::mapped_type>> groups;
+  for (auto& [pid, indices] : elements_of_part) {
+    const auto& first = elements[indices.front()];
+    const model::Part& part = part_of(model, pid, first.id, first.where);
+    const auto sec = sections.find(part.secid);
+    if (sec == sections.end()) {
+      throw InputError(context_of(part.where, "SECID"),
+                       fmt::format("part {} has {} but section {} is not a {}", pid, family_name,
+                                   part.secid, section_keyword));
+    }
+    groups.push_back({pid, &part, &sec->second,
+                      resolve_material(model, part, family, family_name), std::move(indices)});
+  }
+  return groups;
+}
+
 // Shell parts: sections resolved, elements in input order within a part, parts in ID order.
 void build_shell_blocks(const model::Model& model, const NodeIndex& node_index, State& state) {
-  std::map<model::Id, std::vector<std::size_t>> elements_of_part;
-  for (std::size_t e = 0; e < model.shells.size(); ++e) {
-    elements_of_part[model.shells[e].pid].push_back(e);
-  }
-  for (const auto& [pid, indices] : elements_of_part) {
-    const auto& first = model.shells[indices.front()];
-    const model::Part& part = part_of(model, pid, first.id, first.where);
-    const auto sec = model.shell_sections.find(part.secid);
-    if (sec == model.shell_sections.end()) {
-      throw InputError(context_of(part.where, "SECID"),
-                       fmt::format("part {} has shell elements but section {} is not a "
-                                   "*SECTION_SHELL",
-                                   pid, part.secid));
-    }
-    const model::SectionShell& section = sec->second;
-    const ResolvedMaterial material =
-        resolve_material(model, part, material::kShell, "shell elements");
+  for (const auto& group : group_by_part(model, model.shells, model.shell_sections,
+                                         material::kShell, "shell elements", "*SECTION_SHELL")) {
+    const model::Id pid = group.pid;
+    const model::Part& part = *group.part;
+    const model::SectionShell& section = *group.section;
+    const ResolvedMaterial& material = group.material;
+    const std::vector<std::size_t>& indices = group.elements;
     element::ShellBlock block;
     block.part_id = pid;
     block.part_index = static_cast<int>(state.parts.size());
@@ -103,24 +127,14 @@ std::array<double, 3> default_orientation(const std::array<double, 3>& axis) {
 }
 
 void build_beam_blocks(const model::Model& model, const NodeIndex& node_index, State& state) {
-  std::map<model::Id, std::vector<std::size_t>> elements_of_part;
-  for (std::size_t e = 0; e < model.beams.size(); ++e) {
-    elements_of_part[model.beams[e].pid].push_back(e);
-  }
   const NodalState& nodes = state.nodes;
-  for (const auto& [pid, indices] : elements_of_part) {
-    const auto& first = model.beams[indices.front()];
-    const model::Part& part = part_of(model, pid, first.id, first.where);
-    const auto sec = model.beam_sections.find(part.secid);
-    if (sec == model.beam_sections.end()) {
-      throw InputError(context_of(part.where, "SECID"),
-                       fmt::format("part {} has beam elements but section {} is not a "
-                                   "*SECTION_BEAM",
-                                   pid, part.secid));
-    }
-    const model::SectionBeam& section = sec->second;
-    const ResolvedMaterial material =
-        resolve_material(model, part, material::kBeam, "beam elements");
+  for (const auto& group : group_by_part(model, model.beams, model.beam_sections, material::kBeam,
+                                         "beam elements", "*SECTION_BEAM")) {
+    const model::Id pid = group.pid;
+    const model::Part& part = *group.part;
+    const model::SectionBeam& section = *group.section;
+    const ResolvedMaterial& material = group.material;
+    const std::vector<std::size_t>& indices = group.elements;
     element::BeamBlock block;
     block.part_id = pid;
     block.part_index = static_cast<int>(state.parts.size());

@@ -111,7 +111,7 @@ std::vector<ErrorCase> cases() {
         "*PART is read, with the options _INERTIA"}},
       {"RotationalVelocity",
        deck("", "*INITIAL_VELOCITY\n0\n0,0,0,1.0\n"),
-       {"bar.k:27: *INITIAL_VELOCITY card 2 field VXR"}},
+       {"bar.k:26: *INITIAL_VELOCITY card 2 field VXR"}},
       {"DecreasingCurve",
        deck("", "*DEFINE_CURVE\n2\n1.0,0\n0.5,0\n"),
        {"bar.k:27: *DEFINE_CURVE card 3 field A1", "increasing"}},
