@@ -66,19 +66,36 @@
 // 6. Hourglass control (Belytschko & Tsay 1983, LS-DYNA theory manual). Shape vector
 //      tau_I = h_I - (h.xh) B1_I - (h.yh) B2_I,  h = (1, -1, 1, -1),
 //    orthogonal to every linear field. Five generalised rates (mid-step, local frame):
-//      membrane qd_1 = tau.vh_x, qd_2 = tau.vh_y; out-of-plane qd_3 = tau.vh_z;
+//      membrane qd_1 = tau.vh_x, qd_2 = tau.vh_y;
+//      out-of-plane qd_3 = tau.vh_z + cx.thh_x + cy.thh_y;
 //      rotational qd_4 = tau.thh_x, qd_5 = tau.thh_y,
-//    resisted by generalised forces Q_k that act as f_kI += Q_k tau_I (forces and moments).
+//    resisted by generalised forces Q_k that act on the same weights (f_zI += Q_3 tau_I,
+//    m_xI += Q_3 cx_I, m_yI += Q_3 cy_I, the others Q_k tau_I), so that Q.qd is their power.
+//    The rotation weights of qd_3 (issue 16) make it vanish for every Kirchhoff state of
+//    constant curvature, w = (k1 x^2 + 2 k12 xy + k2 y^2) / 2 with thh_x = w_,y, thh_y = -w_,x,
+//    which the one-point curvature already represents exactly: tau.w alone does not vanish for
+//    the twist (on a rectangle, w = xy at the nodes IS the pattern h), so the w mode resisted
+//    every element's twist with a transverse-shear stiffness and a kicked plate put most of its
+//    energy into "hourglass". With cx = sum cx_I = 0 and likewise cy (rigid rotations stay free),
+//    cy.x = (tau.x^2) / 2 and cx.y = -(tau.y^2) / 2 (the k1, k2 states), cx.x - cy.y = -tau.xy
+//    (the twist), the choice in the span of B1, B2:
+//      cx = -[(tau.y^2) B2 + (tau.xy) B1] / 2,  cy = [(tau.x^2) B1 + (tau.xy) B2] / 2.
+//    What remains of the w mode is the part of the w pattern that the rotations do not account
+//    for (on a rectangle: w = h with thh = 0, the zero-energy mode of the one-point shear).
 //    Stiffness (derived here, E' = E/(1-nu^2), BB = sum_I B1_I^2 + B2_I^2): QM = 1 reproduces
-//    the strain energy of each mode on a square element (membrane mode: in-plane
-//    bending energy; w mode: transverse shear energy of the twist; rotational: bending energy),
+//    the strain energy of each mode on a square element (membrane mode: in-plane bending
+//    energy; w mode: transverse shear energy of w = xy with thh = 0; rotational: bending
+//    energy),
 //      K_m = QM t A BB (E' + G) / 24,  K_w = QM SHRF G t A BB / 6,
 //      K_r = QM t^3 A BB (E' + G) / 288.
 //    IHQ 4, 5 (stiffness): Q += K qd dt, stored in hourglass_state in the co-rotational frame
-//    (objective); work 0.5 (Q_old + Q_new) qd dt. IHQ 1-3 (viscous, all three the same for
-//    shells, as in LS-DYNA): Q = QM sqrt(K_k M_k) qd with K_k the QM = 1 stiffness and M_k the
-//    lumped mass of the mode (m_node tau.tau; rotations: the nodal rotary inertia), i.e. QM/2
-//    of critical damping of the mode; work Q qd dt. Triangles: no hourglass (see 7).
+//    (objective). IHQ 1-3 (viscous, all three the same for shells, as in LS-DYNA):
+//    Q = QM sqrt(K_k M_k) qd with K_k the QM = 1 stiffness and M_k the lumped mass of the mode
+//    (m_node tau.tau; rotations: the nodal rotary inertia), i.e. QM/2 of critical damping of the
+//    mode; the last Q is kept in hourglass_state. Both forms report the work
+//    0.5 (Q_old + Q_new) qd dt: summed over steps it telescopes to the work the solver books for
+//    the hourglass forces, sum_n f^n . dt (v^{n-1/2} + v^{n+1/2}) / 2, up to the last step's
+//    term (tests/unit/shell_kernel_test.cpp, ShellEnergy). Triangles: no hourglass (see 7).
 //
 // 7. Triangles (N3 = N4): the quadrilateral's degeneration. The one-point B of the collapsed
 //    quadrilateral is exactly the constant-strain triangle's gradient (slots 3 and 4 sum to
@@ -222,6 +239,24 @@ inline void hourglass_shape(const Frame<T>& f, T tau[4]) {
   const T hx = f.x[0] - f.x[1] + f.x[2] - f.x[3];
   const T hy = f.y[0] - f.y[1] + f.y[2] - f.y[3];
   for (int I = 0; I < 4; ++I) tau[I] = kHourglassPattern[I] - hx * f.b1[I] - hy * f.b2[I];
+}
+
+// Rotation weights of the out-of-plane hourglass rate (section 6 of the header comment):
+// qd_3 = tau.vh_z + cx.thh_x + cy.thh_y vanishes for every Kirchhoff state of constant curvature
+// (w quadratic, thh_x = w_,y, thh_y = -w_,x), the constant twist included, and (sum cx = sum cy
+// = 0) for rigid rotations.
+template <class T>
+inline void twist_weights(const Frame<T>& f, const T tau[4], T cx[4], T cy[4]) {
+  T txx{}, tyy{}, txy{};
+  for (int I = 0; I < 4; ++I) {
+    txx += tau[I] * f.x[I] * f.x[I];
+    tyy += tau[I] * f.y[I] * f.y[I];
+    txy += tau[I] * f.x[I] * f.y[I];
+  }
+  for (int I = 0; I < 4; ++I) {
+    cx[I] = -0.5 * (tyy * f.b2[I] + txy * f.b1[I]);
+    cy[I] = 0.5 * (txx * f.b1[I] + txy * f.b2[I]);
+  }
 }
 
 // Largest squared side length (a triangle's fourth side has length zero).
@@ -508,13 +543,14 @@ void shell_batch(ShellBlock& block, const BlockConstants& k, std::size_t first, 
   const bool hourglass = k.qm > 0.0;
   if (hourglass) {
     const T quad = 1.0 - tri;
-    T tau[4];
+    T tau[4], cx[4], cy[4];
     hourglass_shape(fm, tau);
+    twist_weights(fm, tau, cx, cy);
     T qd[5] = {}, tt{}, bb{};
     for (int I = 0; I < 4; ++I) {
       qd[0] += tau[I] * vl[I][0];
       qd[1] += tau[I] * vl[I][1];
-      qd[2] += tau[I] * vl[I][2];
+      qd[2] += tau[I] * vl[I][2] + cx[I] * wl[I][0] + cy[I] * wl[I][1];
       qd[3] += tau[I] * wl[I][0];
       qd[4] += tau[I] * wl[I][1];
       tt += tau[I] * tau[I];
@@ -544,17 +580,31 @@ void shell_batch(ShellBlock& block, const BlockConstants& k, std::size_t first, 
       const T cw = cm * k.shear_to_membrane;
       const T cr = cm * t * tsqrt((area0 * (1.0 / 4.0) + t * t * (1.0 / 12.0)) * (1.0 / 12.0));
       const T cc[5] = {cm, cm, cw, cr, cr};
+      // The previous step's generalised forces are kept in hourglass_state so that the work is
+      // the trapezoidal 0.5 (Q_old + Q_new) qd dt, as for the stiffness forms (header comment,
+      // section 6). Q_new qd dt instead drifts away from the work the solver books for these
+      // forces wherever the rates change sign from step to step (20 % of the hourglass energy
+      // of a kicked plate, ShellEnergy tests).
+      std::size_t off[L];
+      for (int l = 0; l < L; ++l) off[l] = 5 * elem[l];
       for (int m = 0; m < 5; ++m) {
+        const T old = gather<T>(block.hourglass_state.data() + m, off);
         hq[m] = cc[m] * qd[m];
-        work += hq[m] * qd[m] * dt;
+        work += 0.5 * (old + hq[m]) * qd[m] * dt;
+        for (int l = 0; l < count; ++l)
+          block.hourglass_state[off[l] + static_cast<std::size_t>(m)] =
+              material::get_lane(hq[m], l);
       }
     }
   }
 
   // Local forces and moments at x^{n+1}, rotated to global axes.
   const T A = f.area;
-  T tau[4] = {};
-  if (hourglass) hourglass_shape(f, tau);
+  T tau[4] = {}, cx[4] = {}, cy[4] = {};
+  if (hourglass) {
+    hourglass_shape(f, tau);
+    twist_weights(f, tau, cx, cy);
+  }
   T out[24];
   T sum{};
   for (int I = 0; I < 4; ++I) {
@@ -563,8 +613,8 @@ void shell_batch(ShellBlock& block, const BlockConstants& k, std::size_t first, 
     fl[0] = A * (b1 * N[0] + b2 * N[2]) + hq[0] * tau[I];
     fl[1] = A * (b2 * N[1] + b1 * N[2]) + hq[1] * tau[I];
     fl[2] = A * (b1 * Q[1] + b2 * Q[0]) + hq[2] * tau[I];
-    ml[0] = -A * (b2 * Mr[1] + b1 * Mr[2]) - A * nw[I] * Q[0] + hq[3] * tau[I];
-    ml[1] = A * (b1 * Mr[0] + b2 * Mr[2]) + A * nw[I] * Q[1] + hq[4] * tau[I];
+    ml[0] = -A * (b2 * Mr[1] + b1 * Mr[2]) - A * nw[I] * Q[0] + hq[3] * tau[I] + hq[2] * cx[I];
+    ml[1] = A * (b1 * Mr[0] + b2 * Mr[2]) + A * nw[I] * Q[1] + hq[4] * tau[I] + hq[2] * cy[I];
     if (warp) {
       ml[0] += f.z[I] * fl[1];
       ml[1] -= f.z[I] * fl[0];

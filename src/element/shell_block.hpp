@@ -70,8 +70,9 @@ struct ShellBlock {
   // Stress: kShellStress per point, nip points per element (ELFORM 16: 4 x nip), co-rotational.
   std::vector<double> stress;
   std::vector<material::HistoryArray> history;  // per point, as for solids (material/history.hpp)
-  // Hourglass generalized forces of the stiffness forms (IHQ 4, 5): 5 per element (in-plane
-  // x, y; out-of-plane w; two rotational).
+  // Hourglass generalized forces, 5 per element (in-plane x, y; out-of-plane w; two
+  // rotational), co-rotational frame: the accumulated forces of the stiffness forms (IHQ 4, 5),
+  // the last step's forces of the viscous forms (IHQ 1-3, for the trapezoidal work).
   std::vector<double> hourglass_state;
   std::vector<double> area0;  // reference mid-surface area
   // Element thickness: mean of the nodal thicknesses of the distinct nodes, fixed at

@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "element/shell_block.hpp"
@@ -1076,3 +1077,228 @@ TEST(ShellPlasticity, CylindricalBendingReachesLimitMoment) {
 }
 
 }  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Energy bookkeeping of a free plate kicked out of plane (issue 16: the kick deck). Central
+// differences as the solver (x^{n+1} = x^n + dt v^{n+1/2}, forces at x^{n+1}, v^{n+3/2}); the
+// work of the internal forces is summed as the solver does, f^{n+1} . dt (v^{n+1/2} +
+// v^{n+3/2}) / 2, and the hourglass share of the forces is isolated by evaluating a copy of the
+// block with QM = 0 on the same state (the stress update does not depend on the hourglass).
+struct KickEnergies {
+  double internal_work = 0.0;         // all internal forces and moments
+  double hourglass_force_work = 0.0;  // the hourglass share, measured from the forces
+  double hourglass_reported = 0.0;    // sum of KernelResult::hourglass_work
+  double strain_energy = 0.0;         // 0.5 sigma : C^-1 : sigma from the stored stresses
+  double kinetic0 = 0.0;
+  double min_internal = 1e300;          // min over steps of internal_work - hourglass_reported
+  double min_stress_work = 1e300;       // min over steps of internal_work - hourglass_force_work
+  double max_hourglass_mismatch = 0.0;  // max over steps |reported - force work|
+  double max_step_hourglass = 0.0;      // max over steps of sum over dofs |f_hg . dx|
+};
+
+KickEnergies run_kick(int ihq, double qm, double duration, int kicked = 9, double tssfac = 0.9) {
+  const double t = 0.002, h = 0.1;
+  ShellMesh m;
+  const int nx = 4, ny = 2;
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) m.add_node(h * i, h * j, 0.0);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const int a = j * (nx + 1) + i;
+      m.add_element({a, a + 1, a + nx + 2, a + nx + 1}, t);
+    }
+  set_section(m.block, 0, 2, rf::element::ThroughThicknessRule::kGauss, ihq, qm);
+  m.block.shear_factor = 5.0 / 6.0;
+  m.initialize();
+  const std::size_t nn = m.x.size();
+  std::vector<double> mass(nn, 0.0), inertia(nn, 0.0);
+  rf::element::add_shell_lumped_mass(m.block, mass, inertia);
+  m.vz[kicked] = 0.5;
+  KickEnergies out;
+  out.kinetic0 = 0.5 * mass[kicked] * 0.25;
+  const double dt = tssfac * rf::element::shell_critical_timestep(m.block, m.view()).min_dt;
+  std::vector<double> f(nn * 6), fh(nn * 6);
+  std::vector<std::vector<double>*> vel = {&m.vx, &m.vy, &m.vz, &m.wx, &m.wy, &m.wz};
+  for (double time = 0.0; time < duration; time += dt) {
+    for (std::size_t k = 0; k < nn; ++k) {
+      m.x[k] += dt * m.vx[k];
+      m.y[k] += dt * m.vy[k];
+      m.z[k] += dt * m.vz[k];
+    }
+    ShellMesh stress_only = m;
+    stress_only.block.hourglass.qm = 0.0;
+    stress_only.step(dt);
+    const auto r = m.step(dt);
+    out.hourglass_reported += r.hourglass_work;
+    std::fill(f.begin(), f.end(), 0.0);
+    std::fill(fh.begin(), fh.end(), 0.0);
+    for (std::size_t e = 0; e < m.block.size(); ++e)
+      for (int I = 0; I < 4; ++I)
+        for (int c = 0; c < 6; ++c) {
+          const std::size_t s = 24 * e + 6 * static_cast<std::size_t>(I) + c;
+          const std::size_t d = 6 * static_cast<std::size_t>(m.block.conn[4 * e + I]) + c;
+          f[d] += m.block.force[s];
+          fh[d] += m.block.force[s] - stress_only.block.force[s];
+        }
+    double step_hourglass = 0.0;
+    for (std::size_t k = 0; k < nn; ++k)
+      for (int c = 0; c < 6; ++c) {
+        double& v = (*vel[c])[k];
+        const double before = v;
+        v -= dt * f[6 * k + c] / (c < 3 ? mass[k] : inertia[k]);
+        const double dx = 0.5 * dt * (before + v);
+        out.internal_work += f[6 * k + c] * dx;
+        out.hourglass_force_work += fh[6 * k + c] * dx;
+        step_hourglass += std::abs(fh[6 * k + c] * dx);
+      }
+    out.max_step_hourglass = std::max(out.max_step_hourglass, step_hourglass);
+    out.min_internal = std::min(out.min_internal, out.internal_work - out.hourglass_reported);
+    out.min_stress_work =
+        std::min(out.min_stress_work, out.internal_work - out.hourglass_force_work);
+    out.max_hourglass_mismatch = std::max(
+        out.max_hourglass_mismatch, std::abs(out.hourglass_reported - out.hourglass_force_work));
+  }
+  // Strain energy of the stored stresses (plane stress, transverse shear SHRF G).
+  const double E = kE, nu = kNu, G = kE / (2 * (1 + kNu)), Gs = 5.0 / 6.0 * G;
+  for (std::size_t e = 0; e < m.block.size(); ++e)
+    for (int q = 0; q < m.block.nip; ++q) {
+      const double* s = &m.block.stress[(e * m.block.nip + q) * 5];
+      const double w = 0.5 * t * m.block.weight[q] * m.block.area[e];
+      const double u = (s[0] * s[0] + s[1] * s[1] - 2 * nu * s[0] * s[1]) / (2 * E) +
+                       s[2] * s[2] / (2 * G) + (s[3] * s[3] + s[4] * s[4]) / (2 * Gs);
+      out.strain_energy += w * u;
+    }
+  return out;
+}
+
+// Issue 16 (the kick deck: a free plate, one node kicked out of plane). What each energy is:
+//
+// (a) The reported hourglass work is the work of the hourglass forces and moments as the solver
+//     books it, to one step's work: both forms use the trapezoid 0.5 (Q_old + Q_new) qd dt
+//     (the viscous form used Q_new qd dt, which drifted by 20 % of the hourglass energy here).
+//
+// (b) At TSSFAC 0.9 the booked internal work minus the hourglass work still dips below zero
+//     (-1.0e-3 of 9.75e-3 in this test) although it is then exactly the work of the stress forces:
+//     that is central differences, not the kernel. The booked work of a mode of frequency w is
+//     0.5 q^n K q^{n+1} (sum of f^n . (x^{n+1} - x^{n-1}) / 2), which swings below zero by about
+//     (w dt)^2 / 4 of the mode's energy; a point kick puts much of its energy into the highest
+//     out-of-plane modes (transverse shear with the rotary inertia, w dt ~ 1.2 at TSSFAC 0.9).
+//     At TSSFAC 0.3 the minimum is positive, and as dt -> 0 the stress work approaches the strain
+//     energy of the stored stresses (so forces and strain rates are consistent).
+TEST(ShellEnergy, KickedPlateReportsTheWorkOfItsHourglassForces) {
+  for (double tssfac : {0.9, 0.3})
+    for (int ihq : {1, 4}) {
+      const auto r = run_kick(ihq, 0.05, 0.02, 9, tssfac);
+      const std::string what = "ihq " + std::to_string(ihq) + " tssfac " + std::to_string(tssfac);
+      ASSERT_GT(r.hourglass_force_work, 1e-3 * r.kinetic0) << what;
+      // At every step the two differ by at most about one step's hourglass work (measured 0.2
+      // to 0.45 of the largest step's sum of |f_hg . dx|; the old viscous booking reached 0.95).
+      EXPECT_LT(r.max_hourglass_mismatch, 0.6 * r.max_step_hourglass) << what;
+      // The viscous work is dissipated: no stored energy, no end term (measured 3e-5 relative).
+      if (ihq == 1)
+        EXPECT_NEAR(r.hourglass_reported, r.hourglass_force_work, 1e-3 * r.hourglass_force_work)
+            << what;
+    }
+}
+
+TEST(ShellEnergy, KickedPlateInternalEnergyStaysPositive) {
+  for (int ihq : {1, 4}) {
+    const auto r = run_kick(ihq, 0.05, 0.02, 9, 0.3);
+    // Internal energy as glstat reports it (internal work minus reported hourglass work):
+    // measured minimum 1.6e-4 (IHQ 1) and 3.8e-4 (IHQ 4) of 9.75e-3; -4e-5 for IHQ 1 before.
+    EXPECT_GT(r.min_internal, 0.0) << "ihq " << ihq;
+    if (ihq == 4) {
+      // Energy held by the hourglass springs: 2.1 % of the kick (11 % while the out-of-plane
+      // mode resisted the elements' twist).
+      EXPECT_LT(r.hourglass_reported, 0.04 * r.kinetic0);
+    }
+  }
+  // Stress forces consistent with the strain rates: as dt -> 0 the booked stress work equals
+  // the strain energy 0.5 sigma : C^-1 : sigma of the stored stresses (measured 0.4 %).
+  const auto r = run_kick(4, 0.05, 0.02, 9, 0.1);
+  const double stress_work = r.internal_work - r.hourglass_force_work;
+  EXPECT_NEAR(stress_work, r.strain_energy, 0.02 * r.strain_energy);
+  EXPECT_GT(r.strain_energy, 0.2 * r.kinetic0);
+}
+
+// Constant twist w = k xi eta (xi, eta along the unit vectors u, w of the plate's plane) with
+// the Kirchhoff rotations theta_u = dw/deta, theta_w = -dw/dxi (the kernel's convention:
+// gamma_zx = w_,x + theta_y = 0, gamma_yz = w_,y - theta_x = 0) is a constant-curvature state
+// that the one-point element represents exactly: uniform twisting moment
+// M_xi_eta = -D (1 - nu) k (sign as in ShellBending: M = -D ((1 - nu) w_,ij + nu lap(w) delta)),
+// and no hourglass rate in any mode. On a rectangle the nodal w values form exactly the
+// out-of-plane hourglass pattern h = (1, -1, 1, -1): a rate tau . v_z alone would resist the
+// twist (issue 16: the kick deck put most of its energy in that "hourglass"). Irregular patch in
+// an oblique plane, and a single rectangle where also the transverse shear and so every nodal
+// out-of-plane force must vanish.
+TEST(ShellHourglass, ConstantTwistIsHourglassFree) {
+  const double t = 0.01, kdot = 0.7, dt = 1e-5;
+  const double D = kE * t * t * t / (12 * (1 - kNu * kNu));
+  const double u[3] = {0.8, 0.0, 0.6}, w[3] = {0.0, 1.0, 0.0};
+  const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2],
+                       u[0] * w[1] - u[1] * w[0]};
+  for (int ihq : {1, 4})
+    for (bool rectangle : {false, true}) {
+      ShellMesh m;
+      if (rectangle) {
+        const double a = 0.3, b = 0.1;
+        const double q[4][2] = {{0.1, -0.2}, {0.1 + a, -0.2}, {0.1 + a, -0.2 + b}, {0.1, -0.2 + b}};
+        for (const auto& c : q)
+          m.add_node(c[0] * u[0] + c[1] * w[0], c[0] * u[1] + c[1] * w[1],
+                     c[0] * u[2] + c[1] * w[2]);
+        m.add_element({0, 1, 2, 3}, t);
+      } else {
+        m = make_patch(u, w, t).mesh;
+      }
+      set_section(m.block, 0, 2, rf::element::ThroughThicknessRule::kGauss, ihq, 0.1);
+      m.initialize();
+      const auto X = m.positions();
+      for (std::size_t i = 0; i < X.size(); ++i) {
+        const double xi = X[i][0] * u[0] + X[i][1] * u[1] + X[i][2] * u[2];
+        const double eta = X[i][0] * w[0] + X[i][1] * w[1] + X[i][2] * w[2];
+        const double vn = kdot * xi * eta, tu = kdot * xi, tw = -kdot * eta;
+        m.vx[i] = vn * n[0];
+        m.vy[i] = vn * n[1];
+        m.vz[i] = vn * n[2];
+        m.wx[i] = tu * u[0] + tw * w[0];
+        m.wy[i] = tu * u[1] + tw * w[1];
+        m.wz[i] = tu * u[2] + tw * w[2];
+      }
+      m.place_for_step(X, dt);
+      const auto r = m.step(dt);
+      ASSERT_FALSE(r.failed);
+      const double k = kdot * dt;
+      const double Mt = D * (1 - kNu) * k;
+      // Uniform twisting moment, in element axes through the oblique plane's tensor.
+      double T[3][3];
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) T[i][j] = -Mt * (u[i] * w[j] + w[i] * u[j]);
+      for (std::size_t e = 0; e < m.block.size(); ++e) {
+        std::array<double, 3> pe[4];
+        for (int I = 0; I < 4; ++I) pe[I] = X[m.block.conn[4 * e + I]];
+        const auto expect = to_element_axes(element_axes(pe), T);
+        double M[3] = {0, 0, 0};
+        for (int q = 0; q < 2; ++q) {
+          const double z = m.block.zeta[q] * t / 2;
+          for (int c = 0; c < 3; ++c)
+            M[c] += t / 2 * m.block.weight[q] * z * m.block.stress[5 * (2 * e + q) + c];
+        }
+        for (int c = 0; c < 3; ++c)
+          EXPECT_NEAR(M[c], expect[c], 1e-9 * Mt) << "element " << e << " ihq " << ihq;
+        if (ihq == 4)
+          for (int mode = 0; mode < 5; ++mode)  // vs K_w tau.v_z dt ~ 1e2 without the rotations
+            EXPECT_NEAR(m.block.hourglass_state[5 * e + mode], 0.0, 1e-9)
+                << "element " << e << " mode " << mode;
+      }
+      EXPECT_NEAR(r.hourglass_work, 0.0, 1e-15);
+      if (rectangle) {
+        // No transverse shear, no hourglass: no out-of-plane nodal force; the nodal moments are
+        // those of the uniform twisting moment alone.
+        const double scale = Mt;  // moments ~ Mt * side, forces would be ~ Mt
+        for (int I = 0; I < 4; ++I) {
+          const double* f = &m.block.force[6 * I];
+          EXPECT_NEAR(f[0] * n[0] + f[1] * n[1] + f[2] * n[2], 0.0, 1e-9 * scale) << ihq;
+        }
+      }
+    }
+}
