@@ -118,6 +118,8 @@
 //    against 2 c / h, and coupled with w it went unstable): A0 / 4 puts it at 0.65.
 #include "element/shell_block.hpp"
 
+#include "element/kernel_partials.hpp"
+
 #include <fmt/format.h>
 #include <omp.h>
 
@@ -276,53 +278,14 @@ inline double plate_wave_speed(const material::ElasticConstants& m) {
   return std::sqrt(m.young / (m.rho * (1.0 - m.poisson * m.poisson)));
 }
 
-struct alignas(64) Partial {
-  double hourglass_work = 0.0;
-  double min_dt = 1e300;
-  std::int64_t min_dt_element = -1;
-  std::int64_t failed_element = -1;
-  double failed_volume = 0.0;
+using Partial = KernelPartial;
+constexpr int kMaxThreads = kMaxKernelThreads;
 
-  void record_dt(double dt, std::int64_t e) {
-    if (dt < min_dt) {
-      min_dt = dt;
-      min_dt_element = e;
-    }
-  }
-  void record_failure(std::int64_t e, double area) {
-    if (failed_element < 0) {
-      failed_element = e;
-      failed_volume = area;
-    }
-  }
-};
-
-constexpr int kMaxThreads = 256;
-
-// Per-thread partials combined in thread order (static schedule: deterministic for a fixed
-// thread count, "first failure" = lowest element index).
-KernelResult combine(const std::array<Partial, kMaxThreads>& partials, int threads) {
-  KernelResult r;
-  for (int t = 0; t < threads; ++t) {
-    const Partial& p = partials[t];
-    r.hourglass_work += p.hourglass_work;
-    if (p.min_dt < r.min_dt) {
-      r.min_dt = p.min_dt;
-      r.min_dt_element = p.min_dt_element;
-    }
-    if (!r.failed && p.failed_element >= 0) {
-      r.failed = true;
-      r.failed_element = p.failed_element;
-      r.failed_volume = p.failed_volume;
-    }
-  }
-  return r;
+KernelResult combine(const KernelPartials& partials, int threads) {
+  return combine_partials(partials, threads);
 }
 
-inline int thread_count() {
-  const int n = omp_get_max_threads();
-  return n < kMaxThreads ? n : kMaxThreads;
-}
+inline int thread_count() { return kernel_thread_count(); }
 
 // Constants of a block that every element uses.
 struct BlockConstants {
