@@ -126,14 +126,23 @@ void boundary_prescribed_motion(const Block& block, ReaderContext& context) {
   if (!any) throw block_error(block, n, id_field, "no motion card follows the keyword");
 }
 
-void define_curve(const Block& block, ReaderContext& context) {
-  CardCursor cursor(block, context.parameters);
+namespace {
+
+// Card 1 of *DEFINE_CURVE and *DEFINE_CURVE_FUNCTION (after the _TITLE line, if any): LCID SIDR
+// SFA SFO OFFA OFFO, checked; `number` is that card's number.
+struct CurveHead {
+  model::Curve curve;
+  Card card;
+  int number;
+};
+
+CurveHead read_curve_head(const Block& block, CardCursor& cursor, const char* fields) {
   int n = 1;
   if (block.has_option("TITLE")) {
     cursor.next_text(1, "title");
     n = 2;
   }
-  const Card head = cursor.next(n, kEightByTen, "LCID SIDR SFA SFO OFFA OFFO DATTYP");
+  const Card head = cursor.next(n, kEightByTen, fields);
   model::Curve c;
   c.id = head.id(0, "LCID");
   if (c.id <= 0) throw head.error("LCID", "a positive curve ID is required");
@@ -147,13 +156,21 @@ void define_curve(const Block& block, ReaderContext& context) {
   if (c.sfo == 0.0) c.sfo = 1.0;
   c.offa = head.real(4, "OFFA", 0.0);
   c.offo = head.real(5, "OFFO", 0.0);
+  c.where = head.location();
+  return {std::move(c), head, n};
+}
+
+}  // namespace
+
+void define_curve(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  auto [c, head, n] = read_curve_head(block, cursor, "LCID SIDR SFA SFO OFFA OFFO DATTYP");
   const int dattyp = head.flag(6, "DATTYP", 0);
   if (dattyp != 0) {
     throw head.error("DATTYP", fmt::format("value {} is not supported (supported: 0, an "
                                            "ordinary time or abscissa curve)",
                                            dattyp));
   }
-  c.where = head.location();
   static const Layout kPoint{20, 20};
   while (true) {
     cursor.skip_blank_lines();
@@ -181,26 +198,7 @@ void define_curve(const Block& block, ReaderContext& context) {
 // C's <math.h> names, case-insensitive, "&name" parameters substituted) on the following lines.
 void define_curve_function(const Block& block, ReaderContext& context) {
   CardCursor cursor(block, context.parameters);
-  int n = 1;
-  if (block.has_option("TITLE")) {
-    cursor.next_text(1, "title");
-    n = 2;
-  }
-  const Card head = cursor.next(n, kEightByTen, "LCID SIDR SFA SFO OFFA OFFO");
-  model::Curve c;
-  c.id = head.id(0, "LCID");
-  if (c.id <= 0) throw head.error("LCID", "a positive curve ID is required");
-  c.sidr = head.flag(1, "SIDR", 0);
-  if (c.sidr < 0 || c.sidr > 2) {
-    throw head.error("SIDR", fmt::format("value {} is not 0, 1 or 2", c.sidr));
-  }
-  c.sfa = head.real(2, "SFA", 1.0);
-  c.sfo = head.real(3, "SFO", 1.0);
-  if (c.sfa == 0.0) c.sfa = 1.0;
-  if (c.sfo == 0.0) c.sfo = 1.0;
-  c.offa = head.real(4, "OFFA", 0.0);
-  c.offo = head.real(5, "OFFO", 0.0);
-  c.where = head.location();
+  auto [c, head, n] = read_curve_head(block, cursor, "LCID SIDR SFA SFO OFFA OFFO");
   cursor.skip_blank_lines();
   const DataLine* first = cursor.peek();
   const Card function_card = cursor.next(n + 1, Layout{80}, "FUNCTION");

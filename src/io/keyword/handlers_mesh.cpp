@@ -434,6 +434,20 @@ void check_elastic_constants(const Card& card, const model::Material& m) {
   }
 }
 
+// The fields every material card 1 starts with: MID RO E PR, checked as elastic constants.
+model::Material material_head(const Block& block, const Card& card, model::MaterialKind kind) {
+  model::Material m;
+  m.id = positive_id(card, 0, "MID", "material");
+  m.kind = kind;
+  m.keyword = block.keyword;
+  m.rho = card.real(1, "RO", 0.0);
+  m.e = card.real(2, "E", 0.0);
+  m.pr = card.real(3, "PR", 0.0);
+  m.where = card.location();
+  check_elastic_constants(card, m);
+  return m;
+}
+
 void add_material(ReaderContext& context, const Card& card, model::Material m) {
   check_unique(context.model.materials, m.id, card, "MID", "material");
   context.model.materials.emplace(m.id, std::move(m));
@@ -446,15 +460,7 @@ void mat_elastic(const Block& block, ReaderContext& context) {
   read_title(block, cursor);
   const int n = block.has_option("TITLE") ? 2 : 1;
   const Card card = cursor.next(n, kEightByTen, "MID RO E PR DA DB K");
-  model::Material m;
-  m.id = positive_id(card, 0, "MID", "material");
-  m.kind = model::MaterialKind::Elastic;
-  m.keyword = block.keyword;
-  m.rho = card.real(1, "RO", 0.0);
-  m.e = card.real(2, "E", 0.0);
-  m.pr = card.real(3, "PR", 0.0);
-  m.where = card.location();
-  check_elastic_constants(card, m);
+  model::Material m = material_head(block, card, model::MaterialKind::Elastic);
   // DA and DB damp beams only; they do not change a solid's response.
   if (card.real(4, "DA", 0.0) != 0.0 || card.real(5, "DB", 0.0) != 0.0) {
     context.warn(card.location(), "DA/DB (beam damping) are ignored for solid elements");
@@ -473,15 +479,7 @@ void mat_rigid(const Block& block, ReaderContext& context) {
   read_title(block, cursor);
   const int n = block.has_option("TITLE") ? 2 : 1;
   const Card card = cursor.next(n, kEightByTen, "MID RO E PR N COUPLE M ALIAS");
-  model::Material m;
-  m.id = positive_id(card, 0, "MID", "material");
-  m.kind = model::MaterialKind::Rigid;
-  m.keyword = block.keyword;
-  m.rho = card.real(1, "RO", 0.0);
-  m.e = card.real(2, "E", 0.0);
-  m.pr = card.real(3, "PR", 0.0);
-  m.where = card.location();
-  check_elastic_constants(card, m);
+  model::Material m = material_head(block, card, model::MaterialKind::Rigid);
   if (const auto constraints = cursor.next_optional(n + 1, kEightByTen)) {
     const RigidConstraints c = read_rigid_constraints(*constraints);
     m.cmo = c.cmo;
@@ -517,15 +515,7 @@ void mat_plastic_kinematic(const Block& block, ReaderContext& context) {
   read_title(block, cursor);
   const int n = block.has_option("TITLE") ? 2 : 1;
   const Card card = cursor.next(n, kEightByTen, "MID RO E PR SIGY ETAN BETA");
-  model::Material m;
-  m.id = positive_id(card, 0, "MID", "material");
-  m.kind = model::MaterialKind::PlasticKinematic;
-  m.keyword = block.keyword;
-  m.rho = card.real(1, "RO", 0.0);
-  m.e = card.real(2, "E", 0.0);
-  m.pr = card.real(3, "PR", 0.0);
-  m.where = card.location();
-  check_elastic_constants(card, m);
+  model::Material m = material_head(block, card, model::MaterialKind::PlasticKinematic);
   auto& p = m.plastic;
   p.sigy = card.real(4, "SIGY", 0.0);
   p.etan = card.real(5, "ETAN", 0.0);
@@ -578,15 +568,7 @@ void mat_piecewise_linear_plasticity(const Block& block, ReaderContext& context)
   read_title(block, cursor);
   const int n = block.has_option("TITLE") ? 2 : 1;
   const Card card = cursor.next(n, kEightByTen, "MID RO E PR SIGY ETAN FAIL TDEL");
-  model::Material m;
-  m.id = positive_id(card, 0, "MID", "material");
-  m.kind = model::MaterialKind::PiecewiseLinearPlasticity;
-  m.keyword = block.keyword;
-  m.rho = card.real(1, "RO", 0.0);
-  m.e = card.real(2, "E", 0.0);
-  m.pr = card.real(3, "PR", 0.0);
-  m.where = card.location();
-  check_elastic_constants(card, m);
+  model::Material m = material_head(block, card, model::MaterialKind::PiecewiseLinearPlasticity);
   auto& p = m.plastic;
   p.sigy = card.real(4, "SIGY", 0.0);
   p.etan = card.real(5, "ETAN", 0.0);
