@@ -600,6 +600,30 @@ void initialize_beam_block(BeamBlock& block, const NodalView& nodes) {
   }
 }
 
+namespace {
+
+// Critical step of element e at the current length (no TSSFAC): L / c for a truss, else
+// 2 / omega_max of the free element with its lumped masses m and J, eq. (10).
+double beam_element_step(const BeamBlock& block, std::size_t e, double length,
+                         const SectionStiffness& k) {
+  if (block.elform == 3) return length / std::sqrt(block.material.young / block.material.rho);
+  const double length0 = block.length0[e];
+  const double m = 0.5 * block.material.rho * block.area * length0;
+  const double j = node_rotational_inertia(block, length0);
+  double w2 = 2.0 * k.ea / (length * m);
+  w2 = std::max(w2, 2.0 * k.gj / (length * j));
+  for (const double ei : {k.ei_s, k.ei_t}) {
+    const double phi = shear_parameter(ei, k.kga, length);
+    const double symmetric =
+        block.elform == 1 ? 0.5 * k.kga * length : 6.0 * ei / (length * (1.0 + phi));
+    w2 = std::max(w2, 2.0 * ei / (length * j));
+    w2 = std::max(w2, symmetric * (1.0 / j + 4.0 / (m * length * length)));
+  }
+  return 2.0 / std::sqrt(w2);
+}
+
+}  // namespace
+
 KernelResult compute_beam_forces(BeamBlock& block, const NodalView& nodes,
                                  const RotationalView& rotations, double dt) {
   std::array<Partial, kMaxThreads> partials;
@@ -620,8 +644,12 @@ KernelResult compute_beam_forces(BeamBlock& block, const NodalView& nodes,
 #pragma omp for schedule(static)
     for (std::int64_t e = 0; e < n; ++e) {
       const std::size_t ue = static_cast<std::size_t>(e);
-      if (!beam_element(block, ue, nodes, rotations, dt, k, um, hp))
+      if (!beam_element(block, ue, nodes, rotations, dt, k, um, hp)) {
         local.record_failure(e, block.length[ue]);
+        continue;
+      }
+      // The step at the new length (beam_element stored it), as the other families report it.
+      local.record_dt(beam_element_step(block, ue, block.length[ue], k), e);
     }
     partials[omp_get_thread_num()] = local;
 #pragma omp single
@@ -633,9 +661,7 @@ KernelResult compute_beam_forces(BeamBlock& block, const NodalView& nodes,
 KernelResult beam_critical_timestep(const BeamBlock& block, const NodalView& nodes) {
   std::array<Partial, kMaxThreads> partials;
   const std::int64_t n = static_cast<std::int64_t>(block.size());
-  const bool truss = block.elform == 3;
   const SectionStiffness k = section_stiffness(block);
-  const double c = std::sqrt(block.material.young / block.material.rho);
   int threads = 1;
 #pragma omp parallel num_threads(thread_count())
   {
@@ -651,24 +677,7 @@ KernelResult beam_critical_timestep(const BeamBlock& block, const NodalView& nod
         local.record_failure(e, length);
         continue;
       }
-      if (truss) {
-        local.record_dt(length / c, e);
-        continue;
-      }
-      // Eq. (10): highest frequency of the free element with lumped masses m and J.
-      const double length0 = block.length0[ue];
-      const double m = 0.5 * block.material.rho * block.area * length0;
-      const double j = node_rotational_inertia(block, length0);
-      double w2 = 2.0 * k.ea / (length * m);
-      w2 = std::max(w2, 2.0 * k.gj / (length * j));
-      for (const double ei : {k.ei_s, k.ei_t}) {
-        const double phi = shear_parameter(ei, k.kga, length);
-        const double symmetric =
-            block.elform == 1 ? 0.5 * k.kga * length : 6.0 * ei / (length * (1.0 + phi));
-        w2 = std::max(w2, 2.0 * ei / (length * j));
-        w2 = std::max(w2, symmetric * (1.0 / j + 4.0 / (m * length * length)));
-      }
-      local.record_dt(2.0 / std::sqrt(w2), e);
+      local.record_dt(beam_element_step(block, ue, length, k), e);
     }
     partials[omp_get_thread_num()] = local;
 #pragma omp single

@@ -1012,12 +1012,7 @@ void Simulation::compute_structural_forces() {
   }
   for (auto& block : state_.beam_blocks) {
     if (block.rigid) continue;
-    // The beam kernel leaves the step to its own pass (2 / omega_max of each element).
-    element::KernelResult r = element::compute_beam_forces(block, view, rotations, state_.dt);
-    const element::KernelResult step = element::beam_critical_timestep(block, view);
-    r.min_dt = step.min_dt;
-    r.min_dt_element = step.min_dt_element;
-    account(r, block, "beam");
+    account(element::compute_beam_forces(block, view, rotations, state_.dt), block, "beam");
   }
 }
 
