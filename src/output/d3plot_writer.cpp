@@ -206,6 +206,27 @@ void D3plotWriter::write_header(const solver::State& state) {
     }
   }
 
+  // Part titles (NTYPE 90001 of the manual's title section), after an end-of-file marker that
+  // closes the geometry: NUMPROP, then per part its user ID and 72 characters of title, in the
+  // material order above. ParaView's reader names its blocks from them. The root file then ends
+  // with the usual end-of-file marker (the states are in d3plot01, ...).
+  words.push_back(kEndOfFile);
+  words.push_back(int_word(90001));
+  words.push_back(int_word(materials));
+  for (const auto& [pid, number] : material_number) {
+    std::string title;
+    for (const solver::PartInfo& part : state.parts) {
+      if (part.id == pid) title = part.title;
+    }
+    char text[72];
+    std::memset(text, ' ', sizeof text);
+    std::memcpy(text, title.data(), std::min<std::size_t>(title.size(), sizeof text));
+    words.push_back(int_word(pid));
+    const std::size_t at = words.size();
+    words.resize(at + sizeof text / 4);
+    std::memcpy(&words[at], text, sizeof text);
+  }
+
   layout_.header_words = static_cast<std::int64_t>(words.size());
   layout_.state_words = 1 + kGlobalCount + 9 * node_count + (kSolidValues + 1) * element_count_;
   const std::int64_t family_words = family_bytes_ / 4;

@@ -3,7 +3,8 @@
 // LS-DYNA manual ("LS-DYNA Database Binary Output Files"), 4-byte words in host byte order,
 // written as a file family:
 //   d3plot:   control words (64) | node coordinates | solid connectivity + material |
-//             user IDs (NARBS) | end-of-file marker -999999.0
+//             user IDs (NARBS) | end-of-file marker -999999.0 |
+//             part titles (90001, NUMPROP, per part: ID + 72 characters) | end-of-file marker
 //   d3plot01, d3plot02, ...: state | state | ... | end-of-file marker -999999.0
 // Each state: time, 6 global values, current coordinates, velocities, accelerations of every
 // node, 7 values per solid (6 stresses + effective plastic strain) and one deletion flag per

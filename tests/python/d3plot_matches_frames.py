@@ -3,7 +3,8 @@
 (rigidflex_results.D3plot, written from the LS-DYNA manual's layout), comparing every field with
 the VTU frames and CSV files of the same run:
 
-- control words (NUMNP, NEL8, NV3D, flags), title, node and element user IDs, part IDs;
+- control words (NUMNP, NEL8, NV3D, flags), title, node and element user IDs, part IDs, part
+  titles (those of the deck's *PART cards);
 - reference coordinates = points of frame 0;
 - per state: time = frame time; coordinates, displacement, velocity = the frame's points,
   `displacement`, `velocity`; 6 stresses = the frame's `stress` (p > 1 elements: every sub-hex
@@ -154,6 +155,13 @@ def main():
         check(set(n - 1 for n in nodes) <= cell_nodes, "solid %d: nodes %r not in cell %d" % (e, nodes, c))
         if types[c] == 12:
             check([n - 1 for n in nodes] == list(conn[offsets[c]:offsets[c + 1]]), "hexahedron %d node order" % e)
+
+    titles = {1: "bar", 2: "wedge and tetra", 3: "rigid", 4: "order 2"}
+    if deck.endswith("d3plot_check.k"):
+        check(d.part_titles == titles, "part titles %r, deck says %r" % (d.part_titles, titles))
+    else:
+        check(sorted(d.part_titles) == sorted(d.part_ids), "titles for parts %r, parts are %r"
+              % (sorted(d.part_titles), d.part_ids))
 
     glstat = {round(r["time"], 12): r for r in read_csv(os.path.join(out, "glstat.csv"))}
     nodout_path = os.path.join(out, "nodout.csv")

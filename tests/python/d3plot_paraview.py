@@ -41,6 +41,14 @@ def main():
     parts_in_frames = sorted(set(first["cell_data"]["part_id"]))
     if reader.GetNumberOfPartArrays() != len(parts_in_frames):
         failures.append("ParaView lists %d parts, the frames %d" % (reader.GetNumberOfPartArrays(), len(parts_in_frames)))
+    # Part titles: the blocks carry the titles of the deck's *PART cards (d3plot title section).
+    deck = os.path.join(os.path.dirname(os.path.abspath(out)), "d3plot_check.k")
+    if os.path.exists(deck):
+        lines = open(deck).read().splitlines()
+        titles = sorted(lines[i + 1].strip() for i, line in enumerate(lines) if line.strip() == "*PART")
+        shown = sorted(reader.GetPartArrayName(i) for i in range(reader.GetNumberOfPartArrays()))
+        if shown != titles:
+            failures.append("ParaView names the parts %r, the deck %r" % (shown, titles))
     for step in range(min(steps, len(frames))):
         t, name = frames[step]
         if abs(reader.GetTimeValue(step) - t) > 1e-6 * max(abs(t), 1e-30):

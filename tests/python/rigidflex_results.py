@@ -80,17 +80,33 @@ class D3plot:
         self.state_words = (1 + self.nglbv + (self.it + 3 * (self.iu + self.iv + self.ia)) * self.numnp
                             + self.nv3d * self.nel8 + (self.nel8 if self.deletion else 0))
         self.states = []
+        self.part_titles = {}
         blobs = [(first, 4 * pos)] + [(m, 0) for m in members[1:]]
         for blob, at in blobs:
             while True:
                 assert at + 4 <= len(blob), "d3plot member ends without the end-of-file marker"
                 t = struct.unpack_from("<f", blob, at)[0]
+                if t == EOF_MARKER and blob is first and at + 4 < len(blob):
+                    at = self._titles(blob, at + 4)
+                    continue
                 if t == EOF_MARKER:
                     assert at + 4 == len(blob), "data after the end-of-file marker"
                     break
                 assert at + 4 * self.state_words <= len(blob), "d3plot: a state is cut short"
                 self.states.append(self._state(blob, at))
                 at += 4 * self.state_words
+
+    def _titles(self, blob, at):
+        """The title section after the geometry (NTYPE 90001: NUMPROP, then per part its ID and
+        72 characters); returns where it ends."""
+        ntype, numprop = struct.unpack_from("<2i", blob, at)
+        assert ntype == 90001, "d3plot: title section of type %d, expected 90001" % ntype
+        at += 8
+        for _ in range(numprop):
+            pid = struct.unpack_from("<i", blob, at)[0]
+            self.part_titles[pid] = blob[at + 4:at + 76].decode("ascii").rstrip()
+            at += 76
+        return at
 
     def _state(self, blob, at):
         v = struct.unpack_from("<%df" % self.state_words, blob, at)
