@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <iterator>
 
 #include "output/d3plot_writer.hpp"
@@ -29,6 +30,22 @@ std::string spcforc_text(double time, const std::vector<solver::NodeReaction>& r
   for (const solver::NodeReaction& r : reactions) {
     fmt::format_to(out, "{:.17g},{},{:.17g},{:.17g},{:.17g}\n", time, node_ids[r.node], r.force[0],
                    r.force[1], r.force[2]);
+  }
+  return fmt::to_string(text);
+}
+
+std::string secforc_text(double time, const std::vector<solver::SectionForce>& sections) {
+  fmt::memory_buffer text;
+  auto out = std::back_inserter(text);
+  auto norm = [](const std::array<double, 3>& v) {
+    return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  };
+  for (const solver::SectionForce& s : sections) {
+    fmt::format_to(out, "{:.17g},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},", time, s.section,
+                   s.force[0], s.force[1], s.force[2], norm(s.force), s.normal_force);
+    fmt::format_to(out, "{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", s.moment[0],
+                   s.moment[1], s.moment[2], norm(s.moment), s.centroid[0], s.centroid[1],
+                   s.centroid[2]);
   }
   return fmt::to_string(text);
 }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "output/writers.hpp"
+#include "solver/cross_sections.hpp"
 #include "solver/part_histories.hpp"
 
 namespace rf::output {
@@ -18,6 +19,9 @@ inline constexpr std::string_view kSpcforcHeader = "time,node,force_x,force_y,fo
 inline constexpr std::string_view kEloutHeader =
     "time,element,part,sxx,syy,szz,sxy,syz,szx,effective_stress,pressure,"
     "effective_plastic_strain";
+inline constexpr std::string_view kSecforcHeader =
+    "time,section,force_x,force_y,force_z,force_resultant,normal_force,moment_x,moment_y,"
+    "moment_z,moment_resultant,centroid_x,centroid_y,centroid_z";
 
 // One output time of matsum.csv: a row per part.
 std::string matsum_text(double time, const std::vector<solver::PartSummary>& parts);
@@ -33,5 +37,8 @@ struct HistorySolid {
 // One output time of elout.csv: a row per history solid (mean stress over its points).
 std::string elout_text(double time, const solver::State& state,
                        const std::vector<HistorySolid>& solids);
+
+// One output time of secforc.csv: a row per cross section.
+std::string secforc_text(double time, const std::vector<solver::SectionForce>& sections);
 
 }  // namespace rf::output

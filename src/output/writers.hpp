@@ -85,6 +85,7 @@ struct CsvContinuation {
   std::int64_t matsum = -1;    // matsum.csv
   std::int64_t spcforc = -1;   // spcforc.csv
   std::int64_t elout = -1;     // elout.csv
+  std::int64_t secforc = -1;   // secforc.csv
 };
 
 // Column headers, exactly as written (docs/output.md).

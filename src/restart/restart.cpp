@@ -155,7 +155,8 @@ Restarted restart_from_dump(const RestartOptions& options) {
   const std::pair<const char*, std::int64_t*> histories[] = {
       {"matsum", &sim_options.continuation.matsum},
       {"spcforc", &sim_options.continuation.spcforc},
-      {"elout", &sim_options.continuation.elout}};
+      {"elout", &sim_options.continuation.elout},
+      {"secforc", &sim_options.continuation.secforc}};
   for (const auto& [name, target] : histories) {
     const std::string attribute = std::string(name) + "_bytes";
     if (!output.has_attribute(attribute)) continue;

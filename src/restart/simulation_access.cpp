@@ -119,12 +119,15 @@ void SimulationAccess::write_output(Simulation& s, const Group& g) {
   g.set("matsum_bytes", s.matsum_csv_ ? s.matsum_csv_->flushed_size() : std::int64_t{-1});
   g.set("spcforc_bytes", s.spcforc_csv_ ? s.spcforc_csv_->flushed_size() : std::int64_t{-1});
   g.set("elout_bytes", s.elout_csv_ ? s.elout_csv_->flushed_size() : std::int64_t{-1});
+  g.set("secforc_bytes", s.secforc_csv_ ? s.secforc_csv_->flushed_size() : std::int64_t{-1});
   write_schedule(g, "matsum", s.matsum_schedule_.interval, s.matsum_schedule_.next,
                  s.matsum_schedule_.last_cycle);
   write_schedule(g, "spcforc", s.spcforc_schedule_.interval, s.spcforc_schedule_.next,
                  s.spcforc_schedule_.last_cycle);
   write_schedule(g, "elout", s.elout_schedule_.interval, s.elout_schedule_.next,
                  s.elout_schedule_.last_cycle);
+  write_schedule(g, "secforc", s.secforc_schedule_.interval, s.secforc_schedule_.next,
+                 s.secforc_schedule_.last_cycle);
   if (s.part_histories_) {
     const auto& work = s.part_histories_->internal_work();
     const auto& hourglass = s.part_histories_->hourglass();
@@ -165,6 +168,7 @@ void SimulationAccess::read_output(Simulation& s, const Group& g) {
     read_schedule(g, "spcforc", s.spcforc_schedule_);
     read_schedule(g, "elout", s.elout_schedule_);
   }
+  if (g.has_attribute("secforc_bytes")) read_schedule(g, "secforc", s.secforc_schedule_);
   if (s.part_histories_) {
     if (!g.has_attribute("matsum_bytes") || g.get_int("matsum_bytes") < 0) {
       g.fail("matsum_bytes",

@@ -202,6 +202,14 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
                                                      std::string(output::kEloutHeader),
                                                      options_.continuation.elout);
     }
+    if (!model.output.cross_sections.empty()) {
+      cross_sections_ = build_cross_sections(model, state_);
+      section_rows_.reserve(cross_sections_.size());
+      secforc_schedule_.interval = default_interval(model.output.secforc_dt, span, 1000.0);
+      secforc_csv_ = std::make_unique<output::CsvFile>(options_.output_directory / "secforc.csv",
+                                                       std::string(output::kSecforcHeader),
+                                                       options_.continuation.secforc);
+    }
     if (options_.write_fields) {
       d3plot_schedule_.interval = default_interval(model.output.d3plot_dt, span, 20.0);
       fields_ = std::make_unique<output::FieldWriter>(options_.output_directory);
@@ -909,6 +917,12 @@ void Simulation::write_output_if_due(bool force) {
   if (elout_csv_ && wanted(elout_schedule_)) {
     elout_csv_->write_text(output::elout_text(t, state_, elout_solids_));
     elout_schedule_.mark_written(t, cycle);
+  }
+  if (secforc_csv_ && wanted(secforc_schedule_)) {
+    section_rows_.clear();
+    for (const CrossSectionCut& cut : cross_sections_) section_rows_.push_back(cut.evaluate(state_));
+    secforc_csv_->write_text(output::secforc_text(t, section_rows_));
+    secforc_schedule_.mark_written(t, cycle);
   }
   if (fields_ && wanted(d3plot_schedule_)) {
     if (walls_.empty()) {

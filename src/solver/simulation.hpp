@@ -255,6 +255,11 @@ class Simulation {
   std::unique_ptr<output::CsvFile> matsum_csv_, spcforc_csv_, elout_csv_;
   OutputSchedule matsum_schedule_, spcforc_schedule_, elout_schedule_;
   std::vector<output::HistorySolid> elout_solids_;
+  // *DATABASE_CROSS_SECTION_PLANE (+ *DATABASE_SECFORC): secforc.csv.
+  std::vector<CrossSectionCut> cross_sections_;
+  std::unique_ptr<output::CsvFile> secforc_csv_;
+  OutputSchedule secforc_schedule_;
+  std::vector<SectionForce> section_rows_;
   std::vector<double> reduction_scratch_;
 
   // Part switching (empty unless the deck has *DEFORMABLE_TO_RIGID*).

@@ -64,6 +64,7 @@ void control_implicit_eigenvalue(const Block&, ReaderContext&);
 void database_ascii(const Block&, ReaderContext&);
 void database_binary_d3plot(const Block&, ReaderContext&);
 void database_history_solid(const Block&, ReaderContext&);
+void database_cross_section_plane(const Block&, ReaderContext&);
 void database_history_node(const Block&, ReaderContext&);
 void parameter(const Block&, ReaderContext&);
 void parameter_expression(const Block&, ReaderContext&);

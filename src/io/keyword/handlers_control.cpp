@@ -200,6 +200,8 @@ void database_ascii(const Block& block, ReaderContext& context) {
     context.model.output.spcforc = true;
   } else if (block.base == "*DATABASE_ELOUT") {
     context.model.output.elout_dt = dt;
+  } else if (block.base == "*DATABASE_SECFORC") {
+    context.model.output.secforc_dt = dt;
   } else {
     context.model.output.nodout_dt = dt;
   }
@@ -261,6 +263,78 @@ void database_history_solid(const Block& block, ReaderContext& context) {
       context.model.output.history_solid_where.push_back(card.location());
     }
   }
+}
+
+// A cutting plane whose section force goes to secforc.csv. Card layouts from the LS-DYNA manual
+// (*DATABASE_CROSS_SECTION): [CSID HEADING] with _ID; PSID XCT YCT ZCT XCH YCH ZCH RADIUS;
+// XHEV YHEV ZHEV LENL LENM ID ITYPE.
+void database_cross_section_plane(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  model::CrossSection section;
+  const bool with_id = block.has_option("ID");
+  int n = 0;
+  if (with_id) {
+    const Card card = cursor.next(++n, Layout{10, 70}, "CSID HEADING");
+    section.id = card.id(0, "CSID");
+    if (section.id <= 0) throw card.error("CSID", "must be a positive ID");
+    section.title = std::string(card.text(1));
+  } else {
+    section.id = static_cast<model::Id>(context.model.output.cross_sections.size()) + 1;
+  }
+  const Card plane = cursor.next(++n, kEightByTen, "PSID");
+  section.where = plane.location();
+  section.part_set = plane.id(0, "PSID");
+  if (section.part_set < 0) throw plane.error("PSID", "must not be negative (0: every part)");
+  const char* tail_names[3] = {"XCT", "YCT", "ZCT"};
+  const char* head_names[3] = {"XCH", "YCH", "ZCH"};
+  for (int k = 0; k < 3; ++k) {
+    section.tail[k] = plane.real(1 + k, tail_names[k], 0.0);
+    section.head[k] = plane.real(4 + k, head_names[k], 0.0);
+  }
+  section.radius = plane.real(7, "RADIUS", 0.0);
+  if (section.radius < 0.0) {
+    // XCT and XCH are node IDs.
+    section.tail_node = static_cast<model::Id>(section.tail[0]);
+    section.head_node = static_cast<model::Id>(section.head[0]);
+    if (section.tail_node <= 0 || section.tail_node != section.tail[0]) {
+      throw plane.error("XCT", "with RADIUS < 0 XCT must be a node ID");
+    }
+    if (section.head_node <= 0 || section.head_node != section.head[0]) {
+      throw plane.error("XCH", "with RADIUS < 0 XCH must be a node ID");
+    }
+  }
+  cursor.skip_blank_lines();
+  if (!cursor.at_end()) {
+    const Card edge = cursor.next(++n, kEightByTen, "XHEV");
+    const char* edge_names[3] = {"XHEV", "YHEV", "ZHEV"};
+    for (int k = 0; k < 3; ++k) section.edge_head[k] = edge.real(k, edge_names[k], 0.0);
+    section.length_l = edge.real(3, "LENL", 0.0);
+    section.length_m = edge.real(4, "LENM", 0.0);
+    if (section.length_l < 0.0) throw edge.error("LENL", "must not be negative (0: unbounded)");
+    if (section.length_m < 0.0) throw edge.error("LENM", "must not be negative (0: unbounded)");
+    if (edge.id(5, "ID") != 0) {
+      throw edge.error("ID", "section forces in the frame of a rigid body, accelerometer or "
+                             "coordinate system are not supported: leave ID blank (global axes)");
+    }
+    edge.integer(6, "ITYPE", 0);
+  }
+  if (section.radius == 0.0) {
+    double length = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      length += (section.head[k] - section.tail[k]) * (section.head[k] - section.tail[k]);
+    }
+    if (length == 0.0) {
+      throw plane.error("XCH", "the head of the normal (XCH YCH ZCH) equals its tail (XCT YCT ZCT)");
+    }
+  }
+  for (const model::CrossSection& other : context.model.output.cross_sections) {
+    if (other.id == section.id) {
+      throw plane.error(with_id ? "CSID" : "PSID",
+                        fmt::format("cross section {} is defined twice", section.id));
+    }
+  }
+  context.model.output.cross_sections.push_back(section);
+  warn_unread_lines(block, cursor, context);
 }
 
 namespace {

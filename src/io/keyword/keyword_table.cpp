@@ -101,6 +101,8 @@ const std::vector<KeywordEntry>& table() {
       {"*DATABASE_MATSUM", database_ascii, {}},
       {"*DATABASE_SPCFORC", database_ascii, {}},
       {"*DATABASE_ELOUT", database_ascii, {}},
+      {"*DATABASE_SECFORC", database_ascii, {}},
+      {"*DATABASE_CROSS_SECTION_PLANE", database_cross_section_plane, {"ID"}},
       {"*DATABASE_HISTORY_SOLID", database_history_solid, {}},
       {"*DATABASE_BINARY_D3PLOT", database_binary_d3plot, {}},
       {"*DATABASE_HISTORY_NODE", database_history_node, {}},
