@@ -262,7 +262,7 @@ struct PartSet {
   SourceLocation where;
 };
 
-// *SET_SOLID: solid elements by ID (no keyword consumes them yet; read so that decks keep them).
+// *SET_SOLID, *SET_SHELL, *SET_BEAM: elements of one family by ID (*DATABASE_HISTORY_..._SET).
 struct SolidSet {
   Id id = 0;
   std::vector<Id> elements;
@@ -717,6 +717,10 @@ struct CrossSection {
   std::array<double, 3> edge_head{};  // XHEV YHEV ZHEV: head of the edge vector L (tail: XCT..)
   double length_l = 0.0;  // LENL; 0 or blank: unbounded along L
   double length_m = 0.0;  // LENM; 0 or blank: unbounded along M = N x L
+  // *DATABASE_CROSS_SECTION_SET: the section's nodes and the elements whose nodal forces at
+  // those nodes are summed are given as sets (NSID; HSID, BSID, SSID) instead of a plane.
+  bool from_sets = false;
+  Id node_set = 0, solid_set = 0, beam_set = 0, shell_set = 0;
   SourceLocation where;
 };
 
@@ -737,6 +741,14 @@ struct OutputControl {
   double elout_dt = 0.0;           // *DATABASE_ELOUT DT; 0: about 1000 rows per run
   std::vector<Id> history_solids;  // *DATABASE_HISTORY_SOLID element IDs, in deck order
   std::vector<SourceLocation> history_solid_where;  // the card of each
+  // *DATABASE_HISTORY_SOLID_SET: solid set IDs (members follow the IDs above in elout.csv).
+  std::vector<Id> history_solid_sets;
+  std::vector<SourceLocation> history_solid_set_where;
+  // *DATABASE_HISTORY_SHELL(_ID, _SET): shells whose point stresses go to elout_shell.csv.
+  std::vector<Id> history_shells;
+  std::vector<SourceLocation> history_shell_where;
+  std::vector<Id> history_shell_sets;
+  std::vector<SourceLocation> history_shell_set_where;
   std::vector<CrossSection> cross_sections;         // secforc.csv rows, in this order
   double secforc_dt = 0.0;  // *DATABASE_SECFORC DT; 0: about 1000 rows per run
 };
@@ -788,6 +800,8 @@ struct Model {
   std::map<Id, PartSet> part_sets;
   std::map<Id, SegmentSet> segment_sets;
   std::map<Id, SolidSet> solid_sets;
+  std::map<Id, SolidSet> shell_sets;  // *SET_SHELL
+  std::map<Id, SolidSet> beam_sets;   // *SET_BEAM
   std::map<Id, Function> functions;  // IMPETUS *FUNCTION
   std::map<Id, GeometrySeed> geometry_seeds;
   std::vector<POrderChange> p_order_changes;

@@ -128,8 +128,6 @@ void write_atomically(const std::filesystem::path& path, WriteBody&& body) {
 
 }  // namespace
 
-namespace {
-
 // Co-rotational frame of a shell at the current configuration (rows e1, e2, e3): e3 along the
 // cross product of the diagonals, e1 along side 1-2 made normal to e3 (Belytschko, Lin and Tsay
 // 1984), the frame the kernel keeps the stresses in.
@@ -178,8 +176,6 @@ void shell_stress_to_global(const double* local, const std::array<std::array<dou
     out[v] = sum;
   }
 }
-
-}  // namespace
 
 double von_mises(const double* s) {
   const double dxy = s[0] - s[1];

@@ -66,4 +66,40 @@ std::string elout_text(double time, const solver::State& state,
   return fmt::to_string(text);
 }
 
+std::string elout_shell_text(double time, const solver::State& state,
+                             const std::vector<HistoryShell>& shells) {
+  fmt::memory_buffer text;
+  auto out = std::back_inserter(text);
+  for (const HistoryShell& h : shells) {
+    const element::ShellBlock& block = state.shell_blocks[h.block];
+    const std::size_t nip = static_cast<std::size_t>(block.nip);
+    const std::size_t points = static_cast<std::size_t>(block.points_per_element());
+    const std::size_t in_plane = points / nip;
+    const auto frame = shell_frame(state.nodes, &block.conn[4 * h.element]);
+    const material::HistoryArray* plastic =
+        element::find_history(block, "effective_plastic_strain");
+    for (std::size_t k = 0; k < nip; ++k) {
+      // Mean over the in-plane points at this height (one point for ELFORM 2).
+      double s[6] = {0, 0, 0, 0, 0, 0};
+      double strain = 0.0;
+      for (std::size_t p = 0; p < in_plane; ++p) {
+        const std::size_t q = h.element * points + p * nip + k;
+        double g[6] = {0, 0, 0, 0, 0, 0};
+        if (!block.stress.empty()) {
+          shell_stress_to_global(&block.stress[q * element::kShellStress], frame, g);
+        }
+        for (int c = 0; c < 6; ++c) s[c] += g[c] / static_cast<double>(in_plane);
+        if (plastic && plastic->field.components == 1 && q < plastic->values.size()) {
+          strain += plastic->values[q] / static_cast<double>(in_plane);
+        }
+      }
+      fmt::format_to(out, "{:.17g},{},{},{},{:.17g}", time, block.element_id[h.element],
+                     block.part_id, k + 1, block.zeta[k]);
+      for (double v : s) fmt::format_to(out, ",{:.17g}", v);
+      fmt::format_to(out, ",{:.17g},{:.17g}\n", von_mises(s), strain);
+    }
+  }
+  return fmt::to_string(text);
+}
+
 }  // namespace rf::output

@@ -86,6 +86,7 @@ struct CsvContinuation {
   std::int64_t spcforc = -1;   // spcforc.csv
   std::int64_t elout = -1;     // elout.csv
   std::int64_t secforc = -1;   // secforc.csv
+  std::int64_t elout_shell = -1;  // elout_shell.csv
 };
 
 // Column headers, exactly as written (docs/output.md).
@@ -260,6 +261,14 @@ struct VtkCell {
 // -> pyramid. Any other repetition is kept as a (degenerate) hexahedron.
 VtkCell vtk_cell_from_solid(const std::int32_t* conn8);
 
+// Co-rotational frame of shell element `conn` (4 dense nodes) at the current configuration, rows
+// e1 e2 e3, the frame in which the shell kernel keeps its stresses.
+std::array<std::array<double, 3>, 3> shell_frame(const solver::NodalState& nodes,
+                                                const std::int32_t* conn);
+// A shell point's co-rotational stress (xx yy xy yz zx, sigma_zz = 0) in global axes, Voigt order
+// xx yy zz xy yz zx.
+void shell_stress_to_global(const double* local, const std::array<std::array<double, 3>, 3>& frame,
+                            double out[6]);
 // Von Mises stress of a Voigt stress (xx,yy,zz,xy,yz,zx).
 double von_mises(const double* voigt6);
 // Cauchy stress of element e of a block for output: the mean over its integration points

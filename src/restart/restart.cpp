@@ -156,7 +156,8 @@ Restarted restart_from_dump(const RestartOptions& options) {
       {"matsum", &sim_options.continuation.matsum},
       {"spcforc", &sim_options.continuation.spcforc},
       {"elout", &sim_options.continuation.elout},
-      {"secforc", &sim_options.continuation.secforc}};
+      {"secforc", &sim_options.continuation.secforc},
+      {"elout_shell", &sim_options.continuation.elout_shell}};
   for (const auto& [name, target] : histories) {
     const std::string attribute = std::string(name) + "_bytes";
     if (!output.has_attribute(attribute)) continue;

@@ -120,6 +120,8 @@ void SimulationAccess::write_output(Simulation& s, const Group& g) {
   g.set("spcforc_bytes", s.spcforc_csv_ ? s.spcforc_csv_->flushed_size() : std::int64_t{-1});
   g.set("elout_bytes", s.elout_csv_ ? s.elout_csv_->flushed_size() : std::int64_t{-1});
   g.set("secforc_bytes", s.secforc_csv_ ? s.secforc_csv_->flushed_size() : std::int64_t{-1});
+  g.set("elout_shell_bytes",
+        s.elout_shell_csv_ ? s.elout_shell_csv_->flushed_size() : std::int64_t{-1});
   write_schedule(g, "matsum", s.matsum_schedule_.interval, s.matsum_schedule_.next,
                  s.matsum_schedule_.last_cycle);
   write_schedule(g, "spcforc", s.spcforc_schedule_.interval, s.spcforc_schedule_.next,
@@ -128,6 +130,8 @@ void SimulationAccess::write_output(Simulation& s, const Group& g) {
                  s.elout_schedule_.last_cycle);
   write_schedule(g, "secforc", s.secforc_schedule_.interval, s.secforc_schedule_.next,
                  s.secforc_schedule_.last_cycle);
+  write_schedule(g, "elout_shell", s.elout_shell_schedule_.interval,
+                 s.elout_shell_schedule_.next, s.elout_shell_schedule_.last_cycle);
   if (s.part_histories_) {
     const auto& work = s.part_histories_->internal_work();
     const auto& hourglass = s.part_histories_->hourglass();
@@ -169,6 +173,9 @@ void SimulationAccess::read_output(Simulation& s, const Group& g) {
     read_schedule(g, "elout", s.elout_schedule_);
   }
   if (g.has_attribute("secforc_bytes")) read_schedule(g, "secforc", s.secforc_schedule_);
+  if (g.has_attribute("elout_shell_bytes")) {
+    read_schedule(g, "elout_shell", s.elout_shell_schedule_);
+  }
   if (s.part_histories_) {
     if (!g.has_attribute("matsum_bytes") || g.get_int("matsum_bytes") < 0) {
       g.fail("matsum_bytes",

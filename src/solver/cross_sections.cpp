@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <set>
+#include <tuple>
 
 #include "model/error.hpp"
 #include "model/error_context.hpp"
@@ -39,9 +41,104 @@ std::int32_t dense_node(const State& state, model::Id id, const model::CrossSect
 
 }  // namespace
 
+namespace {
+
+// Members of set `id` of `sets`, or an error naming the card and field.
+const std::vector<model::Id>& set_members(const std::map<model::Id, model::SolidSet>& sets,
+                                          model::Id id, const model::CrossSection& section,
+                                          const char* field, const char* family) {
+  const auto it = sets.find(id);
+  if (it == sets.end()) {
+    throw InputError(context_of(section.where, field),
+                     fmt::format("{} set {} is not defined", family, id));
+  }
+  return it->second.elements;
+}
+
+}  // namespace
+
+void CrossSectionCut::build_from_sets(const model::Model& model, const State& state,
+                                      const model::CrossSection& section) {
+  const auto nodes_it = model.node_sets.find(section.node_set);
+  if (nodes_it == model.node_sets.end()) {
+    throw InputError(context_of(section.where, "NSID"),
+                     fmt::format("node set {} is not defined", section.node_set));
+  }
+  std::vector<std::uint8_t> in_section(state.nodes.size(), 0);
+  std::map<model::Id, std::int32_t> dense;
+  for (std::size_t i = 0; i < state.nodes.size(); ++i) {
+    dense[state.nodes.id[i]] = static_cast<std::int32_t>(i);
+  }
+  for (const model::Id id : nodes_it->second.nodes) {
+    const auto it = dense.find(id);
+    if (it == dense.end()) {
+      throw InputError(context_of(section.where, "NSID"), fmt::format("node {} does not exist", id));
+    }
+    if (!in_section[it->second]) nodes_.push_back(it->second);
+    in_section[it->second] = 1;
+  }
+  std::sort(nodes_.begin(), nodes_.end());
+  // The elements of each set, found by user ID in the blocks of their family.
+  auto add = [&](auto& blocks, Family family, model::Id set, const char* field, const char* name,
+                 auto nodes_of, int node_stride) {
+    if (set == 0) return;
+    const std::vector<model::Id>& members =
+        set_members(family == Family::kHex     ? model.solid_sets
+                    : family == Family::kShell ? model.shell_sets
+                                               : model.beam_sets,
+                    set, section, field, name);
+    const std::set<model::Id> wanted(members.begin(), members.end());
+    std::size_t found = 0;
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+      const auto& block = blocks[b];
+      for (std::size_t e = 0; e < block.size(); ++e) {
+        if (!wanted.count(block.element_id[e])) continue;
+        ++found;
+        if (!block.has_force_slots || block.rigid) continue;
+        const auto [conn, count, stride] = nodes_of(block, e);
+        for (int k = 0; k < count; ++k) {
+          if (!in_section[conn[k]]) continue;
+          slots_.push_back({family, static_cast<std::int32_t>(b),
+                            static_cast<std::int64_t>(e) * stride + k * node_stride, conn[k]});
+        }
+      }
+    }
+    if (found != wanted.size()) {
+      throw InputError(context_of(section.where, field),
+                       fmt::format("{} set {}: {} of its {} elements are no {} elements", name, set,
+                                   wanted.size() - found, wanted.size(), name));
+    }
+  };
+  add(state.hex_blocks, Family::kHex, section.solid_set, "HSID", "solid",
+      [](const element::HexBlock& block, std::size_t e) {
+        const int npe = block.nodes_per_element();
+        return std::tuple<const std::int32_t*, int, int>{&block.conn[e * npe], npe, 3 * npe};
+      }, 3);
+  add(state.shell_blocks, Family::kShell, section.shell_set, "SSID", "shell",
+      [](const element::ShellBlock& block, std::size_t e) {
+        return std::tuple<const std::int32_t*, int, int>{&block.conn[4 * e], 4,
+                                                         element::kShellSlot};
+      }, 6);
+  add(state.beam_blocks, Family::kBeam, section.beam_set, "BSID", "beam",
+      [](const element::BeamBlock& block, std::size_t e) {
+        return std::tuple<const std::int32_t*, int, int>{&block.conn[2 * e], 2,
+                                                         element::kBeamSlot};
+      }, 6);
+  if (slots_.empty()) {
+    throw InputError(context_of(section.where, "NSID"),
+                     fmt::format("cross section {}: no deformable element of the element sets "
+                                 "has a node in node set {}",
+                                 section.id, section.node_set));
+  }
+}
+
 CrossSectionCut::CrossSectionCut(const model::Model& model, const State& state,
                                  const model::CrossSection& section)
     : id_(section.id) {
+  if (section.from_sets) {
+    build_from_sets(model, state, section);
+    return;
+  }
   // The plane: tail point and unit normal (nodes with RADIUS < 0, at their initial positions).
   Vec tail = section.tail;
   Vec head = section.head;

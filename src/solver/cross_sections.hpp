@@ -16,7 +16,7 @@ namespace rf::solver {
 struct SectionForce {
   model::Id section = 0;
   std::array<double, 3> force{};     // positive side on negative side, global axes
-  double normal_force = 0.0;         // force . N (positive: tension across the cut)
+  double normal_force = 0.0;         // force . N (positive: tension); 0 for set sections
   std::array<double, 3> moment{};    // about the centroid of the section's nodes
   std::array<double, 3> centroid{};  // mean current position of the section's nodes
 };
@@ -50,6 +50,10 @@ class CrossSectionCut {
     std::int64_t offset;
     std::int32_t node;
   };
+  // *DATABASE_CROSS_SECTION_SET: nodes and elements from the sets; no normal (normal_force 0).
+  void build_from_sets(const model::Model& model, const State& state,
+                       const model::CrossSection& section);
+
   model::Id id_ = 0;
   std::array<double, 3> normal_{};
   std::vector<Slot> slots_;

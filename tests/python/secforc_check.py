@@ -9,7 +9,8 @@ exerts on the negative side the force (Px, 0, Pz) and, about the section's centr
 Three families, each with its own deck: hexahedra (forces only), shells (the bending moment
 crosses the cut mostly as nodal moments) and Belytschko-Schwer beams (one node in the cut).
 Each deck has three sections at x = a: an unbounded plane, a rectangle (LENL, LENM) around the
-cross-section and a disc (RADIUS). A fourth section through a part set that does not hold the
+cross-section and a disc (RADIUS); the hexahedra also one by sets (*DATABASE_CROSS_SECTION_SET:
+the nodes at x = a and the elements just before them). A fourth section through a part set that does not hold the
 structure must be refused, as must a plane that cuts nothing.
 
 Usage: secforc_check.py RIGIDFLEX WORKDIR
@@ -83,6 +84,11 @@ def hex_deck(path):
     lines += ["*PART", "bar", "1,1,1,0,1", "*SECTION_SOLID", "1,1", "*MAT_ELASTIC", "1,%g,%g,%g" % (RHO, E, NU),
               "*HOURGLASS", "1,4,0.1", "*BOUNDARY_SPC_NODE"]
     lines += ["%d,0,1,1,1,0,0,0" % nid[0, j, k] for j in range(ny + 1) for k in range(ny + 1)]
+    # Section 14 by sets: the nodes of the layer x = a and the elements just before it.
+    lines += ["*SET_NODE_LIST", "8", ",".join(str(nid[nx // 2, j, k]) for j in range(ny + 1) for k in range(ny + 1)),
+              "*SET_SOLID", "9", "10,30,50,70", "*DATABASE_CROSS_SECTION_SET_ID", "14,by sets", "8,9"]
+    lines += ["*SET_SOLID", "4", "31,51,71,11", "*DATABASE_HISTORY_SOLID_SET", "4",
+              "*DATABASE_HISTORY_SOLID_ID", "11,first", "*DATABASE_ELOUT", "0.003"]
     omega1 = 1.875 ** 2 * math.sqrt(E * h * h / 12.0 / RHO) / L ** 2
     tip = [nid[nx, j, k] for j in range(ny + 1) for k in range(ny + 1)]
     text = lines + common_cards(tip, omega1, 0.06)
@@ -108,6 +114,11 @@ def shell_deck(path):
     lines += ["*PART", "plate", "1,1,1", "*SECTION_SHELL", "1,2,0.833,3", "%g,%g,%g,%g" % (t, t, t, t),
               "*MAT_ELASTIC", "1,%g,%g,%g" % (RHO, E, NU), "*BOUNDARY_SPC_NODE"]
     lines += ["%d,0,1,1,1,1,1,1" % nid[0, j] for j in range(ny + 1)]
+    # The four shells of the column x in [0.5, 0.55] in elout_shell.csv, named three ways
+    # (element 11 twice: it must appear once).
+    lines += ["*DATABASE_HISTORY_SHELL", "11", "*DATABASE_HISTORY_SHELL_ID", "31,second row",
+              "*SET_SHELL_LIST", "5", "11,51,71", "*DATABASE_HISTORY_SHELL_SET", "5",
+              "*DATABASE_ELOUT", "0.003"]
     omega1 = 1.875 ** 2 * math.sqrt(E * t * t / 12.0 / RHO) / L ** 2
     text = lines + common_cards([nid[nx, j] for j in range(ny + 1)], omega1, 0.15)
     with open(path, "w") as f:
@@ -150,7 +161,8 @@ def main():
         rows = read_csv(os.path.join(work, name, "secforc.csv"))
         last_time = max(r["time"] for r in rows)
         last = {int(r["section"]): r for r in rows if r["time"] == last_time}
-        check(sorted(last) == [11, 12, 13], "%s: sections %r, expected 11 12 13" % (name, sorted(last)))
+        sections = [11, 12, 13, 14] if name == "hex" else [11, 12, 13]
+        check(sorted(last) == sections, "%s: sections %r, expected %r" % (name, sorted(last), sections))
         for sid, r in sorted(last.items()):
             where = "%s section %d at t = %g" % (name, sid, last_time)
             force = (r["force_x"], r["force_y"], r["force_z"])
@@ -160,7 +172,9 @@ def main():
             for k, want in enumerate(expected_moment):
                 check(abs(moment[k] - want) <= 2e-3 * PZ * L,
                       "%s: moment %r, expected %r" % (where, moment, expected_moment))
-            check(abs(r["normal_force"] - PX) <= 2e-3 * PZ, "%s: normal force %g, expected %g" % (where, r["normal_force"], PX))
+            want_normal = 0.0 if sid == 14 else PX  # a section by sets has no normal
+            check(abs(r["normal_force"] - want_normal) <= 2e-3 * PZ,
+                  "%s: normal force %g, expected %g" % (where, r["normal_force"], want_normal))
             check(abs(r["centroid_x"] - A_CUT) < 1e-2, "%s: centroid x %g" % (where, r["centroid_x"]))
             check(abs(r["force_resultant"] - math.hypot(*force)) <= 1e-9 * PZ, "%s: resultant" % where)
         # Early rows differ from the static value (the loads ramp up): the check above would
@@ -170,6 +184,45 @@ def main():
         print("%s: F = (%.6g, %.6g, %.6g) N, M = (%.6g, %.6g, %.6g) N m at t = %g s" % (
             name, last[11]["force_x"], last[11]["force_y"], last[11]["force_z"],
             last[11]["moment_x"], last[11]["moment_y"], last[11]["moment_z"], last_time))
+
+    # elout.csv from *DATABASE_HISTORY_SOLID_ID + _SET: elements 11, 31, 51, 71, each once per
+    # output time, IDs first then the set in its order.
+    rows = read_csv(os.path.join(work, "hex", "elout.csv"))
+    first_time = rows[0]["time"]
+    order = [int(r["element"]) for r in rows if r["time"] == first_time]
+    check(order == [11, 31, 51, 71], "hex: elout.csv elements %r, expected [11, 31, 51, 71]" % order)
+    # elout_shell.csv: shells 11, 31, 51, 71, three points each (NIP 3). Beam theory for the
+    # column at x = 0.525 (far from the clamped edge): sigma_xx(z) = Px/(b t) - M z / I with
+    # M = Pz (L - 0.525), I = b t^3 / 12, z = zeta t / 2 (the tip load bends the plate up, so
+    # its top is in compression); the other components are small.
+    rows = read_csv(os.path.join(work, "shell", "elout_shell.csv"))
+    last_time = max(r["time"] for r in rows)
+    last = [r for r in rows if r["time"] == last_time]
+    elements = []
+    for r in last:
+        if int(r["element"]) not in elements:
+            elements.append(int(r["element"]))
+    check(elements == [11, 31, 51, 71],
+          "shell: elout_shell.csv elements %r" % elements)
+    check(len(last) == 12 and all(int(r["point"]) in (1, 2, 3) for r in last),
+          "shell: %d rows at the last time, expected 4 shells x 3 points" % len(last))
+    b, t = 0.2, 0.05
+    moment = PZ * (L - 0.525)
+    inertia = b * t ** 3 / 12.0
+    peak = moment * (t / 2) / inertia
+    worst = 0.0
+    for r in last:
+        z = r["zeta"] * t / 2
+        want = PX / (b * t) - moment * z / inertia
+        worst = max(worst, abs(r["sxx"] - want) / peak)
+        check(abs(r["sxx"] - want) <= 0.02 * peak,
+              "shell %d point %d: sxx %g, beam theory %g" % (r["element"], r["point"], r["sxx"], want))
+        sx, sy, sz = r["sxx"], r["syy"], r["szz"]
+        mises = math.sqrt(0.5 * ((sx - sy) ** 2 + (sy - sz) ** 2 + (sz - sx) ** 2)
+                          + 3 * (r["sxy"] ** 2 + r["syz"] ** 2 + r["szx"] ** 2))
+        check(abs(r["effective_stress"] - mises) <= 1e-6 * peak,
+              "shell %d: effective stress is not the von Mises value" % r["element"])
+    print("shell elout: sxx within %.2f %% of beam theory (peak %.4g Pa)" % (100 * worst, peak))
 
     # Bad input: a part set without the structure, a plane beyond the part, a missing set.
     deck = open(os.path.join(work, "hex.k")).read()

@@ -174,6 +174,16 @@ std::string damped_spinning_rigid() {
   return deck;
 }
 
+// The deformable deck with a cross section through its middle (secforc.csv) and history solids
+// by set (elout.csv): both CSV files continue across the dump.
+std::string deformable_with_sections() {
+  std::string deck = restart_decks::deformable(4e-5);
+  deck.insert(deck.rfind("*END"),
+              "*DATABASE_CROSS_SECTION_PLANE\n0,2.0,0.0,0.0,3.0,0.0,0.0\n*DATABASE_SECFORC\n2e-7\n"
+              "*SET_SOLID\n5\n1,2\n*DATABASE_HISTORY_SOLID_SET\n5\n*DATABASE_ELOUT\n2e-7\n");
+  return deck;
+}
+
 const Case kCases[] = {
     {"deformable", restart_decks::deformable(4e-5), "", {}, 6e-6, 1},
     {"deformable", restart_decks::deformable(4e-5), "", {}, 6e-6, 2},
@@ -201,6 +211,8 @@ const Case kCases[] = {
     // Mass-proportional damping of nodes and of a rigid body.
     {"damping", damped_spinning_rigid(), "", {}, 6e-6, 1},
     {"damping", damped_spinning_rigid(), "", {}, 6e-6, 2},
+    {"sections", deformable_with_sections(), "", {}, 6e-6, 1},
+    {"sections", deformable_with_sections(), "", {}, 6e-6, 2},
 };
 
 INSTANTIATE_TEST_SUITE_P(Restart, RestartBitwise, testing::ValuesIn(kCases), case_name);

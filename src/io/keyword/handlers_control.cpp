@@ -246,21 +246,35 @@ void database_history_node(const Block& block, ReaderContext& context) {
   }
 }
 
-// Solid elements whose stresses go to elout.csv (the IDs are checked against the mesh when the
-// run starts).
-void database_history_solid(const Block& block, ReaderContext& context) {
+// Elements whose stresses go to elout.csv (solids) and elout_shell.csv (shells): 8 IDs per card,
+// 8 set IDs per card (_SET), or one ID and a heading per card (_ID). The IDs are checked
+// against the mesh when the run starts.
+void database_history_elements(const Block& block, ReaderContext& context) {
   CardCursor cursor(block, context.parameters);
+  const bool shells = block.base.starts_with("*DATABASE_HISTORY_SHELL");
+  const bool sets = block.base.ends_with("_SET");
+  const bool with_heading = block.base.ends_with("_ID");
+  const char* field = sets ? "SID" : (with_heading ? "ID" : "EID");
+  model::OutputControl& output = context.model.output;
+  std::vector<model::Id>& ids = shells ? (sets ? output.history_shell_sets : output.history_shells)
+                                       : (sets ? output.history_solid_sets : output.history_solids);
+  std::vector<model::SourceLocation>& where =
+      shells ? (sets ? output.history_shell_set_where : output.history_shell_where)
+             : (sets ? output.history_solid_set_where : output.history_solid_where);
   int n = 0;
   while (true) {
     cursor.skip_blank_lines();
     if (cursor.at_end()) break;
-    const Card card = cursor.next(++n, kEightByTen, "EID");
-    for (std::size_t i = 0; i < card.field_count(); ++i) {
-      const model::Id id = card.id(i, "EID");
-      if (id < 0) throw card.error("EID", fmt::format("ID {} must not be negative", id));
+    // _ID: the heading is a label for the user (not written to the CSV rows).
+    const Card card = with_heading ? cursor.next(++n, Layout{10, 70}, "ID HEADING")
+                                   : cursor.next(++n, kEightByTen, field);
+    const std::size_t count = with_heading ? 1 : card.field_count();
+    for (std::size_t i = 0; i < count; ++i) {
+      const model::Id id = card.id(i, field);
+      if (id < 0) throw card.error(field, fmt::format("ID {} must not be negative", id));
       if (id == 0) continue;
-      context.model.output.history_solids.push_back(id);
-      context.model.output.history_solid_where.push_back(card.location());
+      ids.push_back(id);
+      where.push_back(card.location());
     }
   }
 }
@@ -331,6 +345,52 @@ void database_cross_section_plane(const Block& block, ReaderContext& context) {
     if (other.id == section.id) {
       throw plane.error(with_id ? "CSID" : "PSID",
                         fmt::format("cross section {} is defined twice", section.id));
+    }
+  }
+  context.model.output.cross_sections.push_back(section);
+  warn_unread_lines(block, cursor, context);
+}
+
+// A cross section given by sets (LS-DYNA manual, *DATABASE_CROSS_SECTION_SET): [CSID HEADING]
+// with _ID; NSID HSID BSID SSID TSID DSID ID ITYPE.
+void database_cross_section_set(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  model::CrossSection section;
+  section.from_sets = true;
+  const bool with_id = block.has_option("ID");
+  int n = 0;
+  if (with_id) {
+    const Card card = cursor.next(++n, Layout{10, 70}, "CSID HEADING");
+    section.id = card.id(0, "CSID");
+    if (section.id <= 0) throw card.error("CSID", "must be a positive ID");
+    section.title = std::string(card.text(1));
+  } else {
+    section.id = static_cast<model::Id>(context.model.output.cross_sections.size()) + 1;
+  }
+  const Card card = cursor.next(++n, kEightByTen, "NSID HSID BSID SSID");
+  section.where = card.location();
+  section.node_set = card.id(0, "NSID");
+  section.solid_set = card.id(1, "HSID");
+  section.beam_set = card.id(2, "BSID");
+  section.shell_set = card.id(3, "SSID");
+  if (section.node_set <= 0) throw card.error("NSID", "a node set is required");
+  if (section.solid_set < 0 || section.beam_set < 0 || section.shell_set < 0) {
+    throw card.error("HSID", "set IDs must not be negative");
+  }
+  if (section.solid_set == 0 && section.beam_set == 0 && section.shell_set == 0) {
+    throw card.error("HSID", "give at least one element set (HSID, BSID or SSID)");
+  }
+  if (card.id(4, "TSID") != 0) throw card.error("TSID", "thick shells are not supported");
+  if (card.id(5, "DSID") != 0) throw card.error("DSID", "discrete elements are not supported");
+  if (card.id(6, "ID") != 0) {
+    throw card.error("ID", "section forces in the frame of a rigid body, accelerometer or "
+                           "coordinate system are not supported: leave ID blank (global axes)");
+  }
+  card.integer(7, "ITYPE", 0);
+  for (const model::CrossSection& other : context.model.output.cross_sections) {
+    if (other.id == section.id) {
+      throw card.error(with_id ? "CSID" : "NSID",
+                       fmt::format("cross section {} is defined twice", section.id));
     }
   }
   context.model.output.cross_sections.push_back(section);

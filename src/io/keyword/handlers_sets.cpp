@@ -130,12 +130,19 @@ void set_solid_list(const Block& block, ReaderContext& context) {
       if (id != 0) set.elements.push_back(id);
     }
   }
-  if (const auto it = context.model.solid_sets.find(set.id); it != context.model.solid_sets.end()) {
+  // *SET_SOLID(_LIST), *SET_SHELL(_LIST), *SET_BEAM: one reader, one map per family.
+  const bool shell = block.base.starts_with("*SET_SHELL");
+  const bool beam = block.base.starts_with("*SET_BEAM");
+  auto& sets = shell  ? context.model.shell_sets
+               : beam ? context.model.beam_sets
+                      : context.model.solid_sets;
+  const char* family = shell ? "shell" : (beam ? "beam" : "solid");
+  if (const auto it = sets.find(set.id); it != sets.end()) {
     throw located_error(set.where, "SID",
-                        fmt::format("solid set {} is already defined at {}:{}", set.id,
+                        fmt::format("{} set {} is already defined at {}:{}", family, set.id,
                                     it->second.where.file, it->second.where.line));
   }
-  context.model.solid_sets.emplace(set.id, std::move(set));
+  sets.emplace(set.id, std::move(set));
 }
 
 // Resolves the pending sets into model.node_sets / part_sets / solid_sets.
