@@ -210,8 +210,15 @@ std::string rigid_and_soft_deck(double omega, const ShellPlate& rigid, const She
     deck += fmt::format("*INITIAL_VELOCITY_GENERATION\n1,2,{},0,0,0\n0.1,0.1,0,0,0,1\n", omega);
     deck += fmt::format("*INITIAL_VELOCITY_GENERATION\n2,2,{},0,0,0\n0.1,0.1,0,0,0,1\n", omega);
   }
-  // Out-of-plane kick at the free end: bending must pass moments into the rigid body.
-  deck += fmt::format("*INITIAL_VELOCITY_NODE\n{},0,0,0.5\n", soft.node_id(soft.nx, 1));
+  // Out-of-plane kick at the free end: bending must pass moments into the rigid body. The card
+  // replaces the node's velocities (the last initial velocity of a node wins), so it carries the
+  // node's share of the rigid spin, omega e_z x (x - c) and the nodal spin omega e_z, plus the
+  // kick 0.5 e_z: the kick alone would also stop the node in the plane, a 0.5 omega m/s in-plane
+  // impact at one node instead of the out-of-plane kick.
+  const Eigen::Vector3d kicked = soft.position(soft.nx, 1);
+  deck += fmt::format("*INITIAL_VELOCITY_NODE\n{},{:.17g},{:.17g},0.5,0,0,{:.17g}\n",
+                      soft.node_id(soft.nx, 1), -omega * (kicked.y() - 0.1),
+                      omega * (kicked.x() - 0.1), omega);
   return deck;
 }
 
@@ -256,13 +263,14 @@ TEST(ShellDeck, RigidShellBodyTakesTheMomentsOfAttachedShells) {
   EXPECT_LT(std::abs(e.hourglass), 0.1 * e0.kinetic);
 }
 
-// OPEN DEFECT (issue 16): the same structure thrown as a rigid spin about z (5 rad/s) with the
-// kick goes unstable at TSSFAC 0.9 (t = 0.072 s) and, at TSSFAC 0.6, conserves angular momentum
-// and energy but the rigid body is shaken by accelerations of ~1e3 m/s^2 and the far corner of
-// the plate lags the rigid rotation by ~0.2 rad after 0.25 s. The coupling of a rotating rigid
-// body with attached shells is therefore not verified yet; this test states the expectation
-// and stays disabled until the defect is found (docs/elements.md, "Open defects").
-TEST(ShellDeck, DISABLED_SpinningRigidShellBodyCarriesDeformableShells) {
+// The same structure thrown as a rigid spin about z (5 rad/s) with the kick on top: after
+// 0.25 s (1.25 rad) the angular momentum about z and the energy are conserved and the far corner
+// of the plate is where the rigid rotation of the whole about its centre of mass puts it (the
+// out-of-plane kick moves it in the plane only to second order), at the default TSSFAC 0.9.
+// (Issue 16: this test once failed at t = 0.072 s because the deck's kick card replaced the
+// node's spin velocity, an in-plane impact of 2.5 m/s at one node; that open defect is
+// InPlaneImpactOnShellStripStaysBounded below and docs/elements.md.)
+TEST(ShellDeck, SpinningRigidShellBodyCarriesDeformableShells) {
   const RigidAndSoft m;
   const double omega = 5.0;
   std::string deck = rigid_and_soft_deck(omega, m.rigid, m.soft);
@@ -291,6 +299,55 @@ TEST(ShellDeck, DISABLED_SpinningRigidShellBodyCarriesDeformableShells) {
   const Eigen::Vector2d expected = com + t * com_velocity + Eigen::Rotation2Dd(omega * t) * r0;
   EXPECT_NEAR(x.x.x[corner], expected.x(), 2e-3 * r0.norm());
   EXPECT_NEAR(x.x.y[corner], expected.y(), 2e-3 * r0.norm());
+}
+
+// The deck that showed issue 16: the spinning structure above, but the kicked node's card
+// replaces its velocities, so that node stops in the plane (an in-plane impact of 2.5 m/s,
+// 0.23 J at one node, with the kick). The step used to follow the geometry of the hammered
+// elements up and down and pump energy into their highest modes: the run stopped with the
+// solver's instability message at t = 0.072 s (TSSFAC 0.9). With the step hysteresis
+// (Simulation::select_time_step) it stays bounded: over 1 s the kinetic energy stays below 1.2
+// times the initial total (measured 1.10: the half-step kinetic energy of modes near the step
+// limit exceeds their share of the energy; a growing mode passes any bound), and the angular
+// momentum about z and the energy balance hold.
+TEST(ShellDeck, SpinningShellStructureHitInItsPlaneStaysStable) {
+  const RigidAndSoft m;
+  std::string deck = rigid_and_soft_deck(5.0, m.rigid, m.soft);
+  deck += fmt::format("*INITIAL_VELOCITY_NODE\n{},0,0,0.5\n", m.soft.node_id(m.soft.nx, 1));
+  // With the warping correction the warped elements stay in moment balance (angular momentum to
+  // round-off, as in RigidShellBodyTakesTheMomentsOfAttachedShells).
+  deck += "*CONTROL_SHELL\n20,0,-1,0,2,1\n*CONTROL_TERMINATION\n1.0\n*END\n";
+  solver::Simulation sim(read(deck), {});
+  const auto e0 = sim.energy();
+  double max_kinetic = 0.0;
+  sim.run([&](const solver::Simulation& s) { max_kinetic = std::max(max_kinetic, s.energy().kinetic); });
+  const auto& e = sim.energy();
+  EXPECT_LT(max_kinetic, 1.2 * e0.kinetic);
+  EXPECT_NEAR(e.angular_momentum[2], e0.angular_momentum[2], 1e-6 * std::abs(e0.angular_momentum[2]));
+  EXPECT_NEAR(e.ratio(), 1.0, 2e-3);
+  RecordProperty("max_kinetic_ratio", std::to_string(max_kinetic / e0.kinetic));
+}
+
+// OPEN (issue 16, docs/elements.md): the structure above without spin, one node of the free end
+// given an in-plane velocity of 2.5 m/s. With the step hysteresis the motion stays bounded
+// (kinetic energy 0.09-0.35 J against 0.244 J over 2 s, measured with the check below off), but
+// the solver's instability check (internal energy below -5 % of the energy scale) stops the run
+// at cycle 1: the impact puts its energy into the highest modes, and for a mode with
+// omega dt > sqrt(2) the central difference books internal energy k x^n x^{n+1} / 2 < 0 while
+// the step is stable (-0.038 J at cycle 1, kinetic 0.282 J, energy ratio 1). With the spin
+// above, the larger energy scale keeps the check quiet. The check is a heuristic of
+// Simulation::update_velocities, outside the shell work.
+TEST(ShellDeck, DISABLED_InPlaneImpactOnShellStripStaysBounded) {
+  const RigidAndSoft m;
+  std::string deck = rigid_and_soft_deck(0.0, m.rigid, m.soft);
+  // The last initial velocity of a node wins: this card replaces the kick.
+  deck += fmt::format("*INITIAL_VELOCITY_NODE\n{},0,-2.5,0\n", m.soft.node_id(m.soft.nx, 1));
+  deck += "*CONTROL_TERMINATION\n2.0\n*END\n";
+  solver::Simulation sim(read(deck), {});
+  const auto e0 = sim.energy();
+  sim.run();
+  EXPECT_LT(sim.energy().kinetic, 2.0 * e0.kinetic);
+  EXPECT_NEAR(sim.energy().ratio(), 1.0, 2e-3);
 }
 
 // Bad shell and beam input: errors name the keyword and field.
