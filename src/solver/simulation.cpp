@@ -467,15 +467,18 @@ void Simulation::run(const std::function<void(const Simulation&)>& on_progress) 
     // Leave the state at detection readable: one more frame and glstat row.
     write_output_now();
     if (fields_) fields_->write_collection();
-    if (glstat_) glstat_->flush();
-    if (nodout_) nodout_->flush();
-    if (rbdout_) rbdout_->flush();
-    if (modal_csv_) modal_csv_->flush();
-    if (sensor_csv_) sensor_csv_->flush();
-    if (rwforc_) rwforc_->flush();
-    if (rcforc_) rcforc_->flush();
-    if (switch_csv_) switch_csv_->flush();
+    flush_csv_files();
     throw;
+  }
+  flush_csv_files();
+}
+
+// Every CSV file whole on disk (the end of a run, or a blow-up): each writer holds complete rows
+// in memory until a buffer fills.
+void Simulation::flush_csv_files() {
+  for (output::CsvFile* file : {matsum_csv_.get(), spcforc_csv_.get(), elout_csv_.get(),
+                                elout_shell_csv_.get(), secforc_csv_.get()}) {
+    if (file) file->flush();
   }
   if (glstat_) glstat_->flush();
   if (nodout_) nodout_->flush();

@@ -254,6 +254,7 @@ class Simulation {
   std::unique_ptr<PartHistories> part_histories_;
   std::unique_ptr<output::CsvFile> matsum_csv_, spcforc_csv_, elout_csv_;
   OutputSchedule matsum_schedule_, spcforc_schedule_, elout_schedule_;
+  void flush_csv_files();
   std::vector<output::HistorySolid> elout_solids_;
   std::unique_ptr<output::CsvFile> elout_shell_csv_;
   OutputSchedule elout_shell_schedule_;
