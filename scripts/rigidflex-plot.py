@@ -10,6 +10,7 @@ DIR), the plots whose data exist:
   plot_nodout.png    nodout.csv: displacement and velocity of each history node
   plot_rbdout.png    rbdout.csv: centre displacement, velocity and angular velocity per body
   plot_forces.png    rcforc.csv / rwforc.csv: contact and rigid-wall force magnitudes
+  plot_secforc.png   secforc.csv: normal force and resultant moment of each cross section
 
 Part switches (switch.csv) are marked on every time axis as vertical lines. Columns are taken
 by name, so files with more columns (appended later) still plot. Needs matplotlib (Debian:
@@ -181,6 +182,23 @@ def plot_forces(plt, directory, out, switches, written):
     plt.close(fig)
 
 
+def plot_secforc(plt, directory, out, switches, written):
+    sections = read_csv(os.path.join(directory, "secforc.csv"))
+    if sections is None:
+        return
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(9, 7), sharex=True)
+    for sid, h in sorted(group_by(sections, "section").items()):
+        top.plot(h["time"], h["normal_force"], label=f"section {sid} normal")
+        top.plot(h["time"], h["force_resultant"], "--", label=f"section {sid} resultant")
+        bottom.plot(h["time"], h["moment_resultant"], label=f"section {sid}")
+    top.set_ylabel("force")
+    bottom.set_ylabel("moment")
+    top.set_title("section forces (secforc.csv; normal force positive in tension)")
+    mark_switches((top, bottom), switches)
+    finish(fig, (top, bottom), os.path.join(out, "plot_secforc.png"), written)
+    plt.close(fig)
+
+
 def main():
     parser = argparse.ArgumentParser(description="PNG plots of a RigidFlex output directory")
     parser.add_argument("directory", help="output directory of `rigidflex run`")
@@ -202,7 +220,7 @@ def main():
     os.makedirs(out, exist_ok=True)
     switches = read_switches(args.directory)
     written = []
-    for plot in (plot_energies, plot_nodout, plot_rbdout, plot_forces):
+    for plot in (plot_energies, plot_nodout, plot_rbdout, plot_forces, plot_secforc):
         plot(plt, args.directory, out, switches, written)
     for path in written:
         print(path)
