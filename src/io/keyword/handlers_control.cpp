@@ -279,6 +279,23 @@ void database_history_elements(const Block& block, ReaderContext& context) {
   }
 }
 
+namespace {
+
+// The ID of a cross section: the _ID card (CSID HEADING), else its position in the deck.
+void read_cross_section_id(const Block& block, ReaderContext& context, CardCursor& cursor, int& n,
+                           model::CrossSection& section) {
+  if (block.has_option("ID")) {
+    const Card card = cursor.next(++n, Layout{10, 70}, "CSID HEADING");
+    section.id = card.id(0, "CSID");
+    if (section.id <= 0) throw card.error("CSID", "must be a positive ID");
+    section.title = std::string(card.text(1));
+  } else {
+    section.id = static_cast<model::Id>(context.model.output.cross_sections.size()) + 1;
+  }
+}
+
+}  // namespace
+
 // A cutting plane whose section force goes to secforc.csv. Card layouts from the LS-DYNA manual
 // (*DATABASE_CROSS_SECTION): [CSID HEADING] with _ID; PSID XCT YCT ZCT XCH YCH ZCH RADIUS;
 // XHEV YHEV ZHEV LENL LENM ID ITYPE.
@@ -287,14 +304,7 @@ void database_cross_section_plane(const Block& block, ReaderContext& context) {
   model::CrossSection section;
   const bool with_id = block.has_option("ID");
   int n = 0;
-  if (with_id) {
-    const Card card = cursor.next(++n, Layout{10, 70}, "CSID HEADING");
-    section.id = card.id(0, "CSID");
-    if (section.id <= 0) throw card.error("CSID", "must be a positive ID");
-    section.title = std::string(card.text(1));
-  } else {
-    section.id = static_cast<model::Id>(context.model.output.cross_sections.size()) + 1;
-  }
+  read_cross_section_id(block, context, cursor, n, section);
   const Card plane = cursor.next(++n, kEightByTen, "PSID");
   section.where = plane.location();
   section.part_set = plane.id(0, "PSID");
@@ -359,14 +369,7 @@ void database_cross_section_set(const Block& block, ReaderContext& context) {
   section.from_sets = true;
   const bool with_id = block.has_option("ID");
   int n = 0;
-  if (with_id) {
-    const Card card = cursor.next(++n, Layout{10, 70}, "CSID HEADING");
-    section.id = card.id(0, "CSID");
-    if (section.id <= 0) throw card.error("CSID", "must be a positive ID");
-    section.title = std::string(card.text(1));
-  } else {
-    section.id = static_cast<model::Id>(context.model.output.cross_sections.size()) + 1;
-  }
+  read_cross_section_id(block, context, cursor, n, section);
   const Card card = cursor.next(++n, kEightByTen, "NSID HSID BSID SSID");
   section.where = card.location();
   section.node_set = card.id(0, "NSID");
