@@ -705,9 +705,9 @@ struct HourglassControl {
 // *DATABASE_CROSS_SECTION_PLANE(_ID) (docs/output.md#secforccsv): a cutting plane through the
 // parts of a part set, whose transmitted force and moment go to secforc.csv.
 struct CrossSection {
-  Id id = 0;              // CSID (_ID), else the position among the deck's cross sections
-  std::string title;      // _ID heading
-  Id part_set = 0;        // PSID; 0: every part
+  Id id = 0;                     // CSID (_ID), else the position among the deck's cross sections
+  std::string title;             // _ID heading
+  Id part_set = 0;               // PSID; 0: every part
   std::array<double, 3> tail{};  // XCT YCT ZCT: a point of the plane, tail of the normal N
   std::array<double, 3> head{};  // XCH YCH ZCH: head of N
   // RADIUS > 0: the cut is the disc of this radius about the tail; < 0: |RADIUS|, and XCT and
@@ -715,8 +715,8 @@ struct CrossSection {
   double radius = 0.0;
   Id tail_node = 0, head_node = 0;
   std::array<double, 3> edge_head{};  // XHEV YHEV ZHEV: head of the edge vector L (tail: XCT..)
-  double length_l = 0.0;  // LENL; 0 or blank: unbounded along L
-  double length_m = 0.0;  // LENM; 0 or blank: unbounded along M = N x L
+  double length_l = 0.0;              // LENL; 0 or blank: unbounded along L
+  double length_m = 0.0;              // LENM; 0 or blank: unbounded along M = N x L
   // *DATABASE_CROSS_SECTION_SET: the section's nodes and the elements whose nodal forces at
   // those nodes are summed are given as sets (NSID; HSID, BSID, SSID) instead of a plane.
   bool from_sets = false;
@@ -749,8 +749,8 @@ struct OutputControl {
   std::vector<SourceLocation> history_shell_where;
   std::vector<Id> history_shell_sets;
   std::vector<SourceLocation> history_shell_set_where;
-  std::vector<CrossSection> cross_sections;         // secforc.csv rows, in this order
-  double secforc_dt = 0.0;  // *DATABASE_SECFORC DT; 0: about 1000 rows per run
+  std::vector<CrossSection> cross_sections;  // secforc.csv rows, in this order
+  double secforc_dt = 0.0;                   // *DATABASE_SECFORC DT; 0: about 1000 rows per run
 };
 
 // *CONTROL_IMPLICIT_GENERAL and *CONTROL_IMPLICIT_EIGENVALUE (docs/eigen.md): with IMFLAG 1 and

@@ -264,7 +264,7 @@ VtkCell vtk_cell_from_solid(const std::int32_t* conn8);
 // Co-rotational frame of shell element `conn` (4 dense nodes) at the current configuration, rows
 // e1 e2 e3, the frame in which the shell kernel keeps its stresses.
 std::array<std::array<double, 3>, 3> shell_frame(const solver::NodalState& nodes,
-                                                const std::int32_t* conn);
+                                                 const std::int32_t* conn);
 // A shell point's co-rotational stress (xx yy xy yz zx, sigma_zz = 0) in global axes, Voigt order
 // xx yy zz xy yz zx.
 void shell_stress_to_global(const double* local, const std::array<std::array<double, 3>, 3>& frame,

@@ -130,8 +130,8 @@ void SimulationAccess::write_output(Simulation& s, const Group& g) {
                  s.elout_schedule_.last_cycle);
   write_schedule(g, "secforc", s.secforc_schedule_.interval, s.secforc_schedule_.next,
                  s.secforc_schedule_.last_cycle);
-  write_schedule(g, "elout_shell", s.elout_shell_schedule_.interval,
-                 s.elout_shell_schedule_.next, s.elout_shell_schedule_.last_cycle);
+  write_schedule(g, "elout_shell", s.elout_shell_schedule_.interval, s.elout_shell_schedule_.next,
+                 s.elout_shell_schedule_.last_cycle);
   if (s.part_histories_) {
     const auto& work = s.part_histories_->internal_work();
     const auto& hourglass = s.part_histories_->hourglass();

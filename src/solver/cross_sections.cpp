@@ -16,8 +16,12 @@ namespace {
 
 using Vec = std::array<double, 3>;
 
-Vec sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Vec sub(const Vec& a, const Vec& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+double dot(const Vec& a, const Vec& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 Vec cross(const Vec& a, const Vec& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
@@ -72,7 +76,8 @@ void CrossSectionCut::build_from_sets(const model::Model& model, const State& st
   for (const model::Id id : nodes_it->second.nodes) {
     const auto it = dense.find(id);
     if (it == dense.end()) {
-      throw InputError(context_of(section.where, "NSID"), fmt::format("node {} does not exist", id));
+      throw InputError(context_of(section.where, "NSID"),
+                       fmt::format("node {} does not exist", id));
     }
     if (!in_section[it->second]) nodes_.push_back(it->second);
     in_section[it->second] = 1;
@@ -109,21 +114,26 @@ void CrossSectionCut::build_from_sets(const model::Model& model, const State& st
                                    wanted.size() - found, wanted.size(), name));
     }
   };
-  add(state.hex_blocks, Family::kHex, section.solid_set, "HSID", "solid",
+  add(
+      state.hex_blocks, Family::kHex, section.solid_set, "HSID", "solid",
       [](const element::HexBlock& block, std::size_t e) {
         const int npe = block.nodes_per_element();
         return std::tuple<const std::int32_t*, int, int>{&block.conn[e * npe], npe, 3 * npe};
-      }, 3);
-  add(state.shell_blocks, Family::kShell, section.shell_set, "SSID", "shell",
+      },
+      3);
+  add(
+      state.shell_blocks, Family::kShell, section.shell_set, "SSID", "shell",
       [](const element::ShellBlock& block, std::size_t e) {
         return std::tuple<const std::int32_t*, int, int>{&block.conn[4 * e], 4,
                                                          element::kShellSlot};
-      }, 6);
-  add(state.beam_blocks, Family::kBeam, section.beam_set, "BSID", "beam",
+      },
+      6);
+  add(
+      state.beam_blocks, Family::kBeam, section.beam_set, "BSID", "beam",
       [](const element::BeamBlock& block, std::size_t e) {
-        return std::tuple<const std::int32_t*, int, int>{&block.conn[2 * e], 2,
-                                                         element::kBeamSlot};
-      }, 6);
+        return std::tuple<const std::int32_t*, int, int>{&block.conn[2 * e], 2, element::kBeamSlot};
+      },
+      6);
   if (slots_.empty()) {
     throw InputError(context_of(section.where, "NSID"),
                      fmt::format("cross section {}: no deformable element of the element sets "
@@ -266,8 +276,8 @@ CrossSectionCut::CrossSectionCut(const model::Model& model, const State& state,
   for (const Element& e : negative) {
     for (int k = 0; k < e.nodes; ++k) {
       if (!in_section[e.conn[k]]) continue;
-      slots_.push_back({e.family, e.block, e.element * e.slot_stride + k * e.node_stride,
-                        e.conn[k]});
+      slots_.push_back(
+          {e.family, e.block, e.element * e.slot_stride + k * e.node_stride, e.conn[k]});
     }
   }
 }
@@ -302,8 +312,8 @@ SectionForce CrossSectionCut::evaluate(const State& state) const {
         break;
     }
     const Vec f{values[0], values[1], values[2]};
-    const Vec r = sub({nodes.x.x[slot.node], nodes.x.y[slot.node], nodes.x.z[slot.node]},
-                      out.centroid);
+    const Vec r =
+        sub({nodes.x.x[slot.node], nodes.x.y[slot.node], nodes.x.z[slot.node]}, out.centroid);
     const Vec m = cross(r, f);
     for (int k = 0; k < 3; ++k) {
       out.force[k] += f[k];

@@ -208,10 +208,10 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
       }
       return out;
     };
-    const auto solids = history_elements(
-        model.output.history_solids, model.output.history_solid_where,
-        model.output.history_solid_sets, model.output.history_solid_set_where, model.solid_sets,
-        "solid", "*DATABASE_HISTORY_SOLID");
+    const auto solids =
+        history_elements(model.output.history_solids, model.output.history_solid_where,
+                         model.output.history_solid_sets, model.output.history_solid_set_where,
+                         model.solid_sets, "solid", "*DATABASE_HISTORY_SOLID");
     if (!solids.empty()) {
       std::map<model::Id, output::HistorySolid> where;
       for (std::size_t b = 0; b < state_.hex_blocks.size(); ++b) {
@@ -221,9 +221,9 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
       for (const auto& [id, card] : solids) {
         const auto it = where.find(id);
         if (it == where.end()) {
-          throw InputError(model::context_of(*card, "EID"),
-                           fmt::format("*DATABASE_HISTORY_SOLID: solid element {} does not exist",
-                                       id));
+          throw InputError(
+              model::context_of(*card, "EID"),
+              fmt::format("*DATABASE_HISTORY_SOLID: solid element {} does not exist", id));
         }
         elout_solids_.push_back(it->second);
       }
@@ -232,10 +232,10 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
                                                      std::string(output::kEloutHeader),
                                                      options_.continuation.elout);
     }
-    const auto shells = history_elements(
-        model.output.history_shells, model.output.history_shell_where,
-        model.output.history_shell_sets, model.output.history_shell_set_where, model.shell_sets,
-        "shell", "*DATABASE_HISTORY_SHELL");
+    const auto shells =
+        history_elements(model.output.history_shells, model.output.history_shell_where,
+                         model.output.history_shell_sets, model.output.history_shell_set_where,
+                         model.shell_sets, "shell", "*DATABASE_HISTORY_SHELL");
     if (!shells.empty()) {
       std::map<model::Id, output::HistoryShell> where;
       for (std::size_t b = 0; b < state_.shell_blocks.size(); ++b) {
@@ -245,9 +245,9 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
       for (const auto& [id, card] : shells) {
         const auto it = where.find(id);
         if (it == where.end()) {
-          throw InputError(model::context_of(*card, "EID"),
-                           fmt::format("*DATABASE_HISTORY_SHELL: shell element {} does not exist",
-                                       id));
+          throw InputError(
+              model::context_of(*card, "EID"),
+              fmt::format("*DATABASE_HISTORY_SHELL: shell element {} does not exist", id));
         }
         elout_shells_.push_back(it->second);
       }
@@ -982,7 +982,8 @@ void Simulation::write_output_if_due(bool force) {
   }
   if (secforc_csv_ && wanted(secforc_schedule_)) {
     section_rows_.clear();
-    for (const CrossSectionCut& cut : cross_sections_) section_rows_.push_back(cut.evaluate(state_));
+    for (const CrossSectionCut& cut : cross_sections_)
+      section_rows_.push_back(cut.evaluate(state_));
     secforc_csv_->write_text(output::secforc_text(t, section_rows_));
     secforc_schedule_.mark_written(t, cycle);
   }

@@ -320,10 +320,13 @@ TEST(ShellDeck, SpinningShellStructureHitInItsPlaneStaysStable) {
   solver::Simulation sim(read(deck), {});
   const auto e0 = sim.energy();
   double max_kinetic = 0.0;
-  sim.run([&](const solver::Simulation& s) { max_kinetic = std::max(max_kinetic, s.energy().kinetic); });
+  sim.run([&](const solver::Simulation& s) {
+    max_kinetic = std::max(max_kinetic, s.energy().kinetic);
+  });
   const auto& e = sim.energy();
   EXPECT_LT(max_kinetic, 1.2 * e0.kinetic);
-  EXPECT_NEAR(e.angular_momentum[2], e0.angular_momentum[2], 1e-6 * std::abs(e0.angular_momentum[2]));
+  EXPECT_NEAR(e.angular_momentum[2], e0.angular_momentum[2],
+              1e-6 * std::abs(e0.angular_momentum[2]));
   EXPECT_NEAR(e.ratio(), 1.0, 2e-3);
   RecordProperty("max_kinetic_ratio", std::to_string(max_kinetic / e0.kinetic));
 }

@@ -337,8 +337,9 @@ void database_cross_section_plane(const Block& block, ReaderContext& context) {
     if (section.length_l < 0.0) throw edge.error("LENL", "must not be negative (0: unbounded)");
     if (section.length_m < 0.0) throw edge.error("LENM", "must not be negative (0: unbounded)");
     if (edge.id(5, "ID") != 0) {
-      throw edge.error("ID", "section forces in the frame of a rigid body, accelerometer or "
-                             "coordinate system are not supported: leave ID blank (global axes)");
+      throw edge.error("ID",
+                       "section forces in the frame of a rigid body, accelerometer or "
+                       "coordinate system are not supported: leave ID blank (global axes)");
     }
     edge.integer(6, "ITYPE", 0);
   }
@@ -348,7 +349,8 @@ void database_cross_section_plane(const Block& block, ReaderContext& context) {
       length += (section.head[k] - section.tail[k]) * (section.head[k] - section.tail[k]);
     }
     if (length == 0.0) {
-      throw plane.error("XCH", "the head of the normal (XCH YCH ZCH) equals its tail (XCT YCT ZCT)");
+      throw plane.error("XCH",
+                        "the head of the normal (XCH YCH ZCH) equals its tail (XCT YCT ZCT)");
     }
   }
   for (const model::CrossSection& other : context.model.output.cross_sections) {
@@ -386,8 +388,9 @@ void database_cross_section_set(const Block& block, ReaderContext& context) {
   if (card.id(4, "TSID") != 0) throw card.error("TSID", "thick shells are not supported");
   if (card.id(5, "DSID") != 0) throw card.error("DSID", "discrete elements are not supported");
   if (card.id(6, "ID") != 0) {
-    throw card.error("ID", "section forces in the frame of a rigid body, accelerometer or "
-                           "coordinate system are not supported: leave ID blank (global axes)");
+    throw card.error("ID",
+                     "section forces in the frame of a rigid body, accelerometer or "
+                     "coordinate system are not supported: leave ID blank (global axes)");
   }
   card.integer(7, "ITYPE", 0);
   for (const model::CrossSection& other : context.model.output.cross_sections) {
