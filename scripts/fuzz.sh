@@ -5,7 +5,8 @@
 #                                                        fuzz_restart, fuzz_modes)
 # Without clang++ or libFuzzer it says so and exits 0 (CI then skips fuzzing). Findings (crash-*,
 # leak-*, timeout-*, oom-* files) are left in build-fuzz/findings/TARGET/ and make the script
-# fail; each one fixed becomes a regression deck in tests/decks/fuzz/ (run by the unit tests).
+# fail; each one fixed becomes a regression file in tests/decks/fuzz/{deck,restart,modes}/
+# (replayed by tests/unit/fuzz_regression_test.cpp).
 # Corpora grow in build-fuzz/corpus/TARGET/ between runs.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -15,15 +16,18 @@ targets=("$@")
 [ ${#targets[@]} -eq 0 ] && targets=(fuzz_deck fuzz_restart fuzz_modes)
 
 if ! command -v clang++ >/dev/null 2>&1; then
-  echo "fuzz: clang++ not found: fuzzing skipped (install clang and libclang-rt-dev)"
+  echo "fuzz: clang++ not found: fuzzing skipped (scripts/install-deps.sh installs clang," \
+    "libclang-rt-dev and libomp-dev)"
   exit 0
 fi
 probe=$(mktemp -d)
 echo 'extern "C" int LLVMFuzzerTestOneInput(const unsigned char*, unsigned long) { return 0; }' \
   >"$probe/probe.cpp"
-if ! clang++ -fsanitize=fuzzer,address "$probe/probe.cpp" -o "$probe/probe" 2>/dev/null; then
+if ! clang++ -fsanitize=fuzzer,address,undefined -fopenmp "$probe/probe.cpp" -o "$probe/probe" \
+    2>/dev/null; then
   rm -rf "$probe"
-  echo "fuzz: clang++ -fsanitize=fuzzer does not link (libclang-rt-dev missing): fuzzing skipped"
+  echo "fuzz: clang++ -fsanitize=fuzzer -fopenmp does not link (libclang-rt-dev or libomp-dev" \
+    "missing): fuzzing skipped"
   exit 0
 fi
 rm -rf "$probe"
@@ -67,21 +71,26 @@ for root in roots:
             open(os.path.join(out, "%03d_%s" % (n, name)), "wb").write(b"".join(parts))
 print("fuzz: %d deck seeds" % n)
 PY
-  cp tests/decks/fuzz/* "$seeds/fuzz_deck/" 2>/dev/null || true
 fi
-# Dumps and mode databases: small runs of the fuzz build's own rigidflex.
+# Dumps and mode databases: small runs of rigidflex (the Release build when there is one: the
+# files are the same and it is faster than the instrumented build).
+runner=$build/rigidflex
+[ -x build/rigidflex ] && runner=build/rigidflex
 if [ ! -d "$seeds/fuzz_restart" ]; then
   mkdir -p "$seeds/fuzz_restart" "$seeds/fuzz_modes"
   tmp=$(mktemp -d)
-  for deck in tests/decks/block_free.k tests/decks/rigid_free.k examples/switching_spinning_block.k; do
+  # Solids, contact, a rigid wall, switching and a sensor: decks that `run` accepts as they are
+  # (tests/decks/block_free.k and rigid_free.k, used before, are refused by `run`: no dump).
+  for deck in tests/decks/contact_sliding_block.k tests/decks/rigidwall_switching_block.k \
+      examples/switching_spinning_block.k examples/sensor_def2rig.k; do
     name=$(basename "$deck" .k)
-    OMP_NUM_THREADS=1 "$build/rigidflex" run "$deck" -o "$tmp/$name" --quiet --dump-every 1e9 \
+    OMP_NUM_THREADS=1 "$runner" run "$deck" -o "$tmp/$name" --quiet --dump-every 1e9 \
       >/dev/null 2>&1 || true
     for d in "$tmp/$name"/d3dump_*.h5; do
       [ -e "$d" ] && cp "$d" "$seeds/fuzz_restart/${name}_$(basename "$d")"
     done
   done
-  OMP_NUM_THREADS=1 "$build/rigidflex" eigen examples/flexible_beam_eigen.k -o "$tmp/eigen" \
+  OMP_NUM_THREADS=1 "$runner" eigen examples/flexible_beam_eigen.k -o "$tmp/eigen" \
     --quiet >/dev/null 2>&1 || true
   find "$tmp" -name '*.h5' -path '*eigen*' -exec cp {} "$seeds/fuzz_modes/" \;
   rm -rf "$tmp"
@@ -91,10 +100,19 @@ fi
 status=0
 for target in "${targets[@]}"; do
   mkdir -p "$corpus/$target" "$build/findings/$target"
+  # Past findings (fixed) are seeds too: tests/decks/fuzz/deck, restart, modes.
+  regression=tests/decks/fuzz/${target#fuzz_}
+  if [ -d "$regression" ]; then cp "$regression"/* "$seeds/$target/" 2>/dev/null || true; fi
   echo "fuzz: $target for $seconds s"
   # -rss_limit_mb: a deck may ask for a big model legitimately; 2 GB flags sizes taken on trust.
-  if ! OMP_NUM_THREADS=1 "$build/$target" "$corpus/$target" "$seeds/$target" \
-      -max_total_time="$seconds" -timeout=20 -rss_limit_mb=2048 -max_len=65536 \
+  # -max_len: decks up to 64 KiB (longer seeds are cut, still valid inputs); dumps and mode
+  # databases (130-320 KiB) whole, or the HDF5 reader would only ever see truncated files.
+  max_len=65536
+  [ "$target" != fuzz_deck ] && max_len=524288
+  # LSAN_OPTIONS: leaks inside libhdf5 on damaged files are the library's (tests/fuzz/lsan-hdf5.supp).
+  if ! OMP_NUM_THREADS=1 LSAN_OPTIONS=suppressions=$PWD/tests/fuzz/lsan-hdf5.supp \
+      "$build/$target" "$corpus/$target" "$seeds/$target" \
+      -max_total_time="$seconds" -timeout=20 -rss_limit_mb=2048 -max_len="$max_len" \
       -artifact_prefix="$build/findings/$target/" -print_final_stats=1 \
       >"$build/findings/$target.log" 2>&1; then
     status=1

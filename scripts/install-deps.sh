@@ -19,6 +19,9 @@ PACKAGES=(
   python3-matplotlib # scripts/rigidflex-plot.py (PNG plots of a run; its test skips without it)
   python3-paraview   # pvpython: the last frame as a PNG, ParaView's LS-DYNA reader on our d3plot
   xvfb xauth         # xvfb-run: an X display for pvpython on a headless machine
+  clang              # libFuzzer targets and the sanitizer stage of scripts/test.sh
+  libclang-rt-dev    # clang's sanitizer and libFuzzer runtimes (not pulled in without recommends)
+  libomp-dev         # OpenMP runtime for clang builds (LLVM's libomp)
 )
 
 missing=()
