@@ -153,7 +153,8 @@ void D3plotWriter::write_shell_values(const solver::NodalState& nodes,
   }
   const int corners = block.triangle[e] != 0 ? 3 : 4;
   double thickness = 0.0;
-  for (int k = 0; k < corners; ++k) thickness += block.thickness[4 * e + static_cast<std::size_t>(k)];
+  for (int k = 0; k < corners; ++k)
+    thickness += block.thickness[4 * e + static_cast<std::size_t>(k)];
   buffer_.push_back(static_cast<float>(thickness / corners));
   for (int k = 0; k < 3; ++k) buffer_.push_back(0.0f);
 }
@@ -257,27 +258,27 @@ void D3plotWriter::write_header(const solver::State& state) {
   set(16, node_count);
   set(17, 6);  // ICODE: finite-element code
   set(18, kGlobalCount);
-  set(19, 0);                            // IT: no temperatures
-  set(20, 1);                            // IU: coordinates
-  set(21, 1);                            // IV: velocities
-  set(22, 1);                            // IA: accelerations
-  set(23, element_count_);               // NEL8
+  set(19, 0);                                              // IT: no temperatures
+  set(20, 1);                                              // IU: coordinates
+  set(21, 1);                                              // IV: velocities
+  set(22, 1);                                              // IA: accelerations
+  set(23, element_count_);                                 // NEL8
   set(24, static_cast<std::int64_t>(solid_parts.size()));  // NUMMAT8
-  set(27, kSolidValues);                 // NV3D
-  set(28, beam_count_);                  // NEL2
+  set(27, kSolidValues);                                   // NV3D
+  set(28, beam_count_);                                    // NEL2
   set(29, static_cast<std::int64_t>(beam_parts.size()));   // NUMMAT2
-  set(30, kBeamValues);                  // NV1D
-  set(31, shell_count_);                 // NEL4
+  set(30, kBeamValues);                                    // NV1D
+  set(31, shell_count_);                                   // NEL4
   set(32, static_cast<std::int64_t>(shell_parts.size()));  // NUMMAT4
-  set(33, kShellValues);                 // NV2D
-  set(34, 0);                            // NEIPH: no extra solid values
-  set(35, 0);                            // NEIPS: no extra shell values per point
-  set(36, -(10000 + kShellPoints));      // MAXINT < -10000: one deletion flag per element
+  set(33, kShellValues);                                   // NV2D
+  set(34, 0);                                              // NEIPH: no extra solid values
+  set(35, 0);                                              // NEIPS: no extra shell values per point
+  set(36, -(10000 + kShellPoints));  // MAXINT < -10000: one deletion flag per element
   set(39, narbs);
-  set(43, 1000);  // IOSHL(1): 6 stresses per shell point
-  set(44, 1000);  // IOSHL(2): effective plastic strain per shell point
-  set(45, 0);     // IOSHL(3): no shell resultants
-  set(46, 1000);  // IOSHL(4): thickness, 2 element variables, internal energy
+  set(43, 1000);       // IOSHL(1): 6 stresses per shell point
+  set(44, 1000);       // IOSHL(2): effective plastic strain per shell point
+  set(45, 0);          // IOSHL(3): no shell resultants
+  set(46, 1000);       // IOSHL(4): thickness, 2 element variables, internal energy
   set(51, materials);  // NMMAT
 
   // Geometry: reference coordinates, then the solids.

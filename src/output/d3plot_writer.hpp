@@ -3,8 +3,9 @@
 // LS-DYNA manual ("LS-DYNA Database Binary Output Files"), 4-byte words in host byte order,
 // written as a file family:
 //   d3plot:   control words (64) | node coordinates | solid connectivity + material |
-//             beams (N1 N2 N3 0 0 material) | shells (N1..N4 material) | user IDs (NARBS) | end-of-file marker -999999.0 |
-//             part titles (90001, NUMPROP, per part: ID + 72 characters) | end-of-file marker
+//             beams (N1 N2 N3 0 0 material) | shells (N1..N4 material) | user IDs (NARBS) |
+//             end-of-file marker -999999.0 | part titles (90001, NUMPROP, per part: ID + 72
+//             characters) | end-of-file marker
 //   d3plot01, d3plot02, ...: state | state | ... | end-of-file marker -999999.0
 // Each state: time, 6 global values, current coordinates, velocities, accelerations of every
 // node, 7 values per solid (6 stresses + effective plastic strain), 6 resultants per beam, 25
@@ -29,8 +30,9 @@ struct D3plotGlobals {
   double velocity[3] = {0, 0, 0};  // momentum / total mass
 };
 
-// Effective plastic strain of solid element e of a block, the 7th solid value of every state.
-// Hook for plasticity (issue 17): 0 until a material carries plastic strain.
+// Effective plastic strain of solid element e of a block, the 7th solid value of every state:
+// the material's "effective_plastic_strain" history, mean over the element's points (0 for
+// materials without it).
 double d3plot_effective_plastic_strain(const element::HexBlock& block, std::size_t e);
 
 class D3plotWriter {
