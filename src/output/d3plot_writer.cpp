@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cstdio>
 #include <cstring>
@@ -24,9 +25,18 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kGlobalCount = 6;      // NGLBV: KE, IE, TE, vx, vy, vz
-constexpr int kSolidValues = 7;      // NV3D: 6 stresses + effective plastic strain
-constexpr int kIntegrationFlag = 3;  // MAXINT (shell integration points; no shells written)
+constexpr int kGlobalCount = 6;  // NGLBV: KE, IE, TE, vx, vy, vz
+constexpr int kSolidValues = 7;  // NV3D: 6 stresses + effective plastic strain
+constexpr int kBeamValues = 6;   // NV1D: N, Qs, Qt, Ms, Mt, T (resultants only, BEAMIP 0)
+// MAXINT: shell points written per element. LS-DYNA's default of 3 writes, whatever NIP, the
+// mid-surface, inner (bottom) and outer (top) points in this order (*DATABASE_EXTENT_BINARY
+// MAXINT; ParaView's reader names them Stress, StressInnerSurf, StressOuterSurf).
+constexpr int kShellPoints = 3;
+constexpr int kShellPointValues = 7;  // 6 global stresses + effective plastic strain
+// Per shell after the points (IOSHL(4) = 1000): thickness, two element-dependent variables and
+// the internal energy. No resultants (IOSHL(3) = 0).
+constexpr int kShellElementValues = 4;
+constexpr int kShellValues = kShellPoints * kShellPointValues + kShellElementValues;  // NV2D
 
 // One 4-byte word as the database stores it: integers as int32, reals as float32.
 float int_word(std::int64_t value) {
@@ -90,6 +100,65 @@ double d3plot_effective_plastic_strain(const element::HexBlock& block, std::size
   return sum / static_cast<double>(points);
 }
 
+// Beam resultants in the order of the format: N, Qs, Qt, Ms, Mt, T (the block stores
+// N, Qs, Qt, T, Ms, Mt), in the beam's local axes.
+void D3plotWriter::write_beam_values(const element::BeamBlock& block, std::size_t e) {
+  double r[6] = {0, 0, 0, 0, 0, 0};
+  if (block.resultant.size() >= 6 * (e + 1)) std::copy_n(&block.resultant[6 * e], 6, r);
+  for (int k : {0, 1, 2, 4, 5, 3}) buffer_.push_back(static_cast<float>(r[k]));
+}
+
+// Shell values: the mid-surface, inner (bottom) and outer (top) points, each 6 stresses in global
+// axes (turned from the co-rotational frame at the current configuration, as the VTU frames)
+// and the effective plastic strain; then thickness, two element-dependent variables (0) and the
+// internal energy (0: no per-element energy is kept). Per through-thickness index the value is
+// the mean over the in-plane points (ELFORM 16: 4); the mid-surface value is the middle point
+// for odd NIP and the mean of the two central points for even NIP, as LS-DYNA writes it.
+void D3plotWriter::write_shell_values(const solver::NodalState& nodes,
+                                      const element::ShellBlock& block, std::size_t e) {
+  const std::size_t nip = static_cast<std::size_t>(std::max(block.nip, 1));
+  const std::size_t points = static_cast<std::size_t>(block.points_per_element());
+  const std::size_t planar = points / nip;
+  const std::int32_t* c = &block.conn[4 * e];
+  const std::array<std::array<double, 3>, 3> frame = shell_frame(nodes, c);
+  const material::HistoryArray* plastic = element::find_history(block, "effective_plastic_strain");
+  if (plastic && (plastic->field.components != 1 || plastic->values.size() < (e + 1) * points)) {
+    plastic = nullptr;
+  }
+  const bool has_stress = block.stress.size() >= (e + 1) * points * element::kShellStress;
+  // Mean over the in-plane points of through-thickness index i: 6 stresses + plastic strain.
+  auto layer = [&](std::size_t i, double out[7]) {
+    std::fill(out, out + 7, 0.0);
+    for (std::size_t a = 0; a < planar; ++a) {
+      const std::size_t q = a * nip + i;
+      if (has_stress) {
+        double g[6];
+        shell_stress_to_global(&block.stress[(e * points + q) * element::kShellStress], frame, g);
+        for (int k = 0; k < 6; ++k) out[k] += g[k] / static_cast<double>(planar);
+      }
+      if (plastic) out[6] += plastic->values[e * points + q] / static_cast<double>(planar);
+    }
+  };
+  double mid[7], low[7], high[7];
+  layer(nip / 2, mid);
+  if (nip % 2 == 0) {
+    double other[7];
+    layer(nip / 2 - 1, other);
+    for (int k = 0; k < 7; ++k) mid[k] = 0.5 * (mid[k] + other[k]);
+  }
+  layer(0, low);
+  layer(nip - 1, high);
+  for (const double* values : {mid, low, high}) {
+    for (int k = 0; k < 7; ++k) buffer_.push_back(static_cast<float>(values[k]));
+  }
+  const int corners = block.triangle[e] != 0 ? 3 : 4;
+  double thickness = 0.0;
+  for (int k = 0; k < corners; ++k)
+    thickness += block.thickness[4 * e + static_cast<std::size_t>(k)];
+  buffer_.push_back(static_cast<float>(thickness / corners));
+  for (int k = 0; k < 3; ++k) buffer_.push_back(0.0f);
+}
+
 std::string D3plotWriter::member_name(int k) {
   return k == 0 ? std::string("d3plot") : fmt::format("d3plot{:02d}", k);
 }
@@ -110,9 +179,20 @@ void D3plotWriter::write_header(const solver::State& state) {
   const std::int64_t node_count = static_cast<std::int64_t>(nodes.size());
 
   // Materials: the part IDs in ascending order; a solid's material number is its position + 1.
+  // Materials of all families (solids, beams, shells) share one numbering.
   std::map<model::Id, bool> rigid_of_part;
+  std::map<model::Id, int> solid_parts, beam_parts, shell_parts;
   for (const element::HexBlock& block : state.hex_blocks) {
     rigid_of_part[block.part_id] = rigid_of_part[block.part_id] || block.rigid;
+    solid_parts[block.part_id] = 1;
+  }
+  for (const element::BeamBlock& block : state.beam_blocks) {
+    rigid_of_part[block.part_id] = rigid_of_part[block.part_id] || block.rigid;
+    beam_parts[block.part_id] = 1;
+  }
+  for (const element::ShellBlock& block : state.shell_blocks) {
+    rigid_of_part[block.part_id] = rigid_of_part[block.part_id] || block.rigid;
+    shell_parts[block.part_id] = 1;
   }
   std::map<model::Id, std::int64_t> material_number;
   for (const auto& [pid, rigid] : rigid_of_part) {
@@ -131,8 +211,34 @@ void D3plotWriter::write_header(const solver::State& state) {
                            solid_ids.push_back(int_word(block.element_id[e]));
                            ++element_count_;
                          });
+  // Beams: N1 N2, orientation node N3 (0: the beam's axes are not part of this format; the
+  // orientation comes from a vector as often as from a node), two unused words, material.
+  std::vector<float> beam_words, beam_ids;
+  beam_count_ = 0;
+  for (const element::BeamBlock& block : state.beam_blocks) {
+    for (std::size_t e = 0; e < block.size(); ++e) {
+      beam_words.push_back(int_word(block.conn[2 * e] + 1));
+      beam_words.push_back(int_word(block.conn[2 * e + 1] + 1));
+      for (int k = 0; k < 3; ++k) beam_words.push_back(int_word(0));
+      beam_words.push_back(int_word(material_number.at(block.part_id)));
+      beam_ids.push_back(int_word(block.element_id[e]));
+      ++beam_count_;
+    }
+  }
+  // Shells: N1..N4 (triangles N3 = N4, as in *ELEMENT_SHELL), material.
+  std::vector<float> shell_words, shell_ids;
+  shell_count_ = 0;
+  for (const element::ShellBlock& block : state.shell_blocks) {
+    for (std::size_t e = 0; e < block.size(); ++e) {
+      for (int k = 0; k < 4; ++k) shell_words.push_back(int_word(block.conn[4 * e + k] + 1));
+      shell_words.push_back(int_word(material_number.at(block.part_id)));
+      shell_ids.push_back(int_word(block.element_id[e]));
+      ++shell_count_;
+    }
+  }
 
-  const std::int64_t narbs = 16 + node_count + element_count_ + 3 * materials;
+  const std::int64_t narbs =
+      16 + node_count + element_count_ + beam_count_ + shell_count_ + 3 * materials;
   std::vector<float> words(64, int_word(0));
   {
     char title[40];
@@ -152,18 +258,28 @@ void D3plotWriter::write_header(const solver::State& state) {
   set(16, node_count);
   set(17, 6);  // ICODE: finite-element code
   set(18, kGlobalCount);
-  set(19, 0);                            // IT: no temperatures
-  set(20, 1);                            // IU: coordinates
-  set(21, 1);                            // IV: velocities
-  set(22, 1);                            // IA: accelerations
-  set(23, element_count_);               // NEL8
-  set(24, materials);                    // NUMMAT8
-  set(27, kSolidValues);                 // NV3D
-  set(30, 6);                            // NV1D (no beams)
-  set(36, -(10000 + kIntegrationFlag));  // MAXINT < -10000: one deletion flag per element
+  set(19, 0);                                              // IT: no temperatures
+  set(20, 1);                                              // IU: coordinates
+  set(21, 1);                                              // IV: velocities
+  set(22, 1);                                              // IA: accelerations
+  set(23, element_count_);                                 // NEL8
+  set(24, static_cast<std::int64_t>(solid_parts.size()));  // NUMMAT8
+  set(27, kSolidValues);                                   // NV3D
+  set(28, beam_count_);                                    // NEL2
+  set(29, static_cast<std::int64_t>(beam_parts.size()));   // NUMMAT2
+  set(30, kBeamValues);                                    // NV1D
+  set(31, shell_count_);                                   // NEL4
+  set(32, static_cast<std::int64_t>(shell_parts.size()));  // NUMMAT4
+  set(33, kShellValues);                                   // NV2D
+  set(34, 0);                                              // NEIPH: no extra solid values
+  set(35, 0);                                              // NEIPS: no extra shell values per point
+  set(36, -(10000 + kShellPoints));  // MAXINT < -10000: one deletion flag per element
   set(39, narbs);
-  for (int k = 43; k <= 46; ++k) set(k, 1000);  // IOSHL: stresses and plastic strain present
-  set(51, materials);                           // NMMAT
+  set(43, 1000);       // IOSHL(1): 6 stresses per shell point
+  set(44, 1000);       // IOSHL(2): effective plastic strain per shell point
+  set(45, 0);          // IOSHL(3): no shell resultants
+  set(46, 1000);       // IOSHL(4): thickness, 2 element variables, internal energy
+  set(51, materials);  // NMMAT
 
   // Geometry: reference coordinates, then the solids.
   for (std::int64_t i = 0; i < node_count; ++i) {
@@ -172,20 +288,26 @@ void D3plotWriter::write_header(const solver::State& state) {
     words.push_back(static_cast<float>(nodes.x0.z[i]));
   }
   words.insert(words.end(), connectivity.begin(), connectivity.end());
+  // (No thick shells.) Beams, then shells: the manual's order of the geometry section.
+  words.insert(words.end(), beam_words.begin(), beam_words.end());
+  words.insert(words.end(), shell_words.begin(), shell_words.end());
   // User IDs. Pointers are word addresses in the file; NSORT < 0 says that the material lists
   // follow the element IDs.
   const std::int64_t node_ids_at = static_cast<std::int64_t>(words.size()) + 16;
   const std::int64_t solid_ids_at = node_ids_at + node_count;
-  const std::int64_t materials_at = solid_ids_at + element_count_;
+  // Element IDs in the order solids (NSRH), beams (NSRB), shells (NSRS), thick shells (NSRT).
+  const std::int64_t beam_ids_at = solid_ids_at + element_count_;
+  const std::int64_t shell_ids_at = beam_ids_at + beam_count_;
+  const std::int64_t materials_at = shell_ids_at + shell_count_;
   const std::int64_t header_ids[16] = {-node_ids_at,
                                        solid_ids_at,
-                                       materials_at,
-                                       materials_at,
+                                       beam_ids_at,
+                                       shell_ids_at,
                                        materials_at,
                                        node_count,
                                        element_count_,
-                                       0,
-                                       0,
+                                       beam_count_,
+                                       shell_count_,
                                        0,
                                        materials_at,
                                        materials_at + materials,
@@ -198,6 +320,8 @@ void D3plotWriter::write_header(const solver::State& state) {
   for (int k = 0; k < 16; ++k) words.push_back(int_word(k == 14 ? rigid_materials : header_ids[k]));
   for (std::int64_t i = 0; i < node_count; ++i) words.push_back(int_word(nodes.id[i]));
   words.insert(words.end(), solid_ids.begin(), solid_ids.end());
+  words.insert(words.end(), beam_ids.begin(), beam_ids.end());
+  words.insert(words.end(), shell_ids.begin(), shell_ids.end());
   for (int list = 0; list < 3; ++list) {
     // Ordered IDs, unordered IDs (the same: we number in ascending order), and the
     // cross-reference from the unordered to the ordered list.
@@ -228,7 +352,8 @@ void D3plotWriter::write_header(const solver::State& state) {
   }
 
   layout_.header_words = static_cast<std::int64_t>(words.size());
-  layout_.state_words = 1 + kGlobalCount + 9 * node_count + (kSolidValues + 1) * element_count_;
+  layout_.state_words = 1 + kGlobalCount + 9 * node_count + (kSolidValues + 1) * element_count_ +
+                        (kBeamValues + 1) * beam_count_ + (kShellValues + 1) * shell_count_;
   const std::int64_t family_words = family_bytes_ / 4;
   layout_.states_per_member = std::max<std::int64_t>(1, (family_words - 1) / layout_.state_words);
 
@@ -297,8 +422,20 @@ void D3plotWriter::write_state(const solver::State& state, const D3plotGlobals& 
   if (written != element_count_) {
     throw std::runtime_error("d3plot: the number of solids changed during the run");
   }
-  // Deletion flags (MDLOPT 2): 1 = active. No element is eroded yet.
-  buffer_.insert(buffer_.end(), static_cast<std::size_t>(element_count_), 1.0f);
+  std::int64_t beams = 0, shells = 0;
+  for (const element::BeamBlock& block : state.beam_blocks) {
+    for (std::size_t e = 0; e < block.size(); ++e, ++beams) write_beam_values(block, e);
+  }
+  for (const element::ShellBlock& block : state.shell_blocks) {
+    for (std::size_t e = 0; e < block.size(); ++e, ++shells) write_shell_values(nodes, block, e);
+  }
+  if (beams != beam_count_ || shells != shell_count_) {
+    throw std::runtime_error("d3plot: the number of beams or shells changed during the run");
+  }
+  // Deletion flags (MDLOPT 2), 1 = active, in the manual's order: solids, (thick shells),
+  // shells, beams. No element is eroded yet.
+  buffer_.insert(buffer_.end(),
+                 static_cast<std::size_t>(element_count_ + shell_count_ + beam_count_), 1.0f);
   if (static_cast<std::int64_t>(buffer_.size()) != layout_.state_words) {
     throw std::logic_error("d3plot: state size differs from the layout");
   }

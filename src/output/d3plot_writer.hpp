@@ -3,12 +3,14 @@
 // LS-DYNA manual ("LS-DYNA Database Binary Output Files"), 4-byte words in host byte order,
 // written as a file family:
 //   d3plot:   control words (64) | node coordinates | solid connectivity + material |
-//             user IDs (NARBS) | end-of-file marker -999999.0 |
-//             part titles (90001, NUMPROP, per part: ID + 72 characters) | end-of-file marker
+//             beams (N1 N2 N3 0 0 material) | shells (N1..N4 material) | user IDs (NARBS) |
+//             end-of-file marker -999999.0 | part titles (90001, NUMPROP, per part: ID + 72
+//             characters) | end-of-file marker
 //   d3plot01, d3plot02, ...: state | state | ... | end-of-file marker -999999.0
 // Each state: time, 6 global values, current coordinates, velocities, accelerations of every
-// node, 7 values per solid (6 stresses + effective plastic strain) and one deletion flag per
-// solid (1 = active).
+// node, 7 values per solid (6 stresses + effective plastic strain), 6 resultants per beam, 25
+// values per shell (3 points x (6 stresses + plastic strain), thickness, 2 element variables,
+// internal energy) and one deletion flag per solid, shell and beam (1 = active).
 #pragma once
 
 #include <cstdint>
@@ -28,8 +30,9 @@ struct D3plotGlobals {
   double velocity[3] = {0, 0, 0};  // momentum / total mass
 };
 
-// Effective plastic strain of solid element e of a block, the 7th solid value of every state.
-// Hook for plasticity (issue 17): 0 until a material carries plastic strain.
+// Effective plastic strain of solid element e of a block, the 7th solid value of every state:
+// the material's "effective_plastic_strain" history, mean over the element's points (0 for
+// materials without it).
 double d3plot_effective_plastic_strain(const element::HexBlock& block, std::size_t e);
 
 class D3plotWriter {
@@ -63,6 +66,9 @@ class D3plotWriter {
     std::int64_t states_per_member = 1;  // in d3plot01, d3plot02, ... (d3plot: none)
   };
   void write_header(const solver::State& state);
+  void write_beam_values(const element::BeamBlock& block, std::size_t e);
+  void write_shell_values(const solver::NodalState& nodes, const element::ShellBlock& block,
+                          std::size_t e);
   // Member and byte offset where state number `index` (0-based) starts.
   std::pair<int, std::int64_t> position_of(std::int64_t index) const;
   bool cut_back_to(std::int64_t states);
@@ -75,6 +81,8 @@ class D3plotWriter {
   std::int64_t states_ = 0;
   std::int64_t resume_states_ = -1;
   std::int64_t element_count_ = 0;  // written solids (p > 1 elements as p^3 sub-hexes)
+  std::int64_t beam_count_ = 0;
+  std::int64_t shell_count_ = 0;
   std::vector<float> buffer_;
 };
 

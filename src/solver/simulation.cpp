@@ -269,11 +269,6 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
       d3plot_schedule_.interval = default_interval(model.output.d3plot_dt, span, 20.0);
       fields_ = std::make_unique<output::FieldWriter>(options_.output_directory);
       d3plot_ = std::make_unique<output::D3plotWriter>(options_.output_directory, model.title);
-      if (!state_.shell_blocks.empty() || !state_.beam_blocks.empty()) {
-        warnings_.push_back({{},
-                             "d3plot holds the solid elements only: shells and beams are in the "
-                             "VTU frames (frames.pvd)"});
-      }
     }
   }
   if (model.switching.flagged) {

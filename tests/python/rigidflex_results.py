@@ -39,10 +39,19 @@ class D3plot:
         self.ndim, self.numnp, self.icode, self.nglbv = c[15], c[16], c[17], c[18]
         self.it, self.iu, self.iv, self.ia = c[19], c[20], c[21], c[22]
         self.nel8, self.nummat8, self.nv3d = c[23], c[24], c[27]
-        self.nel2, self.nel4, self.nelt = c[28], c[31], c[40]
+        self.nel2, self.nummat2, self.nv1d = c[28], c[29], c[30]
+        self.nel4, self.nummat4, self.nv2d = c[31], c[32], c[33]
+        self.neiph, self.neips, self.nelt = c[34], c[35], c[40]
         self.maxint, self.narbs, self.nmmat = c[36], c[39], c[51]
+        self.ioshl = [1 if c[k] == 1000 else 0 for k in range(43, 47)]
         assert self.ndim in (4, 5), "NDIM %d" % self.ndim
-        assert self.nel2 == 0 and self.nel4 == 0 and self.nelt == 0, "only solids expected"
+        assert self.nelt == 0, "thick shells not expected"
+        # Shell points written: |MAXINT| - 10000 when element deletion flags follow.
+        self.shell_points = -self.maxint - 10000 if self.maxint < -10000 else abs(self.maxint)
+        if self.nel4:
+            expected = (self.shell_points * (6 * self.ioshl[0] + self.ioshl[1] + self.neips)
+                        + 8 * self.ioshl[2] + 4 * self.ioshl[3])
+            assert self.nv2d == expected, "NV2D %d, the flags give %d (strains not expected)" % (self.nv2d, expected)
         pos = 64
         words = lambda fmt, n: struct.unpack_from("<%d%s" % (n, fmt), first, 4 * pos)
         self.material_types = []
@@ -58,6 +67,18 @@ class D3plot:
         self.solids = [conn[9 * e:9 * e + 8] for e in range(self.nel8)]  # 1-based node numbers
         self.solid_material = [conn[9 * e + 8] for e in range(self.nel8)]
         pos += 9 * self.nel8
+        # Geometry continues with thick shells (none), beams (N1 N2 N3 NS1 NS2 MAT) and shells
+        # (N1 N2 N3 N4 MAT).
+        conn = words("i", 6 * self.nel2)
+        self.beams = [conn[6 * e:6 * e + 5] for e in range(self.nel2)]
+        self.beam_material = [conn[6 * e + 5] for e in range(self.nel2)]
+        pos += 6 * self.nel2
+        conn = words("i", 5 * self.nel4)
+        self.shells = [conn[5 * e:5 * e + 4] for e in range(self.nel4)]
+        self.shell_material = [conn[5 * e + 4] for e in range(self.nel4)]
+        pos += 5 * self.nel4
+        self.beam_ids = list(range(1, self.nel2 + 1))
+        self.shell_ids = list(range(1, self.nel4 + 1))
         self.node_ids = list(range(1, self.numnp + 1))
         self.solid_ids = list(range(1, self.nel8 + 1))
         self.part_ids = list(range(1, self.nmmat + 1))
@@ -72,13 +93,22 @@ class D3plot:
             pos += self.numnp
             self.solid_ids = list(words("i", self.nel8))
             pos += self.nel8
+            # Element IDs: solids, beams (pointer NSRB), shells (NSRS), thick shells (NSRT);
+            # the pointers are word addresses in the file.
+            assert head[2] == pos and head[7] == self.nel2, "NSRB %d / NSRBD %d" % (head[2], head[7])
+            self.beam_ids = list(words("i", self.nel2))
+            pos += self.nel2
+            assert head[3] == pos and head[8] == self.nel4, "NSRS %d / NSRSD %d" % (head[3], head[8])
+            self.shell_ids = list(words("i", self.nel4))
+            pos += self.nel4
             if nsort < 0:
                 self.part_ids = list(words("i", self.nmmat))  # ordered user IDs
                 pos += 3 * self.nmmat
             assert pos - start == self.narbs, "NARBS %d, user-ID section %d words" % (self.narbs, pos - start)
         self.deletion = self.maxint < -10000
         self.state_words = (1 + self.nglbv + (self.it + 3 * (self.iu + self.iv + self.ia)) * self.numnp
-                            + self.nv3d * self.nel8 + (self.nel8 if self.deletion else 0))
+                            + self.nv3d * self.nel8 + self.nv1d * self.nel2 + self.nv2d * self.nel4
+                            + ((self.nel8 + self.nel4 + self.nel2) if self.deletion else 0))
         self.states = []
         self.part_titles = {}
         blobs = [(first, 4 * pos)] + [(m, 0) for m in members[1:]]
@@ -118,8 +148,17 @@ class D3plot:
                 p += 3 * self.numnp
         s["solid"] = [v[p + self.nv3d * e:p + self.nv3d * (e + 1)] for e in range(self.nel8)]
         p += self.nv3d * self.nel8
+        s["beam"] = [v[p + self.nv1d * e:p + self.nv1d * (e + 1)] for e in range(self.nel2)]
+        p += self.nv1d * self.nel2
+        s["shell"] = [v[p + self.nv2d * e:p + self.nv2d * (e + 1)] for e in range(self.nel4)]
+        p += self.nv2d * self.nel4
         if self.deletion:
+            # Deletion flags in the format's order: solids, thick shells, shells, beams.
             s["alive"] = list(v[p:p + self.nel8])
+            p += self.nel8
+            s["shell_alive"] = list(v[p:p + self.nel4])
+            p += self.nel4
+            s["beam_alive"] = list(v[p:p + self.nel2])
         return s
 
 
