@@ -51,10 +51,10 @@ std::string secforc_text(double time, const std::vector<solver::SectionForce>& s
 }
 
 std::string elout_text(double time, const solver::State& state,
-                       const std::vector<HistorySolid>& solids) {
+                       const std::vector<HistoryElement>& solids) {
   fmt::memory_buffer text;
   auto out = std::back_inserter(text);
-  for (const HistorySolid& h : solids) {
+  for (const HistoryElement& h : solids) {
     const element::HexBlock& block = state.hex_blocks[h.block];
     double s[6];
     element_mean_stress(block, h.element, s);
@@ -67,10 +67,10 @@ std::string elout_text(double time, const solver::State& state,
 }
 
 std::string elout_shell_text(double time, const solver::State& state,
-                             const std::vector<HistoryShell>& shells) {
+                             const std::vector<HistoryElement>& shells) {
   fmt::memory_buffer text;
   auto out = std::back_inserter(text);
-  for (const HistoryShell& h : shells) {
+  for (const HistoryElement& h : shells) {
     const element::ShellBlock& block = state.shell_blocks[h.block];
     const std::size_t nip = static_cast<std::size_t>(block.nip);
     const std::size_t points = static_cast<std::size_t>(block.points_per_element());

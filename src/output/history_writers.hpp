@@ -29,27 +29,23 @@ std::string matsum_text(double time, const std::vector<solver::PartSummary>& par
 std::string spcforc_text(double time, const std::vector<solver::NodeReaction>& reactions,
                          const std::vector<model::Id>& node_ids);
 
-// An element of *DATABASE_HISTORY_SOLID: where it lives in the state.
-struct HistorySolid {
+// An element of *DATABASE_HISTORY_SOLID or _SHELL: its block (in State::hex_blocks or
+// State::shell_blocks) and its index there.
+struct HistoryElement {
   std::size_t block = 0;
   std::size_t element = 0;
 };
 // One output time of elout.csv: a row per history solid (mean stress over its points).
 std::string elout_text(double time, const solver::State& state,
-                       const std::vector<HistorySolid>& solids);
+                       const std::vector<HistoryElement>& solids);
 
 inline constexpr std::string_view kEloutShellHeader =
     "time,element,part,point,zeta,sxx,syy,szz,sxy,syz,szx,effective_stress,"
     "effective_plastic_strain";
-// An element of *DATABASE_HISTORY_SHELL (block and element index in State::shell_blocks).
-struct HistoryShell {
-  std::size_t block = 0;
-  std::size_t element = 0;
-};
 // One output time of elout_shell.csv: a row per through-thickness point of each history shell
 // (bottom to top, zeta in [-1, 1]), stresses in global axes.
 std::string elout_shell_text(double time, const solver::State& state,
-                             const std::vector<HistoryShell>& shells);
+                             const std::vector<HistoryElement>& shells);
 
 // One output time of secforc.csv: a row per cross section.
 std::string secforc_text(double time, const std::vector<solver::SectionForce>& sections);

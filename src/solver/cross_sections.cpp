@@ -33,20 +33,6 @@ Vec reference(const State& state, std::int32_t i) {
   return {state.nodes.x0.x[i], state.nodes.x0.y[i], state.nodes.x0.z[i]};
 }
 
-std::int32_t dense_node(const State& state, model::Id id, const model::CrossSection& section,
-                        const char* field) {
-  const auto& ids = state.nodes.id;
-  const auto it = std::find(ids.begin(), ids.end(), id);
-  if (it == ids.end()) {
-    throw InputError(context_of(section.where, field), fmt::format("node {} does not exist", id));
-  }
-  return static_cast<std::int32_t>(it - ids.begin());
-}
-
-}  // namespace
-
-namespace {
-
 // Members of set `id` of `sets`, or an error naming the card and field.
 const std::vector<model::Id>& set_members(const std::map<model::Id, model::SolidSet>& sets,
                                           model::Id id, const model::CrossSection& section,
@@ -61,26 +47,18 @@ const std::vector<model::Id>& set_members(const std::map<model::Id, model::Solid
 
 }  // namespace
 
-void CrossSectionCut::build_from_sets(const model::Model& model, const State& state,
-                                      const model::CrossSection& section) {
+void CrossSectionCut::build_from_sets(const model::Model& model, const NodeIndex& node_index,
+                                      const State& state, const model::CrossSection& section) {
   const auto nodes_it = model.node_sets.find(section.node_set);
   if (nodes_it == model.node_sets.end()) {
     throw InputError(context_of(section.where, "NSID"),
                      fmt::format("node set {} is not defined", section.node_set));
   }
   std::vector<std::uint8_t> in_section(state.nodes.size(), 0);
-  std::map<model::Id, std::int32_t> dense;
-  for (std::size_t i = 0; i < state.nodes.size(); ++i) {
-    dense[state.nodes.id[i]] = static_cast<std::int32_t>(i);
-  }
   for (const model::Id id : nodes_it->second.nodes) {
-    const auto it = dense.find(id);
-    if (it == dense.end()) {
-      throw InputError(context_of(section.where, "NSID"),
-                       fmt::format("node {} does not exist", id));
-    }
-    if (!in_section[it->second]) nodes_.push_back(it->second);
-    in_section[it->second] = 1;
+    const std::int32_t n = node_index.at(id, section.where, "NSID");
+    if (!in_section[n]) nodes_.push_back(n);
+    in_section[n] = 1;
   }
   std::sort(nodes_.begin(), nodes_.end());
   // The elements of each set, found by user ID in the blocks of their family.
@@ -142,19 +120,19 @@ void CrossSectionCut::build_from_sets(const model::Model& model, const State& st
   }
 }
 
-CrossSectionCut::CrossSectionCut(const model::Model& model, const State& state,
-                                 const model::CrossSection& section)
+CrossSectionCut::CrossSectionCut(const model::Model& model, const NodeIndex& node_index,
+                                 const State& state, const model::CrossSection& section)
     : id_(section.id) {
   if (section.from_sets) {
-    build_from_sets(model, state, section);
+    build_from_sets(model, node_index, state, section);
     return;
   }
   // The plane: tail point and unit normal (nodes with RADIUS < 0, at their initial positions).
   Vec tail = section.tail;
   Vec head = section.head;
   if (section.radius < 0.0) {
-    tail = reference(state, dense_node(state, section.tail_node, section, "XCT"));
-    head = reference(state, dense_node(state, section.head_node, section, "XCH"));
+    tail = reference(state, node_index.at(section.tail_node, section.where, "XCT"));
+    head = reference(state, node_index.at(section.head_node, section.where, "XCH"));
   }
   const Vec axis = sub(head, tail);
   if (dot(axis, axis) == 0.0) {
@@ -327,8 +305,9 @@ SectionForce CrossSectionCut::evaluate(const State& state) const {
 std::vector<CrossSectionCut> build_cross_sections(const model::Model& model, const State& state) {
   std::vector<CrossSectionCut> cuts;
   cuts.reserve(model.output.cross_sections.size());
+  const NodeIndex node_index(model);
   for (const model::CrossSection& section : model.output.cross_sections) {
-    cuts.emplace_back(model, state, section);
+    cuts.emplace_back(model, node_index, state, section);
   }
   return cuts;
 }

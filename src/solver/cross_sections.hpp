@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "model/model.hpp"
+#include "solver/build_state.hpp"
 #include "solver/state.hpp"
 
 namespace rf::solver {
@@ -32,7 +33,7 @@ class CrossSectionCut {
   // the nodal forces (and moments) of the negative-side elements at those nodes: by the
   // equilibrium of every element this equals the force the positive side exerts across the cut.
   // Throws rf::InputError when the plane cuts no deformable element.
-  CrossSectionCut(const model::Model& model, const State& state,
+  CrossSectionCut(const model::Model& model, const NodeIndex& node_index, const State& state,
                   const model::CrossSection& section);
 
   SectionForce evaluate(const State& state) const;
@@ -51,8 +52,8 @@ class CrossSectionCut {
     std::int32_t node;
   };
   // *DATABASE_CROSS_SECTION_SET: nodes and elements from the sets; no normal (normal_force 0).
-  void build_from_sets(const model::Model& model, const State& state,
-                       const model::CrossSection& section);
+  void build_from_sets(const model::Model& model, const NodeIndex& node_index,
+                       const State& state, const model::CrossSection& section);
 
   model::Id id_ = 0;
   std::array<double, 3> normal_{};

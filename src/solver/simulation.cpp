@@ -124,6 +124,58 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
   sensors_ = std::make_unique<sensor::SensorSystem>(
       sensor::build_sensor_system(model_, node_index_, state_));
 
+  // Output selections, resolved with or without an output directory so that `check` reports
+  // their errors too. *DATABASE_HISTORY_SOLID / _SHELL (IDs, _ID, _SET): elout.csv and
+  // elout_shell.csv, each element once, direct IDs first, then set members, in deck order;
+  // located in `blocks`.
+  const auto history_elements = [&](const auto& blocks, const std::vector<model::Id>& ids,
+                                    const std::vector<model::SourceLocation>& id_where,
+                                    const std::vector<model::Id>& sets,
+                                    const std::vector<model::SourceLocation>& set_where,
+                                    const std::map<model::Id, model::SolidSet>& set_map,
+                                    const char* family, const char* keyword) {
+    std::vector<std::pair<model::Id, const model::SourceLocation*>> wanted;
+    std::set<model::Id> seen;
+    for (std::size_t k = 0; k < ids.size(); ++k) {
+      if (seen.insert(ids[k]).second) wanted.push_back({ids[k], &id_where[k]});
+    }
+    for (std::size_t k = 0; k < sets.size(); ++k) {
+      const auto it = set_map.find(sets[k]);
+      if (it == set_map.end()) {
+        throw InputError(model::context_of(set_where[k], "SID"),
+                         fmt::format("{}: {} set {} is not defined", keyword, family, sets[k]));
+      }
+      for (const model::Id id : it->second.elements) {
+        if (seen.insert(id).second) wanted.push_back({id, &it->second.where});
+      }
+    }
+    std::vector<output::HistoryElement> out;
+    if (wanted.empty()) return out;
+    std::map<model::Id, output::HistoryElement> where;
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+      const auto& block_ids = blocks[b].element_id;
+      for (std::size_t e = 0; e < block_ids.size(); ++e) where[block_ids[e]] = {b, e};
+    }
+    for (const auto& [id, card] : wanted) {
+      const auto it = where.find(id);
+      if (it == where.end()) {
+        throw InputError(model::context_of(*card, "EID"),
+                         fmt::format("{}: {} element {} does not exist", keyword, family, id));
+      }
+      out.push_back(it->second);
+    }
+    return out;
+  };
+  elout_solids_ = history_elements(
+      state_.hex_blocks, model.output.history_solids, model.output.history_solid_where,
+      model.output.history_solid_sets, model.output.history_solid_set_where, model.solid_sets,
+      "solid", "*DATABASE_HISTORY_SOLID");
+  elout_shells_ = history_elements(
+      state_.shell_blocks, model.output.history_shells, model.output.history_shell_where,
+      model.output.history_shell_sets, model.output.history_shell_set_where, model.shell_sets,
+      "shell", "*DATABASE_HISTORY_SHELL");
+  cross_sections_ = build_cross_sections(model, state_);
+
   if (!options_.output_directory.empty()) {
     std::filesystem::create_directories(options_.output_directory);
     const double span = end_time_ > 0.0 ? end_time_ : 1.0;
@@ -183,82 +235,20 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
                                                        std::string(output::kSpcforcHeader),
                                                        options_.continuation.spcforc);
     }
-    // *DATABASE_HISTORY_SOLID / _SHELL (IDs, _ID, _SET): elout.csv and elout_shell.csv, each
-    // element once, direct IDs first, then set members, in deck order.
-    const auto history_elements = [&](const std::vector<model::Id>& ids,
-                                      const std::vector<model::SourceLocation>& id_where,
-                                      const std::vector<model::Id>& sets,
-                                      const std::vector<model::SourceLocation>& set_where,
-                                      const std::map<model::Id, model::SolidSet>& set_map,
-                                      const char* family, const char* keyword) {
-      std::vector<std::pair<model::Id, const model::SourceLocation*>> out;
-      std::set<model::Id> seen;
-      for (std::size_t k = 0; k < ids.size(); ++k) {
-        if (seen.insert(ids[k]).second) out.push_back({ids[k], &id_where[k]});
-      }
-      for (std::size_t k = 0; k < sets.size(); ++k) {
-        const auto it = set_map.find(sets[k]);
-        if (it == set_map.end()) {
-          throw InputError(model::context_of(set_where[k], "SID"),
-                           fmt::format("{}: {} set {} is not defined", keyword, family, sets[k]));
-        }
-        for (const model::Id id : it->second.elements) {
-          if (seen.insert(id).second) out.push_back({id, &it->second.where});
-        }
-      }
-      return out;
-    };
-    const auto solids =
-        history_elements(model.output.history_solids, model.output.history_solid_where,
-                         model.output.history_solid_sets, model.output.history_solid_set_where,
-                         model.solid_sets, "solid", "*DATABASE_HISTORY_SOLID");
-    if (!solids.empty()) {
-      std::map<model::Id, output::HistorySolid> where;
-      for (std::size_t b = 0; b < state_.hex_blocks.size(); ++b) {
-        const auto& ids = state_.hex_blocks[b].element_id;
-        for (std::size_t e = 0; e < ids.size(); ++e) where[ids[e]] = {b, e};
-      }
-      for (const auto& [id, card] : solids) {
-        const auto it = where.find(id);
-        if (it == where.end()) {
-          throw InputError(
-              model::context_of(*card, "EID"),
-              fmt::format("*DATABASE_HISTORY_SOLID: solid element {} does not exist", id));
-        }
-        elout_solids_.push_back(it->second);
-      }
+    if (!elout_solids_.empty()) {
       elout_schedule_.interval = default_interval(model.output.elout_dt, span, 1000.0);
       elout_csv_ = std::make_unique<output::CsvFile>(options_.output_directory / "elout.csv",
                                                      std::string(output::kEloutHeader),
                                                      options_.continuation.elout);
     }
-    const auto shells =
-        history_elements(model.output.history_shells, model.output.history_shell_where,
-                         model.output.history_shell_sets, model.output.history_shell_set_where,
-                         model.shell_sets, "shell", "*DATABASE_HISTORY_SHELL");
-    if (!shells.empty()) {
-      std::map<model::Id, output::HistoryShell> where;
-      for (std::size_t b = 0; b < state_.shell_blocks.size(); ++b) {
-        const auto& ids = state_.shell_blocks[b].element_id;
-        for (std::size_t e = 0; e < ids.size(); ++e) where[ids[e]] = {b, e};
-      }
-      for (const auto& [id, card] : shells) {
-        const auto it = where.find(id);
-        if (it == where.end()) {
-          throw InputError(
-              model::context_of(*card, "EID"),
-              fmt::format("*DATABASE_HISTORY_SHELL: shell element {} does not exist", id));
-        }
-        elout_shells_.push_back(it->second);
-      }
+    if (!elout_shells_.empty()) {
       // The same interval as elout.csv (*DATABASE_ELOUT DT), as in LS-DYNA's one elout file.
       elout_shell_schedule_.interval = default_interval(model.output.elout_dt, span, 1000.0);
       elout_shell_csv_ = std::make_unique<output::CsvFile>(
           options_.output_directory / "elout_shell.csv", std::string(output::kEloutShellHeader),
           options_.continuation.elout_shell);
     }
-    if (!model.output.cross_sections.empty()) {
-      cross_sections_ = build_cross_sections(model, state_);
+    if (!cross_sections_.empty()) {
       section_rows_.reserve(cross_sections_.size());
       secforc_schedule_.interval = default_interval(model.output.secforc_dt, span, 1000.0);
       secforc_csv_ = std::make_unique<output::CsvFile>(options_.output_directory / "secforc.csv",

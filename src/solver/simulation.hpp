@@ -255,10 +255,10 @@ class Simulation {
   std::unique_ptr<output::CsvFile> matsum_csv_, spcforc_csv_, elout_csv_;
   OutputSchedule matsum_schedule_, spcforc_schedule_, elout_schedule_;
   void flush_csv_files();
-  std::vector<output::HistorySolid> elout_solids_;
+  std::vector<output::HistoryElement> elout_solids_;
   std::unique_ptr<output::CsvFile> elout_shell_csv_;
   OutputSchedule elout_shell_schedule_;
-  std::vector<output::HistoryShell> elout_shells_;
+  std::vector<output::HistoryElement> elout_shells_;
   // *DATABASE_CROSS_SECTION_PLANE (+ *DATABASE_SECFORC): secforc.csv.
   std::vector<CrossSectionCut> cross_sections_;
   std::unique_ptr<output::CsvFile> secforc_csv_;

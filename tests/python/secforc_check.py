@@ -238,6 +238,11 @@ def main():
         text = result.stdout + result.stderr
         check(result.returncode != 0 and message in text and "CROSS_SECTION_PLANE" in text,
               "%s: exit %d, output %r" % (what, result.returncode, text[-400:]))
+        # `check` refuses what `run` refuses.
+        result = subprocess.run([rigidflex, "check", path], capture_output=True, text=True)
+        text = result.stdout + result.stderr
+        check(result.returncode != 0 and message in text,
+              "check, %s: exit %d, output %r" % (what, result.returncode, text[-400:]))
 
     if failures:
         print("secforc differs from static equilibrium:")

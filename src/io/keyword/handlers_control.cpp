@@ -294,6 +294,29 @@ void read_cross_section_id(const Block& block, ReaderContext& context, CardCurso
   }
 }
 
+// ID (output in a rigid body's, accelerometer's or coordinate system's axes) is not supported.
+void refuse_local_axes(const Card& card, std::size_t field) {
+  if (card.id(field, "ID") != 0) {
+    throw card.error("ID",
+                     "section forces in the frame of a rigid body, accelerometer or "
+                     "coordinate system are not supported: leave ID blank (global axes)");
+  }
+}
+
+// Appends a cross section read from `card`; a second definition of its ID is an error at
+// `field`.
+void add_cross_section(const Block& block, CardCursor& cursor, ReaderContext& context,
+                       const Card& card, const char* field, const model::CrossSection& section) {
+  for (const model::CrossSection& other : context.model.output.cross_sections) {
+    if (other.id == section.id) {
+      throw card.error(block.has_option("ID") ? "CSID" : field,
+                       fmt::format("cross section {} is defined twice", section.id));
+    }
+  }
+  context.model.output.cross_sections.push_back(section);
+  warn_unread_lines(block, cursor, context);
+}
+
 }  // namespace
 
 // A cutting plane whose section force goes to secforc.csv. Card layouts from the LS-DYNA manual
@@ -302,7 +325,6 @@ void read_cross_section_id(const Block& block, ReaderContext& context, CardCurso
 void database_cross_section_plane(const Block& block, ReaderContext& context) {
   CardCursor cursor(block, context.parameters);
   model::CrossSection section;
-  const bool with_id = block.has_option("ID");
   int n = 0;
   read_cross_section_id(block, context, cursor, n, section);
   const Card plane = cursor.next(++n, kEightByTen, "PSID");
@@ -336,11 +358,7 @@ void database_cross_section_plane(const Block& block, ReaderContext& context) {
     section.length_m = edge.real(4, "LENM", 0.0);
     if (section.length_l < 0.0) throw edge.error("LENL", "must not be negative (0: unbounded)");
     if (section.length_m < 0.0) throw edge.error("LENM", "must not be negative (0: unbounded)");
-    if (edge.id(5, "ID") != 0) {
-      throw edge.error("ID",
-                       "section forces in the frame of a rigid body, accelerometer or "
-                       "coordinate system are not supported: leave ID blank (global axes)");
-    }
+    refuse_local_axes(edge, 5);
     edge.integer(6, "ITYPE", 0);
   }
   if (section.radius == 0.0) {
@@ -353,14 +371,7 @@ void database_cross_section_plane(const Block& block, ReaderContext& context) {
                         "the head of the normal (XCH YCH ZCH) equals its tail (XCT YCT ZCT)");
     }
   }
-  for (const model::CrossSection& other : context.model.output.cross_sections) {
-    if (other.id == section.id) {
-      throw plane.error(with_id ? "CSID" : "PSID",
-                        fmt::format("cross section {} is defined twice", section.id));
-    }
-  }
-  context.model.output.cross_sections.push_back(section);
-  warn_unread_lines(block, cursor, context);
+  add_cross_section(block, cursor, context, plane, "PSID", section);
 }
 
 // A cross section given by sets (LS-DYNA manual, *DATABASE_CROSS_SECTION_SET): [CSID HEADING]
@@ -369,7 +380,6 @@ void database_cross_section_set(const Block& block, ReaderContext& context) {
   CardCursor cursor(block, context.parameters);
   model::CrossSection section;
   section.from_sets = true;
-  const bool with_id = block.has_option("ID");
   int n = 0;
   read_cross_section_id(block, context, cursor, n, section);
   const Card card = cursor.next(++n, kEightByTen, "NSID HSID BSID SSID");
@@ -387,20 +397,9 @@ void database_cross_section_set(const Block& block, ReaderContext& context) {
   }
   if (card.id(4, "TSID") != 0) throw card.error("TSID", "thick shells are not supported");
   if (card.id(5, "DSID") != 0) throw card.error("DSID", "discrete elements are not supported");
-  if (card.id(6, "ID") != 0) {
-    throw card.error("ID",
-                     "section forces in the frame of a rigid body, accelerometer or "
-                     "coordinate system are not supported: leave ID blank (global axes)");
-  }
+  refuse_local_axes(card, 6);
   card.integer(7, "ITYPE", 0);
-  for (const model::CrossSection& other : context.model.output.cross_sections) {
-    if (other.id == section.id) {
-      throw card.error(with_id ? "CSID" : "NSID",
-                       fmt::format("cross section {} is defined twice", section.id));
-    }
-  }
-  context.model.output.cross_sections.push_back(section);
-  warn_unread_lines(block, cursor, context);
+  add_cross_section(block, cursor, context, card, "NSID", section);
 }
 
 namespace {
