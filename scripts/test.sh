@@ -24,8 +24,5 @@ fi
 
 fuzz_seconds=${RIGIDFLEX_FUZZ_SECONDS:-60}
 if [ "$fuzz_seconds" != 0 ]; then
-  # The restart-dump target is left out of CI: a bit-flipped dump can make libhdf5 itself
-  # allocate past libFuzzer's memory limit inside H5Dread (found 2026-11-25, issue 22), which
-  # would fail CI at random. Run it by hand: scripts/fuzz.sh 180 fuzz_restart.
-  scripts/fuzz.sh "$fuzz_seconds" fuzz_deck fuzz_modes
+  scripts/fuzz.sh "$fuzz_seconds" fuzz_deck fuzz_restart fuzz_modes
 fi

@@ -39,7 +39,8 @@ void replay(const std::string& target, Run run) {
 
 }  // namespace
 
-// tests/decks/fuzz/restart: dumps on which libhdf5 leaked inside H5Dopen2
+// tests/decks/fuzz/restart: dumps on which libhdf5 leaked inside H5Dopen2 or asked for 4 GB
+// inside H5Dread (a damaged chunk record; Group::check_storage now refuses it first)
 // (tests/fuzz/lsan-hdf5.supp); tests/decks/fuzz/modes: mode databases on which it leaked inside
 // H5Gopen2. Beyond ending cleanly, both must be refused with an InputError.
 TEST(FuzzRegression, RestartFindingsAreRefusedWithAnInputError) {

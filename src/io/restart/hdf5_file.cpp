@@ -134,6 +134,42 @@ std::size_t Group::length(const std::string& name) const {
   return static_cast<std::size_t>(dims[0]);
 }
 
+// A damaged dump can claim any extent, chunk shape or chunk size, and libhdf5 allocates what
+// the file claims before the checksum is verified (a fuzzed dump made it ask for 4 GB inside
+// H5Dread). Every claim is checked against what write_array() makes before anything is
+// allocated: the data fits in the file, chunks of at most kChunkElements entries, the one
+// filter fletcher32, and each chunk stored in exactly its entries plus the 4-byte checksum.
+void Group::check_storage(hid_t set, const std::string& name, std::size_t n,
+                          std::size_t entry_bytes) const {
+  Handle file(H5Iget_file_id(set), H5Fclose);
+  hsize_t file_bytes = 0;
+  if (!file.valid() || H5Fget_filesize(file.get(), &file_bytes) < 0 ||
+      n > file_bytes / entry_bytes) {
+    fail(name, fmt::format("claims {} entries, more than the file holds (the dump is damaged)", n));
+  }
+  Handle properties(H5Dget_create_plist(set), H5Pclose);
+  hsize_t chunk[1] = {0};
+  if (!properties.valid() || H5Pget_layout(properties.get()) != H5D_CHUNKED ||
+      H5Pget_chunk(properties.get(), 1, chunk) != 1 || chunk[0] == 0 ||
+      chunk[0] > kChunkElements || H5Pget_nfilters(properties.get()) != 1) {
+    fail(name, "is not stored as this version writes (the dump is damaged)");
+  }
+  unsigned flags = 0;
+  std::size_t values = 0;
+  if (H5Pget_filter2(properties.get(), 0, &flags, &values, nullptr, 0, nullptr, nullptr) !=
+      H5Z_FILTER_FLETCHER32) {
+    fail(name, "is not stored as this version writes (the dump is damaged)");
+  }
+  for (hsize_t start = 0; start < n; start += chunk[0]) {
+    const hsize_t offset[1] = {start};
+    hsize_t stored = 0;  // edge chunks are stored whole, like the others
+    if (H5Dget_chunk_storage_size(set, offset, &stored) < 0 ||
+        stored != chunk[0] * entry_bytes + 4) {
+      fail(name, fmt::format("chunk at entry {} has a damaged size (the dump is damaged)", start));
+    }
+  }
+}
+
 template <class T>
 std::vector<T> Group::read_array(const std::string& name, hid_t type) const {
   const std::size_t n = length(name);
@@ -143,6 +179,7 @@ std::vector<T> Group::read_array(const std::string& name, hid_t type) const {
       H5Tget_size(stored_type.get()) != H5Tget_size(type)) {
     fail(name, "holds numbers of another type than this version writes (the dump is damaged)");
   }
+  if (n > 0) check_storage(set.get(), name, n, sizeof(T));
   std::vector<T> out(n);
   if (n > 0 && H5Dread(set.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0) {
     fail(name,

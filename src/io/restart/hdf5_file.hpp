@@ -80,6 +80,8 @@ class Group {
   void write_array(const std::string& name, hid_t type, const void* data, std::size_t n) const;
   template <class T>
   std::vector<T> read_array(const std::string& name, hid_t type) const;
+  void check_storage(hid_t set, const std::string& name, std::size_t n,
+                     std::size_t entry_bytes) const;
   Handle open_attribute(const std::string& name) const;
 
   Handle handle_;
