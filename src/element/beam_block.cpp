@@ -649,7 +649,8 @@ KernelResult compute_beam_forces(BeamBlock& block, const NodalView& nodes,
         continue;
       }
       // The step at the new length (beam_element stored it), as the other families report it.
-      local.record_dt(beam_element_step(block, ue, block.length[ue], k), e);
+      local.record_dt(
+          scaled_step(block.step_scale, e, beam_element_step(block, ue, block.length[ue], k)), e);
     }
     partials[omp_get_thread_num()] = local;
 #pragma omp single
@@ -658,9 +659,11 @@ KernelResult compute_beam_forces(BeamBlock& block, const NodalView& nodes,
   return combine(partials, threads);
 }
 
-KernelResult beam_critical_timestep(const BeamBlock& block, const NodalView& nodes) {
+KernelResult beam_critical_timestep(const BeamBlock& block, const NodalView& nodes,
+                                    std::vector<double>* raw_steps) {
   std::array<Partial, kMaxThreads> partials;
   const std::int64_t n = static_cast<std::int64_t>(block.size());
+  if (raw_steps) raw_steps->assign(block.size(), 0.0);
   const SectionStiffness k = section_stiffness(block);
   int threads = 1;
 #pragma omp parallel num_threads(thread_count())
@@ -677,7 +680,9 @@ KernelResult beam_critical_timestep(const BeamBlock& block, const NodalView& nod
         local.record_failure(e, length);
         continue;
       }
-      local.record_dt(beam_element_step(block, ue, length, k), e);
+      const double step = beam_element_step(block, ue, length, k);
+      if (raw_steps) (*raw_steps)[ue] = step;
+      local.record_dt(scaled_step(block.step_scale, e, step), e);
     }
     partials[omp_get_thread_num()] = local;
 #pragma omp single
@@ -687,14 +692,16 @@ KernelResult beam_critical_timestep(const BeamBlock& block, const NodalView& nod
 }
 
 void add_beam_lumped_mass(const BeamBlock& block, std::vector<double>& nodal_mass,
-                          std::vector<double>& rotational_inertia) {
+                          std::vector<double>& rotational_inertia,
+                          const std::vector<double>* element_factor) {
   const bool truss = block.elform == 3;
   for (std::size_t e = 0; e < block.size(); ++e) {
-    const double share = 0.5 * block.material.rho * block.area * block.length0[e];
+    const double factor = element_factor ? (*element_factor)[e] : 1.0;
+    const double share = factor * 0.5 * block.material.rho * block.area * block.length0[e];
     nodal_mass[static_cast<std::size_t>(block.conn[2 * e])] += share;
     nodal_mass[static_cast<std::size_t>(block.conn[2 * e + 1])] += share;
     if (truss) continue;
-    const double j = node_rotational_inertia(block, block.length0[e]);
+    const double j = factor * node_rotational_inertia(block, block.length0[e]);
     for (int a = 0; a < 2; ++a) {
       const std::int32_t r = block.rotation_conn[2 * e + a];
       if (r >= 0) rotational_inertia[static_cast<std::size_t>(r)] += j;

@@ -71,6 +71,9 @@ struct BeamBlock {
   std::vector<double> stress;
   std::vector<material::HistoryArray> history;
   std::vector<double> length0;  // reference length
+  // sqrt(s_e) of mass scaling (solver/mass_scaling.hpp): the element's mass is s_e times its
+  // physical mass, so its step is sqrt(s_e) times longer. Empty without mass scaling.
+  std::vector<double> step_scale;
   std::vector<double> length;   // current length
   std::vector<double> force;    // kBeamSlot per element
 
@@ -88,8 +91,12 @@ struct BeamBlock {
 void initialize_beam_block(BeamBlock& block, const NodalView& nodes);
 KernelResult compute_beam_forces(BeamBlock& block, const NodalView& nodes,
                                  const RotationalView& rotations, double dt);
-KernelResult beam_critical_timestep(const BeamBlock& block, const NodalView& nodes);
+// `raw_steps` (optional) receives every element's step without mass scaling (0 where failed).
+KernelResult beam_critical_timestep(const BeamBlock& block, const NodalView& nodes,
+                                    std::vector<double>* raw_steps = nullptr);
+// `element_factor` (optional): each element's shares multiplied by it (mass scaling).
 void add_beam_lumped_mass(const BeamBlock& block, std::vector<double>& nodal_mass,
-                          std::vector<double>& rotational_inertia);
+                          std::vector<double>& rotational_inertia,
+                          const std::vector<double>* element_factor = nullptr);
 
 }  // namespace rf::element

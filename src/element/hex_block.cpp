@@ -529,7 +529,7 @@ void elform1_batch(HexBlock& block, std::size_t first, int count, const NodalVie
         for (int n = 0; n < 8; ++n) fl[i][n] = f[i][n][l];
       scatter_forces(b.slots[l], fl, out);
     }
-    part.record_dt(elem_dt[l], ie);
+    part.record_dt(scaled_step(block.step_scale, ie, elem_dt[l]), ie);
   }
 }
 
@@ -646,8 +646,11 @@ void elform2_element(HexBlock& block, std::size_t e, const NodalView& nv, double
 
   if (inverted || !finite_forces(f)) part.record_failure(static_cast<std::int64_t>(e), g.volume);
   scatter_forces(slots, f, out);
-  part.record_dt(element_time_step(x, g.volume, block.shape[e], block.material.wave_speed),
-                 static_cast<std::int64_t>(e));
+  const auto ie = static_cast<std::int64_t>(e);
+  part.record_dt(
+      scaled_step(block.step_scale, ie,
+                  element_time_step(x, g.volume, block.shape[e], block.material.wave_speed)),
+      ie);
 }
 
 HexShape detect_shape(const std::int32_t* c) {
@@ -758,9 +761,11 @@ KernelResult compute_hex_forces(HexBlock& block, const NodalView& nodes, double 
   return combine(partials, threads);
 }
 
-KernelResult hex_critical_timestep(const HexBlock& block, const NodalView& nodes) {
+KernelResult hex_critical_timestep(const HexBlock& block, const NodalView& nodes,
+                                   std::vector<double>* raw_steps) {
   std::array<Partial, kMaxThreads> partials;
   const std::int64_t n = static_cast<std::int64_t>(block.size());
+  if (raw_steps) raw_steps->assign(block.size(), 0.0);
   int threads = 1;
 #pragma omp parallel num_threads(thread_count())
   {
@@ -775,7 +780,9 @@ KernelResult hex_critical_timestep(const HexBlock& block, const NodalView& nodes
         local.record_failure(e, v);
         continue;
       }
-      local.record_dt(element_time_step(x, v, block.shape[ue], block.material.wave_speed), e);
+      const double step = element_time_step(x, v, block.shape[ue], block.material.wave_speed);
+      if (raw_steps) (*raw_steps)[ue] = step;
+      local.record_dt(scaled_step(block.step_scale, e, step), e);
     }
     partials[omp_get_thread_num()] = local;
 #pragma omp single
@@ -784,11 +791,13 @@ KernelResult hex_critical_timestep(const HexBlock& block, const NodalView& nodes
   return combine(partials, threads);
 }
 
-void add_hex_lumped_mass(const HexBlock& block, std::vector<double>& nodal_mass) {
+void add_hex_lumped_mass(const HexBlock& block, std::vector<double>& nodal_mass,
+                         const std::vector<double>* element_factor) {
   for (std::size_t e = 0; e < block.size(); ++e) {
     const std::int32_t* c = &block.conn[8 * e];
     const int distinct = distinct_node_count(c);
-    const double share = block.material.rho * block.volume0[e] / distinct;
+    const double factor = element_factor ? (*element_factor)[e] : 1.0;
+    const double share = factor * block.material.rho * block.volume0[e] / distinct;
     for (int k = 0; k < 8; ++k) {
       bool seen = false;
       for (int j = 0; j < k; ++j) seen |= c[j] == c[k];

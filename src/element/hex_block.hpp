@@ -82,6 +82,9 @@ struct HexBlock {
   // Accumulated hourglass generalized forces for the stiffness forms (IHQ 4,5,6): 12 per element.
   std::vector<double> hourglass_state;
   std::vector<double> volume0;       // reference volume
+  // sqrt(s_e) of mass scaling (solver/mass_scaling.hpp): the element's mass is s_e times its
+  // physical mass, so its step is sqrt(s_e) times longer. Empty without mass scaling.
+  std::vector<double> step_scale;
   std::vector<double> volume0_cbrt;  // V0^{1/3}, scales the viscous hourglass coefficient
   std::vector<double> volume;        // current volume
   // Element nodal forces of the last evaluation, 24 per element (node-major: f0x,f0y,f0z,...).
@@ -135,10 +138,14 @@ void initialize_hex_block(HexBlock& block, const NodalView& nodes);
 KernelResult compute_hex_forces(HexBlock& block, const NodalView& nodes, double dt);
 
 // Critical time step of each element at the current configuration (L_e / c), minimum reported.
-KernelResult hex_critical_timestep(const HexBlock& block, const NodalView& nodes);
+// `raw_steps` (optional) receives every element's step without mass scaling (0 where failed).
+KernelResult hex_critical_timestep(const HexBlock& block, const NodalView& nodes,
+                                   std::vector<double>* raw_steps = nullptr);
 
 // Lumped mass: rho * V0 / 8 to each node (degenerate hexes: per distinct node, see docs).
-void add_hex_lumped_mass(const HexBlock& block, std::vector<double>& nodal_mass);
+// `element_factor` (optional): each element's share multiplied by it (mass scaling's added mass).
+void add_hex_lumped_mass(const HexBlock& block, std::vector<double>& nodal_mass,
+                         const std::vector<double>* element_factor = nullptr);
 
 // Number of distinct nodes of an 8-entry connectivity (8 for a proper hexahedron).
 int distinct_node_count(const std::int32_t* conn8);

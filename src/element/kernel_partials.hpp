@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "element/hex_block.hpp"  // KernelResult
 
@@ -33,6 +34,12 @@ struct alignas(64) KernelPartial {
     }
   }
 };
+
+// Mass scaling (solver/mass_scaling.hpp) multiplies an element's mass by s_e and so its critical
+// step by sqrt(s_e): a block keeps sqrt(s_e) per element in `step_scale`, empty without scaling.
+inline double scaled_step(const std::vector<double>& step_scale, std::int64_t e, double dt) {
+  return step_scale.empty() ? dt : dt * step_scale[static_cast<std::size_t>(e)];
+}
 
 inline constexpr int kMaxKernelThreads = 256;
 using KernelPartials = std::array<KernelPartial, kMaxKernelThreads>;

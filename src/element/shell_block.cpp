@@ -609,7 +609,9 @@ void shell_batch(ShellBlock& block, const BlockConstants& k, std::size_t first, 
     for (int c = 0; c < kShellSlot; ++c) o[c] = material::get_lane(out[c], l);
     part.hourglass_work += material::get_lane(work, l);
     if (!std::isfinite(material::get_lane(sum, l))) part.record_failure(ie, area_end);
-    part.record_dt(material::get_lane(dt2, l), ie);
+    // Squared steps here: the mass scale enters squared.
+    const double scale = block.step_scale.empty() ? 1.0 : block.step_scale[e];
+    part.record_dt(material::get_lane(dt2, l) * (scale * scale), ie);
   }
 }
 
@@ -806,9 +808,11 @@ KernelResult compute_shell_forces(ShellBlock& block, const NodalView& nodes,
   return r;
 }
 
-KernelResult shell_critical_timestep(const ShellBlock& block, const NodalView& nodes) {
+KernelResult shell_critical_timestep(const ShellBlock& block, const NodalView& nodes,
+                                     std::vector<double>* raw_steps) {
   std::array<Partial, kMaxThreads> partials;
   const std::int64_t n = static_cast<std::int64_t>(block.size());
+  if (raw_steps) raw_steps->assign(block.size(), 0.0);
   const double c = plate_wave_speed(block.material);
   int threads = 1;
 #pragma omp parallel num_threads(thread_count())
@@ -830,7 +834,9 @@ KernelResult shell_critical_timestep(const ShellBlock& block, const NodalView& n
         continue;
       }
       const double beta = cn[2] == cn[3] ? 1.0 : 0.0;
-      local.record_dt((1.0 + beta) * f.area / (std::sqrt(max_side_squared(p)) * c), e);
+      const double step = (1.0 + beta) * f.area / (std::sqrt(max_side_squared(p)) * c);
+      if (raw_steps) (*raw_steps)[static_cast<std::size_t>(e)] = step;
+      local.record_dt(scaled_step(block.step_scale, e, step), e);
     }
     partials[omp_get_thread_num()] = local;
 #pragma omp single
@@ -840,14 +846,16 @@ KernelResult shell_critical_timestep(const ShellBlock& block, const NodalView& n
 }
 
 void add_shell_lumped_mass(const ShellBlock& block, std::vector<double>& nodal_mass,
-                           std::vector<double>& rotational_inertia) {
+                           std::vector<double>& rotational_inertia,
+                           const std::vector<double>* element_factor) {
   for (std::size_t e = 0; e < block.size(); ++e) {
     const std::int32_t* c = &block.conn[4 * e];
     const std::int32_t* rc = &block.rotation_conn[4 * e];
     const int distinct = distinct_nodes(c);
     const double t = block.element_thickness[e];
     const double a = block.area0[e];
-    const double m = block.material.rho * t * a / distinct;
+    const double factor = element_factor ? (*element_factor)[e] : 1.0;
+    const double m = factor * block.material.rho * t * a / distinct;
     const double inertia = m * (a / 4.0 + t * t / 12.0);
     for (int I = 0; I < distinct; ++I) {
       nodal_mass[static_cast<std::size_t>(c[I])] += m;

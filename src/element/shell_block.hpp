@@ -75,6 +75,9 @@ struct ShellBlock {
   // the last step's forces of the viscous forms (IHQ 1-3, for the trapezoidal work).
   std::vector<double> hourglass_state;
   std::vector<double> area0;  // reference mid-surface area
+  // sqrt(s_e) of mass scaling (solver/mass_scaling.hpp): the element's mass is s_e times its
+  // physical mass, so its step is sqrt(s_e) times longer. Empty without mass scaling.
+  std::vector<double> step_scale;
   // Element thickness: mean of the nodal thicknesses of the distinct nodes, fixed at
   // initialisation (no thickness update: ISTUPD 0).
   std::vector<double> element_thickness;
@@ -101,14 +104,18 @@ KernelResult compute_shell_forces(ShellBlock& block, const NodalView& nodes,
 // Critical step of each element at the current configuration (no TSSFAC), minimum reported:
 // dt = L_s / c, L_s = (1 + beta) A / max(side), beta = 0 quads, 1 triangles (LS-DYNA ISDO 0),
 // c = sqrt(E / (rho (1 - nu^2))).
-KernelResult shell_critical_timestep(const ShellBlock& block, const NodalView& nodes);
+// `raw_steps` (optional) receives every element's step without mass scaling (0 where failed).
+KernelResult shell_critical_timestep(const ShellBlock& block, const NodalView& nodes,
+                                     std::vector<double>* raw_steps = nullptr);
 
 // Lumped translational mass (to nodal_mass by dense node index) and rotational inertia (to
 // rotational_inertia by rotational index). Per distinct node of an element with mass
 // m = rho t A0 / (number of distinct nodes): rotational inertia m (A0 / 4 + t^2 / 12) about every
 // axis (scaled rotary inertia, see shell_block.cpp), so that rotations never govern the step.
+// `element_factor` (optional): each element's shares multiplied by it (mass scaling).
 void add_shell_lumped_mass(const ShellBlock& block, std::vector<double>& nodal_mass,
-                           std::vector<double>& rotational_inertia);
+                           std::vector<double>& rotational_inertia,
+                           const std::vector<double>* element_factor = nullptr);
 
 // Through-thickness rule: nip points zeta (ascending, in [-1, 1]) and weights (sum 2). Gauss
 // 1..10, Lobatto 2..10 (nip 1 is the mid-surface point whatever the rule). Returns false for an

@@ -691,7 +691,9 @@ struct Termination {
 struct TimestepControl {
   double dtinit = 0.0;
   double tssfac = 0.9;
-  double dt2ms = 0.0;
+  double dt2ms = 0.0;    // mass scaling target (docs/keywords.md); 0: none
+  int ms1st = 0;         // 1: mass scaling at the first step only
+  SourceLocation where;  // the *CONTROL_TIMESTEP card (errors found at set-up)
   int isdo = 0;  // shell step option (0 only)
   Id lctm = 0;
   double dt_max = 0.0;  // IMPETUS *TIME dt_max; 0: no cap

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "restart/dump.hpp"
 #include "restart/simulation_access.hpp"
@@ -396,6 +397,51 @@ void read_flexible(solver::RigidSystem& rigid, const Group& g) {
   }
 }
 
+// Mass scaling (solver/mass_scaling.hpp): the element factors of the hexahedron blocks (dumps
+// hold no shells or beams yet) and the running sums; the nodal masses are in /nodes, the
+// physical masses are rebuilt from the deck.
+void write_mass_scaling(const solver::MassScaling& m, const Group& g) {
+  g.set("started", std::int64_t{m.started});
+  g.set("added_mass", m.added_mass);
+  g.set("mass_scaling_work", m.mass_scaling_work);
+  g.set("rescaled_cycles", m.rescaled_cycles);
+  g.set("hex_blocks", static_cast<std::int64_t>(m.hex_factor.size()));
+  for (std::size_t b = 0; b < m.hex_factor.size(); ++b) {
+    g.write(fmt::format("hex_factor_{}", b), span_of(m.hex_factor[b]));
+  }
+}
+
+void read_mass_scaling(solver::MassScaling& m, solver::State& state, const Group& g) {
+  m.started = g.get_int("started") != 0;
+  m.added_mass = g.get_double("added_mass");
+  m.mass_scaling_work = g.get_double("mass_scaling_work");
+  m.rescaled_cycles = g.get_int("rescaled_cycles");
+  const std::int64_t blocks = g.get_int("hex_blocks");
+  if (blocks != 0 && blocks != static_cast<std::int64_t>(state.hex_blocks.size())) {
+    g.fail("hex_blocks", fmt::format("is {}, the rebuilt model has {} hexahedron blocks", blocks,
+                                     state.hex_blocks.size()));
+  }
+  m.hex_factor.assign(static_cast<std::size_t>(blocks), {});
+  for (std::size_t b = 0; b < m.hex_factor.size(); ++b) {
+    const std::string name = fmt::format("hex_factor_{}", b);
+    std::vector<double> factor = g.read_doubles(name);
+    auto& block = state.hex_blocks[b];
+    if (factor.empty()) {  // a block that was rigid throughout
+      block.step_scale.clear();
+    } else {
+      expect_count(g, name.c_str(), factor.size(), block.size());
+      block.step_scale.resize(factor.size());
+      for (std::size_t e = 0; e < factor.size(); ++e) {
+        if (!(factor[e] > 0.0) || !std::isfinite(factor[e])) {
+          g.fail(name, "holds a mass factor that is not positive (the dump is damaged)");
+        }
+        block.step_scale[e] = std::sqrt(factor[e]);
+      }
+    }
+    m.hex_factor[b] = std::move(factor);
+  }
+}
+
 }  // namespace
 
 void SimulationAccess::write_features(Simulation& s, const Group& g) {
@@ -404,6 +450,7 @@ void SimulationAccess::write_features(Simulation& s, const Group& g) {
   if (!s.contacts_.empty()) write_contacts(s.contacts_, g.create_group("contacts"));
   if (s.sensors_) write_sensors(*s.sensors_, g.create_group("sensors"));
   if (!s.rigid_.flexible.empty()) write_flexible(s.rigid_, g.create_group("flexible"));
+  if (s.mass_scaling_.active()) write_mass_scaling(s.mass_scaling_, g.create_group("mass_scaling"));
 }
 
 void SimulationAccess::read_features(Simulation& s, const Group& g) {
@@ -441,6 +488,14 @@ void SimulationAccess::read_features(Simulation& s, const Group& g) {
     if (!g.has("flexible")) g.fail("flexible", "is missing: the dump has no flexible bodies");
     read_flexible(s.rigid_, g.group("flexible"));
     s.energy_.modal_elastic = solver::rigid_body_sums(s.rigid_).modal_elastic;
+  }
+  if (s.mass_scaling_.active()) {
+    if (!g.has("mass_scaling")) {
+      g.fail("mass_scaling",
+             "is missing: the dump was written without mass scaling (DT2MS), "
+             "the deck has it");
+    }
+    read_mass_scaling(s.mass_scaling_, s.state_, g.group("mass_scaling"));
   }
 }
 

@@ -303,8 +303,9 @@ void apply_initial_velocities(const model::Model& model, const NodeIndex& node_i
 }
 
 void set_body_force_masses(Boundary& boundary, const NodalState& nodes,
-                           const std::vector<std::int32_t>& body_of_node) {
-  boundary.body_force_mass = nodes.mass;
+                           const std::vector<std::int32_t>& body_of_node,
+                           const std::vector<double>* physical_mass) {
+  boundary.body_force_mass = physical_mass ? *physical_mass : nodes.mass;
   if (body_of_node.empty()) return;
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     if (body_of_node[i] >= 0) boundary.body_force_mass[i] = 0.0;

@@ -98,8 +98,11 @@ Boundary resolve_boundary(const model::Model& model, const NodeIndex& node_index
 // Part switching changes membership at run time and must call it again, else a body made
 // by switching would take *LOAD_BODY twice (at its centre and through its nodes) and nodes
 // freed from a body none.
+// With mass scaling `physical_mass` is the mass without the added mass (body loads act on it
+// only, LS-DYNA's EMSCL 0); nullptr: the nodes' mass.
 void set_body_force_masses(Boundary& boundary, const NodalState& nodes,
-                           const std::vector<std::int32_t>& body_of_node);
+                           const std::vector<std::int32_t>& body_of_node,
+                           const std::vector<double>* physical_mass = nullptr);
 
 // Nodes addressed by a target (node, node set, part, part set, all), as dense indices.
 std::vector<std::int32_t> resolve_nodes(const model::Model& model, const NodeIndex& node_index,

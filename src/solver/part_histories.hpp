@@ -20,6 +20,7 @@ struct PartSummary {
   double hourglass_energy = 0.0;
   std::array<double, 3> momentum{};
   std::array<double, 3> rigid_velocity{};  // centre-of-mass velocity of a rigid part, else 0
+  double added_mass = 0.0;  // mass scaling: mass added to the part's elements (solver/mass_scaling)
 };
 
 // Energy bookkeeping per part, the parts' shares of glstat's internal, hourglass and kinetic

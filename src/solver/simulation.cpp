@@ -98,6 +98,7 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
       std::unique(boundary_.constrained_nodes.begin(), boundary_.constrained_nodes.end()),
       boundary_.constrained_nodes.end());
   joints_ = build_joints(model_, node_index_, state_);
+  mass_scaling_ = setup_mass_scaling(model_, state_);
   contacts_ = contact::build_contacts(model_, node_index_, state_);
   // Contact surfaces are known before flexible bodies are attached: a flexible body reconstructs
   // its contact nodes every cycle because the search reads their positions.
@@ -287,6 +288,7 @@ void Simulation::initialize() {
   compute_contact_forces();
   compute_external_forces();
   check_breakdown();
+  scale_masses_if_needed();  // before the initial energy: the run starts with the scaled masses
   update_sensors();
   // Initial kinetic energy and momenta at t = 0 (v^0 plays the role of v^{-1/2}); rigid-body
   // nodes are counted through their bodies.
@@ -372,6 +374,7 @@ void Simulation::cycle() {
   lap(PhaseTimes::kLoads);
   update_sensors();
   lap(PhaseTimes::kSensors);
+  scale_masses_if_needed();
   select_time_step();
   lap(PhaseTimes::kTimeStep);
   ++state_.cycle;
@@ -511,7 +514,7 @@ void Simulation::switch_parts_if_due() {
       }
     }
     if (set.nrbf != 0) {  // nodal rigid bodies deleted or made: their nodes' body forces
-      set_body_force_masses(boundary_, state_.nodes, rigid_.body_of_node);
+      set_body_force_masses(boundary_, state_.nodes, rigid_.body_of_node, physical_mass());
       compute_external_forces();
     }
     automatic_switching_->fired(k, state_.time);
@@ -552,7 +555,7 @@ void Simulation::apply_switch(model::Id swset, const std::vector<model::PartSwit
     events.push_back(switcher_->to_deformable(to_deformable, state_.time, state_, rigid_));
   }
   // *LOAD_BODY acts on a body at its centre, on free nodes directly: f_ext^n with the new split.
-  set_body_force_masses(boundary_, state_.nodes, rigid_.body_of_node);
+  set_body_force_masses(boundary_, state_.nodes, rigid_.body_of_node, physical_mass());
   compute_external_forces();
   // Internal forces of the elements that became deformable, at x^n with their restored
   // stresses (dt = 0: no increment), and the step they allow.
@@ -882,6 +885,8 @@ void Simulation::write_output_if_due(bool force) {
     row.contact_energy = energy_.contact_energy;
     row.modal_energy = energy_.modal_elastic;
     row.damping_work = energy_.damping_work;
+    row.added_mass = mass_scaling_.added_mass;
+    row.mass_scaling_work = mass_scaling_.mass_scaling_work;
     glstat_->write(row);
     glstat_schedule_.mark_written(t, cycle);
   }
@@ -948,7 +953,11 @@ void Simulation::write_output_if_due(bool force) {
     rcforc_schedule_.mark_written(t, cycle);
   }
   if (matsum_csv_ && wanted(matsum_schedule_)) {
-    matsum_csv_->write_text(output::matsum_text(t, part_histories_->summaries(state_, rigid_)));
+    auto parts = part_histories_->summaries(state_, rigid_);
+    if (mass_scaling_.active()) {
+      for (auto& p : parts) p.added_mass = added_mass_of_part(mass_scaling_, state_, p.part);
+    }
+    matsum_csv_->write_text(output::matsum_text(t, parts));
     matsum_schedule_.mark_written(t, cycle);
   }
   if (spcforc_csv_ && wanted(spcforc_schedule_)) {
@@ -1101,6 +1110,20 @@ void Simulation::update_sensors() {
     const bool last = (end_time_ > 0.0 && state_.time >= end_time_ * (1.0 - 1e-12)) ||
                       (end_cycle_ > 0 && state_.cycle + 1 >= end_cycle_);
     sensor_csv_->write(*sensors_, last);
+  }
+}
+
+// Mass scaling (solver/mass_scaling.hpp): at the start, and in any cycle whose smallest element
+// step fell below the target. The work of mass added during the run is external work.
+void Simulation::scale_masses_if_needed() {
+  if (!mass_scaling_.active()) return;
+  const double before = mass_scaling_.mass_scaling_work;
+  if (scale_masses(mass_scaling_, state_, rigid_.body_of_node, element_dt_, controlling_element_)) {
+    // The kinetic energy of v^{n+1/2} with the new masses, as the next velocity update will
+    // count it: the balance holds between cycles too, not only after that update.
+    const double work = mass_scaling_.mass_scaling_work - before;
+    energy_.external_work += work;
+    energy_.kinetic += work;
   }
 }
 

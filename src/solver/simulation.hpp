@@ -22,6 +22,7 @@
 #include "solver/build_state.hpp"
 #include "solver/flexible_bodies.hpp"
 #include "solver/joints.hpp"
+#include "solver/mass_scaling.hpp"
 #include "solver/part_histories.hpp"
 #include "solver/rigid_bodies.hpp"
 #include "solver/state.hpp"
@@ -145,6 +146,7 @@ class Simulation {
   std::int64_t element_count() const { return element_count_; }
   const RigidSystem& rigid_bodies() const { return rigid_; }
   const JointSystem& joints() const { return joints_; }
+  const MassScaling& mass_scaling() const { return mass_scaling_; }
   const contact::RigidWallSystem& rigid_walls() const { return walls_; }
   contact::RigidWallSystem& mutable_rigid_walls() { return walls_; }
   const contact::ContactSystem& contacts() const { return contacts_; }
@@ -177,6 +179,7 @@ class Simulation {
   void compute_internal_forces();  // element kernels at n+1, assembly, element time step
   void compute_contact_forces();   // contact at x^{n+1} (contact/contact.hpp)
   void compute_external_forces();  // loads at t^{n+1}, plus the contact forces
+  void scale_masses_if_needed();   // *CONTROL_TIMESTEP DT2MS (solver/mass_scaling.hpp)
   void select_time_step();         // dt^{n+3/2}
   void update_sensors();           // sensors, switches, controls at t^{n+1} (sensor/sensor.hpp)
 
@@ -189,6 +192,10 @@ class Simulation {
   void check_breakdown();
   // options_.mode_loader, else the modes.h5 reader (*PART_MODES).
   ModeLoader mode_loader() const;
+  // Mass without mass scaling's added mass (body loads act on it); nullptr without scaling.
+  const std::vector<double>* physical_mass() const {
+    return mass_scaling_.active() ? &mass_scaling_.physical_mass : nullptr;
+  }
   void write_output_now();
   output::D3plotGlobals d3plot_globals() const;  // the 6 global values of a d3plot state
   bool end_reached() const;
@@ -201,6 +208,7 @@ class Simulation {
   State state_;
   RigidSystem rigid_;
   JointSystem joints_;  // *CONSTRAINED_JOINT_... (penalty springs between node pairs)
+  MassScaling mass_scaling_;  // *CONTROL_TIMESTEP DT2MS; inactive without it
   std::vector<model::Warning> warnings_;
   Boundary boundary_;
   contact::RigidWallSystem walls_;

@@ -8,8 +8,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <string>
 #include <numeric>
+#include <string>
 #include <vector>
 
 #include "io/restart/hdf5_file.hpp"
@@ -34,8 +34,8 @@ void write_with_layout(hid_t file, const char* name, const std::vector<double>& 
   const hid_t space = H5Screate_simple(1, dims, nullptr);
   const hid_t properties = H5Pcreate(H5P_DATASET_CREATE);
   configure(properties);
-  const hid_t set = H5Dcreate2(file, name, H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, properties,
-                               H5P_DEFAULT);
+  const hid_t set =
+      H5Dcreate2(file, name, H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, properties, H5P_DEFAULT);
   ASSERT_GE(set, 0);
   ASSERT_GE(H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), 0);
   H5Dclose(set);

@@ -5,9 +5,11 @@
 // renumbered, all show up as a differing byte. The later dumps are compared too, so the restored
 // state is checked as a whole, not only through the output.
 #include <gtest/gtest.h>
+
 #include <hdf5.h>
 #include <omp.h>
 #include <unistd.h>
+#include <cstdio>
 
 #include <filesystem>
 #include <fstream>
@@ -184,6 +186,16 @@ std::string deformable_with_sections() {
   return deck;
 }
 
+// The deformable deck with mass scaling (DT2MS just above its elements' steps): mass is added
+// at the start and again while it deforms, before and after the dump; the body load acts on
+// the physical mass.
+std::string deformable_mass_scaled() {
+  std::string deck = restart_decks::deformable(4e-5);
+  const std::string control = "*CONTROL_TIMESTEP\n0,0.5\n";
+  deck.replace(deck.find(control), control.size(), "*CONTROL_TIMESTEP\n0,0.5,0,0.0,-1.75e-7\n");
+  return deck;
+}
+
 const Case kCases[] = {
     {"deformable", restart_decks::deformable(4e-5), "", {}, 6e-6, 1},
     {"deformable", restart_decks::deformable(4e-5), "", {}, 6e-6, 2},
@@ -213,9 +225,31 @@ const Case kCases[] = {
     {"damping", damped_spinning_rigid(), "", {}, 6e-6, 2},
     {"sections", deformable_with_sections(), "", {}, 6e-6, 1},
     {"sections", deformable_with_sections(), "", {}, 6e-6, 2},
+    {"mass_scaling", deformable_mass_scaled(), "", {}, 6e-6, 1},
+    {"mass_scaling", deformable_mass_scaled(), "", {}, 6e-6, 2},
 };
 
 INSTANTIATE_TEST_SUITE_P(Restart, RestartBitwise, testing::ValuesIn(kCases), case_name);
+
+// The mass-scaled case adds mass at the start, before the dump it restarts from (12 us) and
+// after it: the dump carries the element factors and the running sums.
+TEST(Restart, MassScaledDeckAddsMassBeforeAndAfterTheDump) {
+  solver::Simulation sim(read(deformable_mass_scaled()), {});
+  const double at_start = sim.mass_scaling().added_mass;
+  EXPECT_GT(at_start, 0.0);
+  while (sim.state().time < 1.2e-5) sim.cycle();
+  const double at_dump = sim.mass_scaling().added_mass;
+  const auto cycles_at_dump = sim.mass_scaling().rescaled_cycles;
+  while (!sim.finished()) sim.cycle();
+  std::printf(
+      "mass-scaled restart deck: added mass %.6g at the start, %.6g at the dump, %.6g at "
+      "the end; cycles with mass added %lld before the dump, %lld in all\n",
+      at_start, at_dump, sim.mass_scaling().added_mass, static_cast<long long>(cycles_at_dump),
+      static_cast<long long>(sim.mass_scaling().rescaled_cycles));
+  EXPECT_GT(cycles_at_dump, 0);
+  EXPECT_GT(sim.mass_scaling().rescaled_cycles, cycles_at_dump);
+  EXPECT_GT(sim.mass_scaling().added_mass, at_dump);
+}
 
 // The plastic case flows plastically before the dump it restarts from (12 us) and after it,
 // in both parts, and its back stress is not zero: the dump carries real history.

@@ -48,6 +48,7 @@ void control_termination(const Block& block, ReaderContext& context) {
 void control_timestep(const Block& block, ReaderContext& context) {
   CardCursor cursor(block, context.parameters);
   auto& ts = context.model.timestep;
+  ts.where = block.location();
   if (const auto card = single_card(block, cursor)) {
     ts.dtinit = non_negative(*card, 0, "DTINIT", 0.0);
     ts.tssfac = card->real(1, "TSSFAC", 0.9);
@@ -55,11 +56,14 @@ void control_timestep(const Block& block, ReaderContext& context) {
     if (ts.tssfac < 0.0 || ts.tssfac > 1.0) {
       throw card->error("TSSFAC", fmt::format("value {} must lie in (0, 1]", ts.tssfac));
     }
+    // Mass scaling (solver/mass_scaling.hpp): DT2MS < 0 adds mass only where an element's step
+    // is below TSSFAC |DT2MS|; DT2MS > 0 adds or removes mass so that every element's step is
+    // TSSFAC DT2MS at the start. MS1ST 1 scales at the first step only.
     ts.dt2ms = card->real(4, "DT2MS", 0.0);
-    if (ts.dt2ms != 0.0) {
-      throw card->error("DT2MS", fmt::format("value {}: mass scaling is not supported (leave "
-                                             "DT2MS blank or 0)",
-                                             ts.dt2ms));
+    if (!std::isfinite(ts.dt2ms)) throw card->error("DT2MS", "value must be finite");
+    ts.ms1st = card->flag(7, "MS1ST", 0);
+    if (ts.ms1st != 0 && ts.ms1st != 1) {
+      throw card->error("MS1ST", fmt::format("value {} is not 0 or 1", ts.ms1st));
     }
     ts.lctm = card->id(5, "LCTM");
     if (ts.lctm < 0) throw card->error("LCTM", "curve ID must not be negative");
@@ -73,6 +77,32 @@ void control_timestep(const Block& block, ReaderContext& context) {
     }
     if (card->real(3, "TSLIMT", 0.0) != 0.0) {
       throw card->error("TSLIMT", "TSLIMT (shell mass scaling) is not supported (leave 0)");
+    }
+  }
+  // Card 2 (optional): DT2MSF DT2MSLC IMSCL - - RMSCL EMSCL IHDO. Each changes the mass scaling
+  // or the solid step; only their defaults are supported.
+  if (const auto card = cursor.next_optional(2, kEightByTen)) {
+    if (card->real(0, "DT2MSF", 0.0) != 0.0) {
+      throw card->error("DT2MSF",
+                        "DT2MSF (mass scaling from the initial step) is not supported "
+                        "(give DT2MS on card 1)");
+    }
+    if (card->id(1, "DT2MSLC") != 0) {
+      throw card->error("DT2MSLC", "a curve of DT2MS over time is not supported (leave 0)");
+    }
+    if (card->id(2, "IMSCL") != 0) {
+      throw card->error("IMSCL", "selective mass scaling is not supported (leave 0)");
+    }
+    if (card->real(5, "RMSCL", 0.0) != 0.0) {
+      throw card->error("RMSCL", "selective mass scaling is not supported (leave 0)");
+    }
+    if (card->real(6, "EMSCL", 0.0) != 0.0) {
+      throw card->error("EMSCL",
+                        "gravity on added mass is not supported (leave 0: body loads act on the "
+                        "physical mass only)");
+    }
+    if (card->flag(7, "IHDO", 0) != 0) {
+      throw card->error("IHDO", "the modified solid step (IHDO 1) is not supported (leave 0)");
     }
   }
   warn_unread_lines(block, cursor, context);
