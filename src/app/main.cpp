@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "app/eigen_command.hpp"
@@ -517,6 +518,10 @@ void use_robust_openmp_wait_policy(char** argv) {
     std::fprintf(stderr, "%s: %s\n", kind, message);
   } else if (!replicated) {
     std::fprintf(stderr, "rank %d: %s: %s\n", world.rank(), kind, message);
+  } else {
+    // Rank 0 meets the same error and reports it; its MPI_Abort ends this rank too. Waiting
+    // first keeps this rank's abort from killing rank 0 before its message is out.
+    std::this_thread::sleep_for(std::chrono::seconds(10));
   }
   std::fflush(stderr);
   world.abort(status);

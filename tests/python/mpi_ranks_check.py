@@ -5,10 +5,15 @@ and requires
 - -np 1: every result file byte-identical to the reference (one rank makes no MPI call),
 - -np N > 1: the histories of --files equal to the reference's to round-off: the same rows, the
   same text fields (switch events, part lists), every number a, b with
-  |a - b| <= rtol * (largest magnitude of its column) + atol: relative to the column's scale, not
-  the value's own, and with an absolute floor for columns that are round-off noise around zero
-  (the angular momentum of a symmetric bar is 1e-17),
+  |a - b| <= rtol * (largest magnitude of its column) + atol: relative to the column's scale
+  (the components of a vector or matrix, e.g. ax ay az or r11..r33, share the largest), not the
+  value's own, with an absolute floor for quantities that are round-off noise around zero (the
+  angular momentum of a symmetric bar is 1e-17),
 - run.json records the rank count, and no file appears outside the output directory,
+- with --d3plot: every element value of every d3plot state (stresses, strains, history of
+  solids, shells and beams; 32-bit floats) within --d3plot-rtol of its variable's largest
+  magnitude: the element state each rank gathers before output is complete (an element whose
+  state another rank computed would show its initial values),
 - with --repeat: a second run on the largest N gives byte-identical result files (determinism
   for a fixed ranks x threads count).
 Standard library only. Exit status 0 on success; prints what differed otherwise.
@@ -18,9 +23,13 @@ import csv
 import filecmp
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from rigidflex_results import D3plot  # noqa: E402
 
 NOT_COMPARED_BYTEWISE = {"run.json", "d3hsp.txt"}  # wall times, command line
 
@@ -59,6 +68,11 @@ def compare_csv(name, ref_path, path, rtol, atol):
             x = as_float(v)
             if x is not None and k < len(scale):
                 scale[k] = max(scale[k], abs(x))
+    # Components of one vector or matrix share a scale: a body spinning about z has ax, ay at
+    # round-off (1e-11 m/s^2, differences of velocities over a step) beside az = 3475 m/s^2.
+    group = [re.sub(r"(_?[xyz]|[0-9][0-9])$", "", h) for h in head_a]
+    for k in range(len(scale)):
+        scale[k] = max(scale[j] for j in range(len(scale)) if group[j] == group[k])
     worst = (0.0, "")
     raw = 0.0  # the largest difference without the floor, for the log
     for i, (ra, rb) in enumerate(zip(rows_a, rows_b)):
@@ -81,6 +95,27 @@ def compare_csv(name, ref_path, path, rtol, atol):
         print("%s: difference %.3g above %.3g at %s" % (name, worst[0], rtol, worst[1]))
         sys.exit(1)
     return worst[0], raw
+
+
+def compare_d3plot(ref_path, path, rtol):
+    a, b = D3plot(ref_path), D3plot(path)
+    if len(a.states) != len(b.states):
+        print("d3plot: %d vs %d states" % (len(a.states), len(b.states)))
+        sys.exit(1)
+    worst = 0.0
+    for family in ("solid", "shell", "beam"):
+        rows_a = [r for st in a.states for r in st[family]]
+        rows_b = [r for st in b.states for r in st[family]]
+        if not rows_a:
+            continue
+        for k in range(len(rows_a[0])):
+            scale = max(abs(r[k]) for r in rows_a) or 1.0
+            d = max(abs(x[k] - y[k]) for x, y in zip(rows_a, rows_b)) / scale
+            if d > rtol:
+                print("d3plot %s variable %d: difference %.3g of its scale, above %.1g" % (family, k, d, rtol))
+                sys.exit(1)
+            worst = max(worst, d)
+    return worst
 
 
 def result_files(directory):
@@ -111,6 +146,8 @@ def main():
     ap.add_argument("--rtol", type=float, default=1e-10)
     ap.add_argument("--atol", type=float, default=1e-12)
     ap.add_argument("--repeat", action="store_true")
+    ap.add_argument("--d3plot", action="store_true")
+    ap.add_argument("--d3plot-rtol", type=float, default=1e-6)
     ap.add_argument("--args", default="", help="extra run arguments, comma-separated")
     a = ap.parse_args()
     shutil.rmtree(a.work, ignore_errors=True)
@@ -145,6 +182,10 @@ def main():
             d, raw = compare_csv(f, os.path.join(ref, f), os.path.join(out, f), a.rtol, a.atol)
             print("np %d %s: largest difference %.3g of the column scale (%.3g beyond atol %.1g; "
                   "bound %.1g)" % (n, f, raw, d, a.atol, a.rtol))
+        if a.d3plot:
+            d = compare_d3plot(os.path.join(ref, "d3plot"), os.path.join(out, "d3plot"), a.d3plot_rtol)
+            print("np %d d3plot element values: largest difference %.3g of the variable's scale "
+                  "(bound %.1g)" % (n, d, a.d3plot_rtol))
     stray = sorted(set(os.listdir(a.work)) - {"plain"} - {"np%d" % n for n in ranks} - {"again", "deck.k"})
     if stray:
         print("files written outside the output directories: %s" % stray)
