@@ -153,9 +153,9 @@ int command_check(const std::string& deck, const rf::io::ReadOptions& read_optio
   if (ranks > 0) {  // --ranks N: the partition a distributed run on N ranks would use
     const rf::solver::NodeIndex index(model);
     const rf::solver::State state = rf::solver::build_state(model, index);
-    std::fputs(rf::parallel::describe_partition(rf::parallel::partition_elements(state, ranks))
-                   .c_str(),
-               stdout);
+    std::fputs(
+        rf::parallel::describe_partition(rf::parallel::partition_elements(state, ranks)).c_str(),
+        stdout);
   }
   return 0;
 }
@@ -310,8 +310,9 @@ int command_run(const std::string& deck, std::string output_dir, int threads, bo
                 const std::string& command_line) {
   const rf::parallel::Communicator& world = rf::parallel::world();
   if (world.distributed() && dump_every > 0.0) {
-    throw rf::InputError({}, "--dump-every: restart dumps of a distributed run are not supported "
-                             "yet (stage 1, docs/parallel.md): run on one rank to write dumps");
+    throw rf::InputError({},
+                         "--dump-every: restart dumps of a distributed run are not supported "
+                         "yet (stage 1, docs/parallel.md): run on one rank to write dumps");
   }
   if (world.rank() != 0) return command_run_follower(deck, read_options, threads);
   if (threads > 0) omp_set_num_threads(threads);
@@ -662,8 +663,9 @@ int main(int argc, char** argv) {
       return rf::app::run_eigen_command(std::move(model), options);
     }
     if (*restart && rf::parallel::world().distributed()) {
-      throw rf::InputError({}, "restart of a distributed run is not supported yet (stage 1, "
-                               "docs/parallel.md): run `rigidflex restart` without mpirun");
+      throw rf::InputError({},
+                           "restart of a distributed run is not supported yet (stage 1, "
+                           "docs/parallel.md): run `rigidflex restart` without mpirun");
     }
     if (*restart) {
       std::optional<double> interval;

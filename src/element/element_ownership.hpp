@@ -32,8 +32,7 @@ struct ElementOwnership {
     while (k < elements.size()) {
       const std::int64_t first = elements[k];
       std::int32_t count = 1;
-      while (k + count < elements.size() && count < lanes &&
-             elements[k + count] == first + count)
+      while (k + count < elements.size() && count < lanes && elements[k + count] == first + count)
         ++count;
       batches.push_back({first, count});
       k += static_cast<std::size_t>(count);

@@ -38,7 +38,9 @@ void agree_op(void* in, void* inout, int* len, MPI_Datatype*) {
 
 }  // namespace
 
-const Communicator& world() { return mutable_world(); }
+const Communicator& world() {
+  return mutable_world();
+}
 
 bool built_with_mpi() {
 #ifdef RIGIDFLEX_HAVE_MPI

@@ -22,15 +22,23 @@ int element_weight(const element::ShellBlock& block) {
   return std::max(1, 5 * block.nip * block.in_plane_points());
 }
 
-int element_weight(const element::BeamBlock& block) { return block.elform == 3 ? 2 : 12; }
+int element_weight(const element::BeamBlock& block) {
+  return block.elform == 3 ? 2 : 12;
+}
 
 namespace {
 
 // The blocks whose elements have kernels: every block with assembly slots (a part rigid by
 // switching keeps them and is partitioned, so ownership never changes during a run).
-bool partitioned(const element::HexBlock& b) { return b.has_force_slots; }
-bool partitioned(const element::ShellBlock& b) { return b.has_force_slots && !b.rigid; }
-bool partitioned(const element::BeamBlock& b) { return b.has_force_slots && !b.rigid; }
+bool partitioned(const element::HexBlock& b) {
+  return b.has_force_slots;
+}
+bool partitioned(const element::ShellBlock& b) {
+  return b.has_force_slots && !b.rigid;
+}
+bool partitioned(const element::BeamBlock& b) {
+  return b.has_force_slots && !b.rigid;
+}
 
 // Calls visit(family owner vector, block, nodes per element) for every block in flattening
 // order: hex, shell, beam.
@@ -81,8 +89,7 @@ void measure(const solver::State& state, Partition& p) {
   // Per node: the first rank seen, and whether a second one touches it.
   std::vector<std::int32_t> first(state.nodes.size(), -1);
   std::vector<std::uint8_t> shared(state.nodes.size(), 0);
-  for_each_block(state, p, [&](const std::vector<std::int32_t>& owner, const auto& block,
-                               int npe) {
+  for_each_block(state, p, [&](const std::vector<std::int32_t>& owner, const auto& block, int npe) {
     if (owner.empty()) return;
     const int w = element_weight(block);
     for (std::size_t e = 0; e < block.size(); ++e) {
@@ -104,7 +111,8 @@ void measure(const solver::State& state, Partition& p) {
 }  // namespace
 
 Partition partition_elements(const solver::State& state, int ranks) {
-  if (ranks < 1) throw std::invalid_argument(fmt::format("the rank count {} is not positive", ranks));
+  if (ranks < 1)
+    throw std::invalid_argument(fmt::format("the rank count {} is not positive", ranks));
   const std::int64_t count = partitionable_element_count(state);
   if (ranks > 1 && ranks > count) {
     throw std::invalid_argument(fmt::format(
@@ -143,8 +151,8 @@ Partition partition_elements(const solver::State& state, int ranks) {
     idx_t numflag = 0;
     idx_t* xadj = nullptr;
     idx_t* adjncy = nullptr;
-    if (METIS_MeshToDual(&ne, &nn, eptr.data(), eind.data(), &ncommon, &numflag, &xadj,
-                         &adjncy) != METIS_OK) {
+    if (METIS_MeshToDual(&ne, &nn, eptr.data(), eind.data(), &ncommon, &numflag, &xadj, &adjncy) !=
+        METIS_OK) {
       throw std::runtime_error("METIS could not build the element graph (METIS_MeshToDual)");
     }
     idx_t ncon = 1, nparts = ranks, objval = 0;
@@ -153,9 +161,9 @@ Partition partition_elements(const solver::State& state, int ranks) {
     METIS_SetDefaultOptions(options);
     options[METIS_OPTION_SEED] = 1;  // fixed: the same partition on every run
     options[METIS_OPTION_CONTIG] = 0;
-    const int status = METIS_PartGraphKway(&ne, &ncon, xadj, adjncy, vwgt.data(), nullptr,
-                                           nullptr, &nparts, nullptr, nullptr, options, &objval,
-                                           part.data());
+    const int status =
+        METIS_PartGraphKway(&ne, &ncon, xadj, adjncy, vwgt.data(), nullptr, nullptr, &nparts,
+                            nullptr, nullptr, options, &objval, part.data());
     METIS_Free(xadj);
     METIS_Free(adjncy);
     if (status != METIS_OK) {
@@ -241,9 +249,9 @@ std::string describe_partition(const Partition& p) {
       "elements, load imbalance {:.3f} (max/mean weight), {} interface nodes\n",
       p.ranks, p.total_elements(), p.imbalance(), p.interface_nodes);
   for (int r = 0; r < p.ranks; ++r) {
-    text += fmt::format("  rank {}: {} elements, weight {}\n", r,
-                        p.elements[static_cast<std::size_t>(r)],
-                        p.weight[static_cast<std::size_t>(r)]);
+    text +=
+        fmt::format("  rank {}: {} elements, weight {}\n", r,
+                    p.elements[static_cast<std::size_t>(r)], p.weight[static_cast<std::size_t>(r)]);
   }
   return text;
 }

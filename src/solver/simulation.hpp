@@ -298,11 +298,11 @@ class Simulation {
   std::unique_ptr<restart::Dumper> dumper_;
   // Distributed runs only (null in one process).
   std::unique_ptr<parallel::ElementDistribution> distribution_;
-  std::vector<double> rank_block_work_;    // hourglass work per block, this rank's elements
-  std::vector<double> rank_part_work_;     // matsum's part work of this rank during output
-  bool agreed_output_due_ = false;         // rank 0 writes element output at the next pass
-  int agreed_interrupt_ = 0;               // an interrupt seen by any rank
-  std::int64_t gathered_cycle_ = -1;       // the cycle whose element state was gathered
+  std::vector<double> rank_block_work_;  // hourglass work per block, this rank's elements
+  std::vector<double> rank_part_work_;   // matsum's part work of this rank during output
+  bool agreed_output_due_ = false;       // rank 0 writes element output at the next pass
+  int agreed_interrupt_ = 0;             // an interrupt seen by any rank
+  std::int64_t gathered_cycle_ = -1;     // the cycle whose element state was gathered
 };
 
 }  // namespace rf::solver

@@ -155,8 +155,7 @@ TEST(OutputRunJson, EscapesAndIsValid) {
 
   EXPECT_TRUE(JsonChecker(json).valid()) << json;
   for (const char* key : {"status", "message", "final_time", "cycles", "nodes", "elements",
-                          "wall_seconds", "ns_per_element_cycle", "threads", "ranks",
-                          "warnings"}) {
+                          "wall_seconds", "ns_per_element_cycle", "threads", "ranks", "warnings"}) {
     EXPECT_NE(json.find(std::string("\"") + key + "\": "), std::string::npos) << key;
   }
   EXPECT_NE(json.find(R"("part \"steel\" has\nno material")"), std::string::npos) << json;
