@@ -22,6 +22,8 @@ PACKAGES=(
   clang              # libFuzzer targets and the sanitizer stage of scripts/test.sh
   libclang-rt-dev    # clang's sanitizer and libFuzzer runtimes (not pulled in without recommends)
   libomp-dev         # OpenMP runtime for clang builds (LLVM's libomp)
+  libopenmpi-dev openmpi-bin # distributed runs (src/parallel, docs/parallel.md)
+  libmetis-dev       # element partitioning for distributed runs (METIS 5)
 )
 
 missing=()

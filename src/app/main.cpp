@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "app/eigen_command.hpp"
@@ -29,8 +30,12 @@
 #include "model/error.hpp"
 #include "output/output_directory.hpp"
 #include "output/writers.hpp"
+#include "parallel/communicator.hpp"
+#include "parallel/distribution.hpp"
+#include "parallel/partition.hpp"
 #include "restart/dumper.hpp"
 #include "restart/restart.hpp"
+#include "solver/build_state.hpp"
 #include "solver/interrupt.hpp"
 #include "solver/simulation.hpp"
 
@@ -135,7 +140,7 @@ class ProgressPrinter {
   bool printed_final_ = false;
 };
 
-int command_check(const std::string& deck, const rf::io::ReadOptions& read_options) {
+int command_check(const std::string& deck, const rf::io::ReadOptions& read_options, int ranks) {
   const rf::model::Model model = rf::io::read_deck(deck, read_options);
   try {
     rf::app::print_model_summary(model, stdout);
@@ -145,6 +150,27 @@ int command_check(const std::string& deck, const rf::io::ReadOptions& read_optio
     g_warnings_before_error = model.warnings;
     throw;
   }
+  if (ranks > 0) {  // --ranks N: the partition a distributed run on N ranks would use
+    const rf::solver::NodeIndex index(model);
+    const rf::solver::State state = rf::solver::build_state(model, index);
+    std::fputs(
+        rf::parallel::describe_partition(rf::parallel::partition_elements(state, ranks)).c_str(),
+        stdout);
+  }
+  return 0;
+}
+
+// Ranks 1.. of a distributed run (docs/parallel.md): the same model and cycle as rank 0, which
+// alone prints and writes files; these only compute their elements and take part in the
+// reductions.
+int command_run_follower(const std::string& deck, const rf::io::ReadOptions& read_options,
+                         int threads) {
+  if (threads > 0) omp_set_num_threads(threads);
+  const rf::model::Model model = rf::io::read_deck(deck, read_options);
+  rf::solver::SimulationOptions options;  // no output directory: rank 0 writes the files
+  options.write_fields = false;
+  rf::solver::Simulation sim(model, options);
+  sim.run();
   return 0;
 }
 
@@ -282,6 +308,13 @@ std::string log_header(const std::string& command_line) {
 int command_run(const std::string& deck, std::string output_dir, int threads, bool quiet,
                 rf::io::ReadOptions read_options, const std::string& dialect, double dump_every,
                 const std::string& command_line) {
+  const rf::parallel::Communicator& world = rf::parallel::world();
+  if (world.distributed() && dump_every > 0.0) {
+    throw rf::InputError({},
+                         "--dump-every: restart dumps of a distributed run are not supported "
+                         "yet (stage 1, docs/parallel.md): run on one rank to write dumps");
+  }
+  if (world.rank() != 0) return command_run_follower(deck, read_options, threads);
   if (threads > 0) omp_set_num_threads(threads);
   if (output_dir.empty()) output_dir = fs::path(deck).stem().string() + "_out";
   const fs::path out = output_dir;
@@ -289,6 +322,7 @@ int command_run(const std::string& deck, std::string output_dir, int threads, bo
 
   rf::output::RunSummary summary;
   summary.threads = omp_get_max_threads();
+  summary.ranks = world.size();
 
   // The deck texts are kept: a dump carries them (restart/model_input.hpp), and an interrupted
   // run writes one even without --dump-every.
@@ -312,6 +346,11 @@ int command_run(const std::string& deck, std::string output_dir, int threads, bo
   }
   // *CONTROL_IMPLICIT_EIGENVALUE with IMFLAG 1: an eigen analysis instead of a transient run.
   if (rf::modal::deck_requests_eigen_analysis(model)) {
+    if (world.distributed()) {
+      throw rf::InputError({model.files.empty() ? deck : model.files.front(), 0,
+                            "*CONTROL_IMPLICIT_EIGENVALUE", 1, "NEIG"},
+                           "an eigen analysis runs in one process: start it without mpirun");
+    }
     clear_output_directory(out, rf::app::ResultKind::kEigen, quiet);
     rf::model::Model quiet_model = model;
     quiet_model.warnings.clear();  // reported above
@@ -354,19 +393,31 @@ int command_run(const std::string& deck, std::string output_dir, int threads, bo
                          "--dump-every: restart dumps of models with shell or beam elements are "
                          "not supported yet");
   }
-  if (!structural) {
+  if (!structural && !world.distributed()) {  // distributed runs write no dumps (stage 1)
     sim->enable_restart_dumps(std::make_unique<rf::restart::Dumper>(std::move(input), schedule));
   }
   rf::app::RunLog log(out / "d3hsp.txt", false);
   log.write(log_header(command_line));
   if (!cleared.empty()) log.write(cleared + "\n");
   log.model_summary(model, *sim);
+  if (world.distributed()) log.write(fmt::format("ranks: {}\n", world.size()));
   if (!quiet) {
-    std::printf("rigidflex %s: %zu nodes, %lld elements, end time %g, %d thread(s)\n",
+    std::printf("rigidflex %s: %zu nodes, %lld elements, end time %g, %d thread(s)%s\n",
                 RIGIDFLEX_VERSION, sim->state().nodes.size(),
-                static_cast<long long>(sim->element_count()), sim->end_time(), summary.threads);
+                static_cast<long long>(sim->element_count()), sim->end_time(), summary.threads,
+                world.distributed() ? fmt::format(" x {} ranks", world.size()).c_str() : "");
   }
-  return run_to_termination(*sim, out, summary, quiet, log);
+  const int status = run_to_termination(*sim, out, summary, quiet, log);
+  if (const rf::parallel::ElementDistribution* d = sim->distribution()) {
+    const rf::parallel::Partition& p = d->partition();
+    const std::string line = fmt::format(
+        "ranks: {}, load imbalance {:.3f}, {} interface nodes; rank 0 spent {:.3f} s in the "
+        "per-cycle reductions (force sum, step agreement)\n",
+        world.size(), p.imbalance(), p.interface_nodes, d->reduction_seconds());
+    log.write(line);
+    if (!quiet) std::fputs(line.c_str(), stdout);
+  }
+  return status;
 }
 
 int command_restart(const std::string& dump, const std::string& restart_deck,
@@ -458,8 +509,29 @@ void use_robust_openmp_wait_policy(char** argv) {
 
 }  // namespace
 
+// A distributed run that fails: rank 0 reports the error (every rank holds the same model and
+// state, so the others would repeat it; a follower's own kind of failure is printed with its
+// rank), then every rank is ended, so that none waits forever in a collective operation.
+[[noreturn]] void end_distributed_run(int status, const char* kind, const char* message,
+                                      bool replicated) {
+  const rf::parallel::Communicator& world = rf::parallel::world();
+  if (world.rank() == 0) {
+    std::fprintf(stderr, "%s: %s\n", kind, message);
+  } else if (!replicated) {
+    std::fprintf(stderr, "rank %d: %s: %s\n", world.rank(), kind, message);
+  } else {
+    // Rank 0 meets the same error and reports it; its MPI_Abort ends this rank too. Waiting
+    // first keeps this rank's abort from killing rank 0 before its message is out.
+    std::this_thread::sleep_for(std::chrono::seconds(10));
+  }
+  std::fflush(stderr);
+  world.abort(status);
+}
+
 int main(int argc, char** argv) {
   use_robust_openmp_wait_policy(argv);
+  // MPI_Init only under an MPI launcher (mpirun -np N rigidflex run ...): docs/parallel.md.
+  rf::parallel::Session mpi_session(&argc, &argv);
   CLI::App app{"RigidFlex: explicit finite-element dynamics with rigid/deformable switching"};
   app.set_version_flag("--version", std::string(RIGIDFLEX_VERSION));
   app.require_subcommand(1);
@@ -509,6 +581,12 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "lsdyna", "impetus"}));
   check->add_flag("--ignore-unsupported", ignore_unsupported,
                   "Accept the deck without the unsupported keywords that change the physics");
+  int check_ranks = 0;
+  check
+      ->add_option("--ranks", check_ranks,
+                   "Also print the element partition for N MPI ranks (elements and weight per "
+                   "rank, load imbalance, interface nodes)")
+      ->check(CLI::PositiveNumber);
 
   std::optional<int> eigen_modes;
   std::string eigen_parts, eigen_solver = "cholmod";
@@ -563,7 +641,7 @@ int main(int argc, char** argv) {
     read_options.parameter_overrides = parse_overrides(assignments);
     read_options.ignore_unsupported = ignore_unsupported;
     read_options.check_runnable = *check || *run;
-    if (*check) return command_check(deck, read_options);
+    if (*check) return command_check(deck, read_options, check_ranks);
     if (*plot) return command_plot(plot_dir, output_dir);
     if (*eigen) {
       if (threads > 0) omp_set_num_threads(threads);
@@ -584,6 +662,11 @@ int main(int argc, char** argv) {
       clear_output_directory(options.output, rf::app::ResultKind::kEigen, quiet);
       return rf::app::run_eigen_command(std::move(model), options);
     }
+    if (*restart && rf::parallel::world().distributed()) {
+      throw rf::InputError({},
+                           "restart of a distributed run is not supported yet (stage 1, "
+                           "docs/parallel.md): run `rigidflex restart` without mpirun");
+    }
     if (*restart) {
       std::optional<double> interval;
       if (restart_dump_every->count() > 0) interval = dump_every;
@@ -593,15 +676,24 @@ int main(int argc, char** argv) {
     return command_run(deck, output_dir, threads, quiet, read_options, dialect, dump_every,
                        command_line);
   } catch (const rf::InputError& e) {
+    if (rf::parallel::world().distributed()) {
+      end_distributed_run(kExitInputError, "input error", e.what(), true);
+    }
     for (const auto& w : g_warnings_before_error) {
       std::fprintf(stderr, "warning: %s\n", rf::app::format_warning(w).c_str());
     }
     std::fprintf(stderr, "input error: %s\n", e.what());
     return kExitInputError;
   } catch (const rf::SolverError& e) {
+    if (rf::parallel::world().distributed()) {
+      end_distributed_run(kExitSolverError, "error termination", e.what(), true);
+    }
     std::fprintf(stderr, "error termination: %s\n", e.what());
     return kExitSolverError;
   } catch (const std::exception& e) {
+    if (rf::parallel::world().distributed()) {
+      end_distributed_run(kExitOtherError, "error", e.what(), false);
+    }
     std::fprintf(stderr, "error: %s\n", e.what());
     return kExitOtherError;
   }

@@ -641,8 +641,10 @@ KernelResult compute_beam_forces(BeamBlock& block, const NodalView& nodes,
 #pragma omp parallel num_threads(thread_count())
   {
     Partial local;
+    const std::int64_t items = block.owned.count(n);  // one process: every element
 #pragma omp for schedule(static)
-    for (std::int64_t e = 0; e < n; ++e) {
+    for (std::int64_t i = 0; i < items; ++i) {
+      const std::int64_t e = block.owned.element(i);
       const std::size_t ue = static_cast<std::size_t>(e);
       if (!beam_element(block, ue, nodes, rotations, dt, k, um, hp)) {
         local.record_failure(e, block.length[ue]);

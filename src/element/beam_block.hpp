@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "element/element_ownership.hpp"
 #include "element/hex_block.hpp"    // NodalView, KernelResult
 #include "element/shell_block.hpp"  // RotationalView
 #include "material/elastic.hpp"
@@ -36,6 +37,8 @@ struct BeamBlock {
   int material_index = 0;
   material::PlasticParameters plastic;
   bool rigid = false;
+  // The elements this process computes (element_ownership.hpp; all of them in one process).
+  ElementOwnership owned;
   bool has_force_slots = true;
 
   // Section (*SECTION_BEAM). Resultant and truss: A, ISS, ITT, J (IRR), SA (shear area).

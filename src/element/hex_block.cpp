@@ -537,10 +537,15 @@ template <HourglassForm kForm, class M>
 void elform1_range(HexBlock& block, std::int64_t batches, const NodalView& nv, double dt,
                    Partial& part) {
   const std::size_t n = block.size();
+  const ElementOwnership& owned = block.owned;  // one process: batches of [0, n)
 #pragma omp for schedule(static)
   for (std::int64_t bi = 0; bi < batches; ++bi) {
-    const std::size_t first = static_cast<std::size_t>(bi) * kLanes;
-    const int count = static_cast<int>(std::min<std::size_t>(kLanes, n - first));
+    std::size_t first = static_cast<std::size_t>(bi) * kLanes;
+    int count = static_cast<int>(std::min<std::size_t>(kLanes, n - std::min(n, first)));
+    if (owned.partitioned) {
+      first = static_cast<std::size_t>(owned.batches[static_cast<std::size_t>(bi)].first);
+      count = owned.batches[static_cast<std::size_t>(bi)].count;
+    }
     elform1_batch<kForm, M>(block, first, count, nv, dt, part);
   }
 }
@@ -725,7 +730,11 @@ KernelResult compute_hex_forces(HexBlock& block, const NodalView& nodes, double 
   const std::int64_t n = static_cast<std::int64_t>(block.size());
   int threads = 1;
   const bool elform2 = block.elform == 2;
-  const std::int64_t batches = (n + kLanes - 1) / kLanes;
+  if (block.owned.partitioned) block.owned.prepare_batches(kLanes);
+  const std::int64_t batches = block.owned.partitioned
+                                   ? static_cast<std::int64_t>(block.owned.batches.size())
+                                   : (n + kLanes - 1) / kLanes;
+  const std::int64_t items = block.owned.count(n);  // ELFORM 2: one element per item
   const HourglassForm form = hourglass_form(block.hourglass.ihq);
 #pragma omp parallel num_threads(thread_count())
   {
@@ -734,8 +743,9 @@ KernelResult compute_hex_forces(HexBlock& block, const NodalView& nodes, double 
     material::with_material(block.material_index, [&]<class M>(std::type_identity<M>) {
       if (elform2) {
 #pragma omp for schedule(static)
-        for (std::int64_t e = 0; e < n; ++e)
-          elform2_element<M>(block, static_cast<std::size_t>(e), nodes, dt, local);
+        for (std::int64_t i = 0; i < items; ++i)
+          elform2_element<M>(block, static_cast<std::size_t>(block.owned.element(i)), nodes, dt,
+                             local);
       } else {
         // Static schedule over batches: each thread still owns a contiguous element range.
         switch (form) {

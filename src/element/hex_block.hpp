@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "element/element_ownership.hpp"
 #include "material/elastic.hpp"
 #include "material/history.hpp"
 #include "material/plastic_parameters.hpp"
@@ -65,6 +66,8 @@ struct HexBlock {
   // when the state is built (not for *MAT_RIGID parts) and kept when part switching makes the
   // block rigid for a while (its slots then hold zeros).
   bool has_force_slots = true;
+  // The elements this process computes (element_ownership.hpp; all of them in one process).
+  ElementOwnership owned;
   // Polynomial order of the element's interpolation. 1: the 8-node hexahedron (elform applies);
   // 2 or 3: tensor-product Lagrange hexahedron on Gauss-Lobatto-Legendre points with (p+1)^3
   // nodes and GLL quadrature, total-Lagrangian (element/lagrange_hex.hpp; elform is ignored).

@@ -589,7 +589,7 @@ void initialize_lagrange_hex_block(HexBlock& block, const NodalView& nodes) {
 
 KernelResult compute_lagrange_hex_forces(HexBlock& block, const NodalView& nodes, double dt) {
   std::array<Partial, kMaxThreads> partials;
-  const std::int64_t n = static_cast<std::int64_t>(block.size());
+  const std::int64_t items = block.owned.count(static_cast<std::int64_t>(block.size()));
   const double* D = gll_rule(block.order).derivative.data();
   int threads = 1;
   by_order(block.order, [&](auto p) {
@@ -597,7 +597,8 @@ KernelResult compute_lagrange_hex_forces(HexBlock& block, const NodalView& nodes
     {
       Partial local;
 #pragma omp for schedule(static)
-      for (std::int64_t ie = 0; ie < n; ++ie) {
+      for (std::int64_t i = 0; i < items; ++i) {
+        const std::int64_t ie = block.owned.element(i);
         const std::size_t e = static_cast<std::size_t>(ie);
         double volume = 0.0, spacing2 = 0.0;
         const bool ok = element_forces<decltype(p)::value>(block, e, nodes, D, volume, spacing2);

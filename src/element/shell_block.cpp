@@ -777,6 +777,8 @@ KernelResult compute_shell_forces(ShellBlock& block, const NodalView& nodes,
   std::array<Partial, kMaxThreads> partials;
   const std::int64_t n = static_cast<std::int64_t>(block.size());
   const BlockConstants k = block_constants(block);
+  const ElementOwnership& owned = block.owned;  // one process: every element
+  if (owned.partitioned) block.owned.prepare_batches(kLanes);
   int threads = 1;
 #pragma omp parallel num_threads(thread_count())
   {
@@ -785,18 +787,25 @@ KernelResult compute_shell_forces(ShellBlock& block, const NodalView& nodes,
       if constexpr (material::history_size<M>() == 0) {
         // Elastic: batches of kLanes elements; a static schedule over batches still gives each
         // thread a contiguous element range.
-        const std::int64_t batches = (n + kLanes - 1) / kLanes;
+        const std::int64_t batches = owned.partitioned
+                                         ? static_cast<std::int64_t>(owned.batches.size())
+                                         : (n + kLanes - 1) / kLanes;
 #pragma omp for schedule(static)
         for (std::int64_t bi = 0; bi < batches; ++bi) {
-          const std::size_t first = static_cast<std::size_t>(bi) * kLanes;
-          const int count = static_cast<int>(std::min<std::int64_t>(kLanes, n - bi * kLanes));
+          std::size_t first = static_cast<std::size_t>(bi) * kLanes;
+          int count = static_cast<int>(std::min<std::int64_t>(kLanes, n - bi * kLanes));
+          if (owned.partitioned) {
+            first = static_cast<std::size_t>(owned.batches[static_cast<std::size_t>(bi)].first);
+            count = owned.batches[static_cast<std::size_t>(bi)].count;
+          }
           shell_batch<M, Lanes>(block, k, first, count, nodes, rotations, dt, local);
         }
       } else {
+        const std::int64_t items = owned.count(n);
 #pragma omp for schedule(static)
-        for (std::int64_t e = 0; e < n; ++e)
-          shell_batch<M, double>(block, k, static_cast<std::size_t>(e), 1, nodes, rotations, dt,
-                                 local);
+        for (std::int64_t i = 0; i < items; ++i)
+          shell_batch<M, double>(block, k, static_cast<std::size_t>(owned.element(i)), 1, nodes,
+                                 rotations, dt, local);
       }
     });
     partials[omp_get_thread_num()] = local;

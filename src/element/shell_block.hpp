@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "element/element_ownership.hpp"
 #include "element/hex_block.hpp"  // NodalView, HourglassSettings, KernelResult
 #include "material/elastic.hpp"
 #include "material/history.hpp"
@@ -47,6 +48,8 @@ struct ShellBlock {
   int material_index = 0;  // index in material::SolidMaterials (registry.hpp)
   material::PlasticParameters plastic;
   bool rigid = false;
+  // The elements this process computes (element_ownership.hpp; all of them in one process).
+  ElementOwnership owned;
   bool has_force_slots = true;
 
   // Section (*SECTION_SHELL): transverse shear factor SHRF, NIP points through the thickness

@@ -76,7 +76,8 @@ void write_run_json(const std::filesystem::path& path, const RunSummary& summary
   append_json_number(json, summary.wall_seconds);
   fmt::format_to(out, ",\n  \"ns_per_element_cycle\": ");
   append_json_number(json, summary.ns_per_element_cycle);
-  fmt::format_to(out, ",\n  \"threads\": {},\n  \"warnings\": [", summary.threads);
+  fmt::format_to(out, ",\n  \"threads\": {},\n  \"ranks\": {},\n  \"warnings\": [", summary.threads,
+                 summary.ranks);
   for (std::size_t i = 0; i < summary.warnings.size(); ++i) {
     fmt::format_to(out, "{}\n    ", i == 0 ? "" : ",");
     append_json_string(json, summary.warnings[i]);

@@ -341,7 +341,8 @@ struct RunSummary {
   std::int64_t elements = 0;
   double wall_seconds = 0.0;
   double ns_per_element_cycle = 0.0;
-  int threads = 1;
+  int threads = 1;  // per rank
+  int ranks = 1;    // MPI ranks of a distributed run (docs/parallel.md)
   std::vector<std::string> warnings;
   // --ignore-unsupported: the physics keywords skipped ("file:line: *KEYWORD ..."); written as
   // "ignore_unsupported": true and "ignored_unsupported_keywords" only when the flag was given.

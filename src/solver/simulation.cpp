@@ -16,6 +16,8 @@
 #include "model/curve.hpp"
 #include "model/error.hpp"
 #include "model/error_context.hpp"
+#include "parallel/communicator.hpp"
+#include "parallel/distribution.hpp"
 #include "restart/dumper.hpp"
 #include "sensor/sensor.hpp"
 #include "sensor/sensor_output.hpp"
@@ -269,6 +271,7 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
         std::make_unique<switching::AutomaticSwitching>(model_.switching.automatic);
     switch_due_.reserve(model_.switching.automatic.size());
   }
+  if (parallel::world().distributed()) start_distributed_run();
   if (!options_.from_dump) initialize();
 }
 
@@ -441,7 +444,8 @@ void Simulation::run(const std::function<void(const Simulation&)>& on_progress) 
       // Between cycles: the state is complete at t^n (forces known), so a dump taken here
       // resumes exactly (restart/dumper.hpp). An interrupt makes this the end of the run: the
       // dump, then one cycle's velocity update and the output of termination.
-      if (interrupt_signal_ == 0) interrupt_signal_ = interrupt::requested();
+      if (interrupt_signal_ == 0)
+        interrupt_signal_ = distribution_ ? agreed_interrupt_ : interrupt::requested();
       if (dumper_) {
         const auto start = PhaseClock::now();
         dumper_->write_if_due(*this);
@@ -531,6 +535,8 @@ void Simulation::switch_parts_if_due() {
 // (their restored stresses at x^n), and the step is cut if a released part needs a smaller one.
 void Simulation::apply_switch(model::Id swset, const std::vector<model::PartSwitch>& to_rigid,
                               const std::vector<model::PartSwitch>& to_deformable, double dtmax) {
+  // The switch reads and restores element stresses: every rank needs them all.
+  if (distribution_) distribution_->gather_element_state(state_);
   std::vector<switching::SwitchEvent> events;
   if (!to_rigid.empty()) {
     events.push_back(switcher_->to_rigid(to_rigid, state_.time, state_, rigid_));
@@ -567,6 +573,7 @@ void Simulation::apply_switch(model::Id swset, const std::vector<model::PartSwit
     const element::KernelResult r = element::compute_block_forces(block, view, 0.0);
     released_dt = std::min(released_dt, r.min_dt);
   }
+  if (distribution_) released_dt = distribution_->communicator().min(released_dt);
   element_dt_ = std::numeric_limits<double>::infinity();
   for (const auto& block : state_.hex_blocks) {
     if (block.rigid) continue;
@@ -594,6 +601,7 @@ void Simulation::apply_switch(model::Id swset, const std::vector<model::PartSwit
     }
   }
   assemble_internal_forces(state_);
+  if (distribution_) distribution_->sum_partial_forces(state_, nullptr, false);
   for (auto& event : events) {
     if (event.parts.empty()) continue;
     event.swset = swset;
@@ -864,6 +872,7 @@ void Simulation::write_output_if_due(bool force) {
   auto wanted = [&](OutputSchedule& schedule) {
     return schedule.last_cycle != cycle && (force || schedule.due(t));
   };
+  if (distribution_) gather_element_state_for_output(force);
   if (glstat_ && wanted(glstat_schedule_)) {
     output::GlstatRow row;
     row.time = t;
@@ -993,6 +1002,7 @@ void Simulation::write_output_if_due(bool force) {
     if (d3plot_) d3plot_->write_state(state_, d3plot_globals());
     d3plot_schedule_.mark_written(t, cycle);
   }
+  if (distribution_) finish_output_on_ranks();
 }
 
 output::D3plotGlobals Simulation::d3plot_globals() const {
@@ -1031,12 +1041,17 @@ void Simulation::update_positions() {
 void Simulation::compute_internal_forces() {
   const element::NodalView view = view_of(state_.nodes);
   element_dt_ = std::numeric_limits<double>::infinity();
+  if (distribution_) std::fill(rank_block_work_.begin(), rank_block_work_.end(), 0.0);
   for (std::size_t b = 0; b < state_.hex_blocks.size(); ++b) {
     element::HexBlock& block = state_.hex_blocks[b];
     if (block.rigid) continue;  // moved by its body; no stress, no step limit
     const element::KernelResult r = element::compute_block_forces(block, view, state_.dt);
-    energy_.hourglass += r.hourglass_work;
-    if (part_histories_) part_histories_->add_hourglass(b, r.hourglass_work);
+    if (distribution_) {  // summed over the ranks first
+      rank_block_work_[b] = r.hourglass_work;
+    } else {
+      energy_.hourglass += r.hourglass_work;
+      if (part_histories_) part_histories_->add_hourglass(b, r.hourglass_work);
+    }
     if (r.failed && breakdown_message_.empty()) {
       breakdown_message_ = fmt::format(
           "element {} of part {} has non-positive volume {:.6g} (or a non-finite force) at "
@@ -1052,6 +1067,7 @@ void Simulation::compute_internal_forces() {
   compute_structural_forces();
   assemble_internal_forces(state_);
   assemble_structural_forces(state_);
+  if (distribution_) sum_partial_forces_across_ranks();
   if (!joints_.empty()) {  // penalty springs: their stiffness needs the first step
     prepare_joint_stiffness(joints_, rigid_, state_, initial_dt_);
     add_joint_forces(joints_, state_);
@@ -1064,8 +1080,12 @@ void Simulation::compute_structural_forces() {
   const element::NodalView view = view_of(state_.nodes);
   const RotationalState& rot = state_.rotations;
   const element::RotationalView rotations{rot.w.x.data(), rot.w.y.data(), rot.w.z.data()};
+  std::size_t slot = state_.hex_blocks.size();  // rank_block_work_: shells, then beams
   auto account = [&](const element::KernelResult& r, const auto& block, const char* kind) {
-    energy_.hourglass += r.hourglass_work;
+    if (distribution_)
+      rank_block_work_[slot++] = r.hourglass_work;
+    else
+      energy_.hourglass += r.hourglass_work;
     if (r.failed && breakdown_message_.empty()) {
       breakdown_message_ = fmt::format(
           "{} element {} of part {} has a degenerate shape (non-positive area or length) or a "
@@ -1078,11 +1098,17 @@ void Simulation::compute_structural_forces() {
     }
   };
   for (auto& block : state_.shell_blocks) {
-    if (block.rigid) continue;
+    if (block.rigid) {
+      ++slot;
+      continue;
+    }
     account(element::compute_shell_forces(block, view, rotations, state_.dt), block, "shell");
   }
   for (auto& block : state_.beam_blocks) {
-    if (block.rigid) continue;
+    if (block.rigid) {
+      ++slot;
+      continue;
+    }
     account(element::compute_beam_forces(block, view, rotations, state_.dt), block, "beam");
   }
 }

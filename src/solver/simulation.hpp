@@ -33,6 +33,10 @@ struct SensorSystem;
 class SensorCsv;
 }  // namespace rf::sensor
 
+namespace rf::parallel {
+class ElementDistribution;
+}  // namespace rf::parallel
+
 namespace rf::restart {
 class Dumper;
 struct SimulationAccess;
@@ -160,6 +164,8 @@ class Simulation {
   model::Id controlling_element() const { return controlling_element_; }
   // Sensors, switches and controls as of the last evaluation (DEF2RIG events included).
   const sensor::SensorSystem& sensors() const { return *sensors_; }
+  // The element partition of a distributed run (docs/parallel.md); nullptr in one process.
+  const parallel::ElementDistribution* distribution() const { return distribution_.get(); }
 
   // Restart dumps (restart/dumper.hpp), written by run() between cycles when due.
   void enable_restart_dumps(std::unique_ptr<restart::Dumper> dumper);
@@ -184,6 +190,19 @@ class Simulation {
   void update_sensors();           // sensors, switches, controls at t^{n+1} (sensor/sensor.hpp)
 
   void switch_parts_if_due();  // *DEFORMABLE_TO_RIGID_AUTOMATIC, between cycles
+
+  // Distributed runs (solver/distributed_phases.cpp, docs/parallel.md); none is called in one
+  // process. Partitions the elements and refuses what stage 1 does not distribute.
+  void start_distributed_run();
+  // After the element kernels and the assembly: nodal forces and hourglass work summed over the
+  // ranks; the element step, failures, interrupts and the output schedule agreed.
+  void sum_partial_forces_across_ranks();
+  // Before the output of a cycle that writes element data (or any output when `force`): the
+  // element state complete on every rank, matsum's part work summed; undone by
+  // finish_output_on_ranks() after the output.
+  void gather_element_state_for_output(bool force);
+  void finish_output_on_ranks();
+  bool element_output_due() const;  // rank 0: some element output is due at state_.time
 
   void initialize();
   // Applies one switch (both directions of a set) and repairs forces and the step.
@@ -285,6 +304,13 @@ class Simulation {
   std::unique_ptr<sensor::SensorSystem> sensors_;
   std::unique_ptr<sensor::SensorCsv> sensor_csv_;
   std::unique_ptr<restart::Dumper> dumper_;
+  // Distributed runs only (null in one process).
+  std::unique_ptr<parallel::ElementDistribution> distribution_;
+  std::vector<double> rank_block_work_;  // hourglass work per block, this rank's elements
+  std::vector<double> rank_part_work_;   // matsum's part work of this rank during output
+  bool agreed_output_due_ = false;       // rank 0 writes element output at the next pass
+  int agreed_interrupt_ = 0;             // an interrupt seen by any rank
+  std::int64_t gathered_cycle_ = -1;     // the cycle whose element state was gathered
 };
 
 }  // namespace rf::solver

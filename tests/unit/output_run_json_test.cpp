@@ -155,7 +155,7 @@ TEST(OutputRunJson, EscapesAndIsValid) {
 
   EXPECT_TRUE(JsonChecker(json).valid()) << json;
   for (const char* key : {"status", "message", "final_time", "cycles", "nodes", "elements",
-                          "wall_seconds", "ns_per_element_cycle", "threads", "warnings"}) {
+                          "wall_seconds", "ns_per_element_cycle", "threads", "ranks", "warnings"}) {
     EXPECT_NE(json.find(std::string("\"") + key + "\": "), std::string::npos) << key;
   }
   EXPECT_NE(json.find(R"("part \"steel\" has\nno material")"), std::string::npos) << json;
@@ -164,6 +164,7 @@ TEST(OutputRunJson, EscapesAndIsValid) {
   EXPECT_NE(json.find(R"("negative volume in element 12\tat t=1e-3")"), std::string::npos);
   EXPECT_NE(json.find("\"final_time\": 0.33333333333333331"), std::string::npos) << json;
   EXPECT_NE(json.find("\"cycles\": 123456"), std::string::npos);
+  EXPECT_NE(json.find("\"ranks\": 1"), std::string::npos) << json;
   EXPECT_NE(json.find("\"ns_per_element_cycle\": null"), std::string::npos) << json;
 }
 

@@ -1,0 +1,116 @@
+// The phases of a cycle that exist only in a distributed run (docs/parallel.md, stage 1:
+// replicated state, partitioned elements). Simulation calls them where the ranks must agree;
+// in one process none of them runs and the cycle is unchanged.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "model/error.hpp"
+#include "model/error_context.hpp"
+#include "parallel/communicator.hpp"
+#include "parallel/distribution.hpp"
+#include "solver/interrupt.hpp"
+#include "solver/simulation.hpp"
+
+namespace rf::solver {
+
+// What stage 1 refuses on more than one rank: each would read element state of other ranks'
+// elements every cycle (element sensors, section forces from element force slots), or is not
+// distributed yet (flexible bodies; restart dumps are refused by the command line).
+void Simulation::start_distributed_run() {
+  const model::Model& model = model_;
+  const auto refuse = [&](const model::SourceLocation& where, const char* field,
+                          const std::string& what) {
+    throw InputError(model::context_of(where, field),
+                     fmt::format("{} is not supported in a distributed run yet (stage 1, "
+                                 "docs/parallel.md): run it on one rank",
+                                 what));
+  };
+  for (const auto& [id, sensor] : model.sensors) {
+    if (sensor.kind == model::SensorKind::Element)
+      refuse(sensor.where, "ELEMID", fmt::format("element sensor {}", id));
+  }
+  if (!model.output.cross_sections.empty()) {
+    refuse(model.output.cross_sections.front().where, "", "*DATABASE_CROSS_SECTION");
+  }
+  if (!model.part_modes.empty()) {
+    refuse(model.part_modes.begin()->second.where, "PID", "a flexible body (*PART_MODES)");
+  }
+  distribution_ = std::make_unique<parallel::ElementDistribution>(parallel::world(), state_);
+  rank_block_work_.assign(
+      state_.hex_blocks.size() + state_.shell_blocks.size() + state_.beam_blocks.size(), 0.0);
+  // matsum's part work is summed over the ranks at output times, so every rank keeps its share.
+  if (model.output.matsum && !part_histories_)
+    part_histories_ = std::make_unique<PartHistories>(state_, rigid_);
+}
+
+void Simulation::sum_partial_forces_across_ranks() {
+  const parallel::Communicator& comm = distribution_->communicator();
+  distribution_->sum_partial_forces(state_, &rank_block_work_);
+  // The hourglass work in block order, as one process adds it.
+  for (std::size_t b = 0; b < rank_block_work_.size(); ++b) {
+    const bool hex = b < state_.hex_blocks.size();
+    if (hex ? state_.hex_blocks[b].rigid
+            : (b < state_.hex_blocks.size() + state_.shell_blocks.size()
+                   ? state_.shell_blocks[b - state_.hex_blocks.size()].rigid
+                   : state_.beam_blocks[b - state_.hex_blocks.size() - state_.shell_blocks.size()]
+                         .rigid))
+      continue;
+    energy_.hourglass += rank_block_work_[b];
+    if (hex && part_histories_) part_histories_->add_hourglass(b, rank_block_work_[b]);
+  }
+  parallel::StepAgreement a;
+  if (std::isfinite(element_dt_)) {
+    a.dt = element_dt_;
+    a.element = static_cast<double>(controlling_element_);
+  }
+  if (!breakdown_message_.empty()) a.failed_rank = comm.rank();
+  a.interrupt = interrupt::requested();
+  a.output_due = element_output_due() ? 1.0 : 0.0;
+  const auto start = std::chrono::steady_clock::now();
+  comm.agree(a);
+  distribution_->add_reduction_seconds(
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  // No rank computed an element (every part rigid): no element step anywhere, as in one process.
+  element_dt_ = a.dt < 1e300 ? a.dt : std::numeric_limits<double>::infinity();
+  if (a.dt < 1e300) controlling_element_ = static_cast<model::Id>(a.element);
+  if (a.failed_rank < 1e9) {  // the failing rank's message on every rank
+    comm.broadcast(breakdown_message_, static_cast<int>(a.failed_rank));
+  }
+  agreed_interrupt_ = static_cast<int>(a.interrupt);
+  agreed_output_due_ = a.output_due > 0.0;
+}
+
+bool Simulation::element_output_due() const {
+  const double t = state_.time;
+  return (elout_csv_ && elout_schedule_.due(t)) ||
+         (elout_shell_csv_ && elout_shell_schedule_.due(t)) ||
+         (matsum_csv_ && matsum_schedule_.due(t)) || (fields_ && d3plot_schedule_.due(t));
+}
+
+void Simulation::gather_element_state_for_output(bool force) {
+  if (!(force || agreed_output_due_)) return;
+  if (gathered_cycle_ != state_.cycle) {
+    gathered_cycle_ = state_.cycle;
+    distribution_->gather_element_state(state_);
+    // The replicated state must be the same everywhere; its energy is a cheap fingerprint.
+    distribution_->check_replicated(energy_.total(), "the total energy");
+  }
+  if (part_histories_) {  // the ranks' shares of the part work, summed for the output only
+    rank_part_work_ = part_histories_->internal_work();
+    distribution_->communicator().sum(part_histories_->internal_work().data(),
+                                      part_histories_->internal_work().size());
+  }
+}
+
+void Simulation::finish_output_on_ranks() {
+  if (part_histories_ && !rank_part_work_.empty()) {
+    part_histories_->internal_work() = rank_part_work_;
+    rank_part_work_.clear();
+  }
+}
+
+}  // namespace rf::solver
