@@ -35,6 +35,7 @@ struct GlstatRow {
   double contact_energy = 0.0;
   double modal_energy = 0.0;  // elastic energy of flexible bodies' modes (in internal_energy)
   double damping_work = 0.0;  // the part of external_work done by *DAMPING_* (negative)
+  double bulk_viscosity_energy = 0.0;  // dissipated by the bulk viscosity (not in internal)
 };
 
 // Plain CSV file with a fixed header; rows are buffered and reach the file whole (never a
@@ -94,7 +95,7 @@ inline constexpr std::string_view kGlstatHeader =
     "time,dt,cycle,kinetic_energy,internal_energy,hourglass_energy,external_work,total_energy,"
     "energy_ratio,momentum_x,momentum_y,momentum_z,angular_momentum_x,angular_momentum_y,"
     "angular_momentum_z,switch_energy,frozen_energy,rigidwall_work,contact_energy,modal_energy,"
-    "damping_work";
+    "damping_work,bulk_viscosity_energy";
 inline constexpr std::string_view kNodoutHeader = "time,node,x,y,z,vx,vy,vz,ax,ay,az";
 inline constexpr std::string_view kRbdoutHeader =
     "time,body,mass,x,y,z,vx,vy,vz,ax,ay,az,wx,wy,wz,r11,r12,r13,r21,r22,r23,r31,r32,r33";

@@ -882,6 +882,7 @@ void Simulation::write_output_if_due(bool force) {
     row.contact_energy = energy_.contact_energy;
     row.modal_energy = energy_.modal_elastic;
     row.damping_work = energy_.damping_work;
+    row.bulk_viscosity_energy = energy_.bulk_viscosity;
     glstat_->write(row);
     glstat_schedule_.mark_written(t, cycle);
   }
@@ -1027,7 +1028,8 @@ void Simulation::compute_internal_forces() {
     if (block.rigid) continue;  // moved by its body; no stress, no step limit
     const element::KernelResult r = element::compute_block_forces(block, view, state_.dt);
     energy_.hourglass += r.hourglass_work;
-    if (part_histories_) part_histories_->add_hourglass(b, r.hourglass_work);
+    energy_.bulk_viscosity += r.bulk_viscosity_work;
+    if (part_histories_) part_histories_->add_hourglass(b, r.hourglass_work, r.bulk_viscosity_work);
     if (r.failed && breakdown_message_.empty()) {
       breakdown_message_ = fmt::format(
           "element {} of part {} has non-positive volume {:.6g} (or a non-finite force) at "
