@@ -399,6 +399,13 @@ inline void store_history(HexBlock& block, std::size_t e, int lane, const Lanes*
   }
 }
 
+// Current density rho0 V0 / V of the batch's elements.
+inline Lanes current_density(const HexBlock& block, const Batch& b, Lanes volume) {
+  std::size_t off[kLanes];
+  lane_offsets(b, 1, off);
+  return block.material.rho * load_lanes(block.volume0.data(), off) * (1.0 / volume);
+}
+
 // Current density rho0 V0 / V and length l = V^{1/3} = V0^{1/3} J^{1/3} of the batch's elements.
 inline void density_and_length(const HexBlock& block, const Batch& b, Lanes volume,
                                Lanes& density, Lanes& length) {
@@ -413,7 +420,12 @@ inline void density_and_length(const HexBlock& block, const Batch& b, Lanes volu
 // Artificial bulk viscosity (LS-DYNA theory manual, "Artificial Bulk Viscosity"; von Neumann &
 // Richtmyer 1950 quadratic term, Landshoff 1955 linear term):
 //   q = rho l (Q1 l e_kk^2 - Q2 c e_kk)  for e_kk < 0,  q = 0 otherwise,
-// e_kk the volumetric strain rate, l = V^{1/3}, c the P-wave speed. q is a pressure: it enters
+// e_kk the volumetric strain rate, c the P-wave speed, l the element length. The manual names
+// l = V^{1/3}; we use the time-step length L_e = V / A_max (equal for a cube), because the
+// step formula below, Q = Q2 c + Q1 L_e |e_kk|, is the stability limit of exactly this q: a
+// 1-D element damped by q with length l has Q = (l / L_e)(Q2 c + Q1 l |e_kk|), so with
+// V^{1/3} > L_e (flat elements) the LS-DYNA step would be unstable (seen: a bar of 10:1 plates
+// blew up at TSSFAC 0.9). q is a pressure: it enters
 // the nodal forces as -q on the diagonal of the stress, never the stored stress. With
 // e = min(e_kk, 0) the formula is branch-free. The energy it dissipates over a step is
 // q |e_kk| V dt >= 0 (V the mid-step volume, where e_kk is evaluated).
@@ -492,14 +504,23 @@ void elform1_batch(HexBlock& block, std::size_t first, int count, const NodalVie
   load_history<M>(block, b, hist);
   M::update(block.material, block.plastic, d, w, dt, sig, hist);
 
-  // Density and length at n+1: the viscous hourglass and the bulk viscosity use them.
+  // Characteristic length L_e = V / A_max at n+1 (tetrahedra: 3 V / A_max): the critical
+  // step L_e / c and the length of the bulk viscosity.
+  Lanes shape_factor;
+  for (int l = 0; l < kLanes; ++l)
+    shape_factor[l] = block.shape[b.element(l)] == HexShape::kTetrahedron ? 3.0 : 1.0;
+  const Lanes elem_length =
+      vol * shape_factor / lane_sqrt(hex::max_face_area_squared_from_base(ax));
+
+  // Density (and V^{1/3} for the viscous hourglass) at n+1; bulk viscosity pressure.
   const bool bulk = block.bulk_viscosity.on();
   Lanes density{}, length{}, q_bulk{}, ekk{};
-  if (bulk || !kStateful) density_and_length(block, b, vol, density, length);
+  if constexpr (!kStateful) density_and_length(block, b, vol, density, length);
   if (bulk) {
+    if constexpr (kStateful) density = current_density(block, b, vol);
     ekk = L[0] + L[4] + L[8];
     q_bulk = bulk_viscosity_pressure(block.bulk_viscosity, block.material.wave_speed, density,
-                                     length, ekk);
+                                     elem_length, ekk);
   }
 
   HourglassTerms h{ax, av, g, vol, {w[0], w[1], w[2]}, {}, {}};
@@ -542,12 +563,7 @@ void elform1_batch(HexBlock& block, std::size_t first, int count, const NodalVie
   }
   hex::expand_nodal(coef, f);
 
-  // Critical step L_e / c with L_e = V / A_max (tetrahedra: 3 V / A_max).
-  Lanes shape_factor;
-  for (int l = 0; l < kLanes; ++l)
-    shape_factor[l] = block.shape[b.element(l)] == HexShape::kTetrahedron ? 3.0 : 1.0;
-  const Lanes elem_length =
-      vol * shape_factor / lane_sqrt(hex::max_face_area_squared_from_base(ax));
+  // Critical step L_e / c, with bulk viscosity L_e / (Q + sqrt(Q^2 + c^2)).
   Lanes elem_dt = elem_length / block.material.wave_speed;
   Lanes bulk_work{};
   if (bulk) {
@@ -705,10 +721,10 @@ void elform2_element(HexBlock& block, std::size_t e, const NodalView& nv, double
   // Bulk viscosity on the mean dilatation (see bulk_viscosity_pressure).
   const BulkViscositySettings& bv = block.bulk_viscosity;
   double q_bulk = 0.0;
+  const double length = element_length(x, g.volume, block.shape[e]);
   if (bv.on()) {
     const double density = block.material.rho * block.volume0[e] / g.volume;
-    q_bulk = bulk_viscosity_pressure(bv, block.material.wave_speed, density,
-                                     std::cbrt(g.volume), div_bar);
+    q_bulk = bulk_viscosity_pressure(bv, block.material.wave_speed, density, length, div_bar);
     pbar -= q_bulk;
     part.bulk_viscosity_work += -q_bulk * div_bar * gm.volume * dt;
   }
@@ -718,9 +734,7 @@ void elform2_element(HexBlock& block, std::size_t e, const NodalView& nv, double
   if (inverted || !finite_forces(f)) part.record_failure(static_cast<std::int64_t>(e), g.volume);
   scatter_forces(slots, f, out);
   const double speed = block.material.wave_speed;
-  part.record_dt(bv.on() ? viscous_time_step(bv, speed,
-                                             element_length(x, g.volume, block.shape[e]), div_bar)
-                         : element_time_step(x, g.volume, block.shape[e], speed),
+  part.record_dt(bv.on() ? viscous_time_step(bv, speed, length, div_bar) : length / speed,
                  static_cast<std::int64_t>(e));
 }
 
