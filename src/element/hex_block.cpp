@@ -407,8 +407,8 @@ inline Lanes current_density(const HexBlock& block, const Batch& b, Lanes volume
 }
 
 // Current density rho0 V0 / V and length l = V^{1/3} = V0^{1/3} J^{1/3} of the batch's elements.
-inline void density_and_length(const HexBlock& block, const Batch& b, Lanes volume,
-                               Lanes& density, Lanes& length) {
+inline void density_and_length(const HexBlock& block, const Batch& b, Lanes volume, Lanes& density,
+                               Lanes& length) {
   std::size_t off[kLanes];
   lane_offsets(b, 1, off);
   const Lanes v0 = load_lanes(block.volume0.data(), off);
@@ -448,8 +448,7 @@ inline double viscous_time_step(const BulkViscositySettings& bv, double c, doubl
   const double q = ekk < 0.0 ? bv.q2 * c - bv.q1 * length * ekk : 0.0;
   return length / (q + std::sqrt(q * q + c * c));
 }
-inline Lanes viscous_time_step(const BulkViscositySettings& bv, double c, Lanes length,
-                               Lanes ekk) {
+inline Lanes viscous_time_step(const BulkViscositySettings& bv, double c, Lanes length, Lanes ekk) {
   const Lanes linear = Lanes{} + bv.q2 * c;
   const Lanes q = ekk < 0.0 ? linear - bv.q1 * length * ekk : Lanes{};
   return length / (q + lane_sqrt(q * q + c * c));

@@ -708,10 +708,10 @@ struct HourglassControl {
 // *CONTROL_BULK_VISCOSITY: artificial bulk viscosity of solid elements (docs/theory.md). On by
 // default in LS-DYNA decks with LS-DYNA's defaults; IMPETUS decks have none (docs/impetus.md).
 struct BulkViscosityControl {
-  double q1 = 1.5;   // quadratic coefficient
-  double q2 = 0.06;  // linear coefficient
-  int type = 1;      // 1, or -1/-2 (LS-DYNA: also shells; accepted only without shells)
-  int btype = 0;     // beams (0 only when the model has beams)
+  double q1 = 1.5;       // quadratic coefficient
+  double q2 = 0.06;      // linear coefficient
+  int type = 1;          // 1, or -1/-2 (LS-DYNA: also shells; accepted only without shells)
+  int btype = 0;         // beams (0 only when the model has beams)
   SourceLocation where;  // the card, when the deck has one
 };
 

@@ -1181,8 +1181,7 @@ void Simulation::select_time_step() {
   }
   // Land exactly on the termination time: shorten the step, or stretch it by at most 0.1 %
   // rather than leave a remainder below 1e-3 dt (which was then overshot by a whole step).
-  if (end_time_ > 0.0 && state_.time + dt * (1.0 + 1e-3) > end_time_ &&
-      end_time_ > state_.time) {
+  if (end_time_ > 0.0 && state_.time + dt * (1.0 + 1e-3) > end_time_ && end_time_ > state_.time) {
     dt = end_time_ - state_.time;
   }
   state_.dt_prev = state_.dt;

@@ -19,7 +19,8 @@ std::string deck(const std::string& extra, const std::string& hourglass = "") {
       "9,2,0,0\n10,2,1,0\n11,2,0,1\n12,2,1,1\n"
       "*ELEMENT_SOLID\n1,1,1,2,3,4,5,6,7,8\n2,2,2,9,10,3,6,11,12,7\n"
       "*SECTION_SOLID\n1,1\n*MAT_ELASTIC\n1,7850.0,2.1e11,0.3\n";
-  s += hourglass.empty() ? "*PART\none\n1,1,1\n" : "*PART\none\n1,1,1,0,1\n*HOURGLASS\n" + hourglass;
+  s +=
+      hourglass.empty() ? "*PART\none\n1,1,1\n" : "*PART\none\n1,1,1,0,1\n*HOURGLASS\n" + hourglass;
   s += "*PART\ntwo\n2,1,1\n";
   return s + extra + "*END\n";
 }
@@ -60,8 +61,9 @@ TEST(BulkViscosityInput, BlankFieldsAreDefaultsAndValuesAreRead) {
   auto m = io::read_deck_text(deck("*CONTROL_BULK_VISCOSITY\n\n"), "bv.k");
   EXPECT_EQ(m.bulk_viscosity.q1, 1.5);
   EXPECT_EQ(m.bulk_viscosity.q2, 0.06);
-  m = io::read_deck_text(deck("*CONTROL_BULK_VISCOSITY\n       2.0      0.10        -1         0         1\n"),
-                         "bv.k");
+  m = io::read_deck_text(
+      deck("*CONTROL_BULK_VISCOSITY\n       2.0      0.10        -1         0         1\n"),
+      "bv.k");
   EXPECT_EQ(m.bulk_viscosity.q1, 2.0);
   EXPECT_EQ(m.bulk_viscosity.q2, 0.10);
   EXPECT_EQ(m.bulk_viscosity.type, -1);  // no shells: the same as TYPE 1
@@ -71,7 +73,8 @@ TEST(BulkViscosityInput, BlankFieldsAreDefaultsAndValuesAreRead) {
 }
 
 TEST(BulkViscosityInput, ZeroCoefficientsSwitchItOff) {
-  const solver::State s = build(io::read_deck_text(deck("*CONTROL_BULK_VISCOSITY\n0.0,0.0\n"), "bv.k"));
+  const solver::State s =
+      build(io::read_deck_text(deck("*CONTROL_BULK_VISCOSITY\n0.0,0.0\n"), "bv.k"));
   EXPECT_FALSE(settings(s, 1).on());
   EXPECT_FALSE(settings(s, 2).on());
 }
@@ -120,20 +123,21 @@ INSTANTIATE_TEST_SUITE_P(
         ErrorCase{"NegativeQ2",
                   deck("*CONTROL_BULK_VISCOSITY\n1.5,-0.06\n"),
                   {"bv.k:29: *CONTROL_BULK_VISCOSITY card 1 field Q2", "must not be negative"}},
-        ErrorCase{"Type2",
-                  deck("*CONTROL_BULK_VISCOSITY\n1.5,0.06,2\n"),
-                  {"bv.k:29: *CONTROL_BULK_VISCOSITY card 1 field TYPE", "type 2 is not supported"}},
+        ErrorCase{
+            "Type2",
+            deck("*CONTROL_BULK_VISCOSITY\n1.5,0.06,2\n"),
+            {"bv.k:29: *CONTROL_BULK_VISCOSITY card 1 field TYPE", "type 2 is not supported"}},
         ErrorCase{"BadBtype",
                   deck("*CONTROL_BULK_VISCOSITY\n1.5,0.06,1,3\n"),
                   {"bv.k:29: *CONTROL_BULK_VISCOSITY card 1 field BTYPE", "0..2"}},
         ErrorCase{"HourglassNegativeQ1",
                   deck("", "1,1,0.1,0,-2.0\n"),
                   {"*HOURGLASS card 1 field Q1", "must not be negative"}},
-        ErrorCase{"ShellsWithTypeMinus1",
-                  deck("*CONTROL_BULK_VISCOSITY\n1.5,0.06,-1\n*SECTION_SHELL\n3,2\n0.01\n"
-                       "*PART\nsheet\n3,3,1\n*ELEMENT_SHELL\n10,3,1,2,3,4\n"),
-                  {"bv.k:29: *CONTROL_BULK_VISCOSITY", "field TYPE", "TYPE -1", "shells",
-                   "use TYPE 1"}}),
+        ErrorCase{
+            "ShellsWithTypeMinus1",
+            deck("*CONTROL_BULK_VISCOSITY\n1.5,0.06,-1\n*SECTION_SHELL\n3,2\n0.01\n"
+                 "*PART\nsheet\n3,3,1\n*ELEMENT_SHELL\n10,3,1,2,3,4\n"),
+            {"bv.k:29: *CONTROL_BULK_VISCOSITY", "field TYPE", "TYPE -1", "shells", "use TYPE 1"}}),
     [](const auto& info) { return info.param.name; });
 
 }  // namespace

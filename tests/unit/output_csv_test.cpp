@@ -92,12 +92,12 @@ TEST(OutputCsv, GlstatHeaderAndBitExactValues) {
   expect_bits(f[0], row.time);
   expect_bits(f[1], row.dt);
   EXPECT_EQ(f[2], "123456789012");
-  const double rest[] = {row.kinetic_energy,      row.internal_energy,     row.hourglass_energy,
-                         row.external_work,       row.total_energy,        row.energy_ratio,
-                         row.momentum[0],         row.momentum[1],         row.momentum[2],
-                         row.angular_momentum[0], row.angular_momentum[1], row.angular_momentum[2],
-                         row.switch_energy,       row.frozen_energy,       row.rigidwall_work,
-                         row.contact_energy,      row.modal_energy,        row.damping_work,
+  const double rest[] = {row.kinetic_energy,       row.internal_energy,     row.hourglass_energy,
+                         row.external_work,        row.total_energy,        row.energy_ratio,
+                         row.momentum[0],          row.momentum[1],         row.momentum[2],
+                         row.angular_momentum[0],  row.angular_momentum[1], row.angular_momentum[2],
+                         row.switch_energy,        row.frozen_energy,       row.rigidwall_work,
+                         row.contact_energy,       row.modal_energy,        row.damping_work,
                          row.bulk_viscosity_energy};
   for (int i = 0; i < 19; ++i) expect_bits(f[3 + i], rest[i]);
   const auto g = split_csv(lines[2]);

@@ -29,8 +29,12 @@ constexpr double kRho = 7850.0, kE = 210e9, kNu = 0.3, kLength = 1.0;
 constexpr int kElements = 200;
 constexpr double kH = kLength / kElements;
 
-double constrained_modulus() { return kE * (1.0 - kNu) / ((1.0 + kNu) * (1.0 - 2.0 * kNu)); }
-double wave_speed() { return std::sqrt(constrained_modulus() / kRho); }
+double constrained_modulus() {
+  return kE * (1.0 - kNu) / ((1.0 + kNu) * (1.0 - 2.0 * kNu));
+}
+double wave_speed() {
+  return std::sqrt(constrained_modulus() / kRho);
+}
 
 // Shock speed from rho0 U v = -M ln(1 - v / U): with the compression e = v / U this is
 // -e ln(1 - e) = (v / c)^2, increasing in e on (0, 1), solved by bisection.
@@ -158,11 +162,12 @@ TEST_P(BulkViscosityShock, JumpConditionsFrontAndEnergyWithDefaultCoefficients) 
   EXPECT_LT(overshoot(r, p), 0.01);
   // Energy: the piston's work is kinetic + stored + dissipated.
   const double stored = stored_energy(r);
-  std::printf("ELFORM %d: p/p_rh - 1 %.2e, front - U t %.3f elements, width %.2f, overshoot "
-              "%.1e, internal/stored - 1 %.1e, balance %.1e, bulk/external %.4f\n",
-              elform, p / p_rh - 1.0, (front_position(r, p) - front) / kH, width, overshoot(r, p),
-              r.internal / stored - 1.0,
-              (r.kinetic + stored + r.hourglass + r.bulk) / r.external - 1.0, r.bulk / r.external);
+  std::printf(
+      "ELFORM %d: p/p_rh - 1 %.2e, front - U t %.3f elements, width %.2f, overshoot "
+      "%.1e, internal/stored - 1 %.1e, balance %.1e, bulk/external %.4f\n",
+      elform, p / p_rh - 1.0, (front_position(r, p) - front) / kH, width, overshoot(r, p),
+      r.internal / stored - 1.0, (r.kinetic + stored + r.hourglass + r.bulk) / r.external - 1.0,
+      r.bulk / r.external);
   EXPECT_NEAR(r.internal, stored, 2e-3 * stored) << "internal energy vs stored energy";
   EXPECT_GT(r.bulk, 0.0);
   EXPECT_NEAR(r.kinetic + stored + r.hourglass + r.bulk, r.external, 1e-3 * r.external)

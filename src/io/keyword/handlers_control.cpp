@@ -113,8 +113,8 @@ void control_bulk_viscosity(const Block& block, ReaderContext& context) {
     }
     b.btype = card->flag(3, "BTYPE", 0);
     if (b.btype < 0 || b.btype > 2) {
-      throw card->error("BTYPE", fmt::format("value {} is not a beam bulk viscosity type 0..2",
-                                             b.btype));
+      throw card->error("BTYPE",
+                        fmt::format("value {} is not a beam bulk viscosity type 0..2", b.btype));
     }
     const int tstype = card->flag(4, "TSTYPE", 0);
     if (tstype != 0 && tstype != 1) {
