@@ -17,7 +17,7 @@ struct Block {
   }
 };
 
-Block make_block(int n, int elform, int ihq) {
+Block make_block(int n, int elform, int ihq, bool bulk) {
   Block b;
   const int m = n + 1;
   for (int k = 0; k < m; ++k)
@@ -45,12 +45,14 @@ Block make_block(int n, int elform, int ihq) {
   b.block.elform = elform;
   b.block.hourglass.ihq = ihq;
   b.block.hourglass.qm = ihq == 6 ? 1.0 : 0.1;
+  if (bulk) b.block.bulk_viscosity = {1.5, 0.06};  // LS-DYNA's defaults
   rf::element::initialize_hex_block(b.block, b.view());
   return b;
 }
 
-void run(benchmark::State& state, int elform, int ihq) {
-  Block b = make_block(static_cast<int>(state.range(0)), elform, ihq);
+// `bulk`: with the bulk viscosity of LS-DYNA decks (the field compresses some elements).
+void run(benchmark::State& state, int elform, int ihq, bool bulk = false) {
+  Block b = make_block(static_cast<int>(state.range(0)), elform, ihq, bulk);
   for (auto _ : state) {
     auto r = rf::element::compute_hex_forces(b.block, b.view(), 1e-7);
     benchmark::DoNotOptimize(r);
@@ -74,10 +76,22 @@ void BM_HexElform1Ihq6(benchmark::State& s) {
 void BM_HexElform2(benchmark::State& s) {
   run(s, 2, 0);
 }
+void BM_HexElform1Ihq1Bulk(benchmark::State& s) {
+  run(s, 1, 1, true);
+}
+void BM_HexElform1Ihq6Bulk(benchmark::State& s) {
+  run(s, 1, 6, true);
+}
+void BM_HexElform2Bulk(benchmark::State& s) {
+  run(s, 2, 0, true);
+}
 
 BENCHMARK(BM_HexElform1Ihq1)->Arg(20)->Arg(40)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_HexElform1Ihq2)->Arg(20)->Arg(40)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_HexElform1Ihq6)->Arg(20)->Arg(40)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_HexElform2)->Arg(20)->Arg(40)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_HexElform1Ihq1Bulk)->Arg(20)->Arg(40)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_HexElform1Ihq6Bulk)->Arg(20)->Arg(40)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_HexElform2Bulk)->Arg(20)->Arg(40)->Unit(benchmark::kMillisecond);
 
 }  // namespace

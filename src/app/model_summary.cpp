@@ -88,7 +88,11 @@ void print_model_summary(const model::Model& model, const solver::Simulation& si
         mat.id, mat.keyword, mat.rho, mat.e, mat.pr,
         block.order > 1
             ? std::string()
-            : fmt::format(", hourglass IHQ {} QM {:g}", block.hourglass.ihq, block.hourglass.qm),
+            : fmt::format(", hourglass IHQ {} QM {:g}, {}", block.hourglass.ihq, block.hourglass.qm,
+                          block.bulk_viscosity.on()
+                              ? fmt::format("bulk viscosity Q1 {:g} Q2 {:g}",
+                                            block.bulk_viscosity.q1, block.bulk_viscosity.q2)
+                              : std::string("no bulk viscosity")),
         dt);
   }
   // Shell and beam parts with their sections (and the step of the deformable ones).

@@ -117,12 +117,17 @@ inline void scatter_forces(const int* slots, const double f[3][8], double* out) 
     for (int i = 0; i < 3; ++i) out[3 * slots[k] + i] += f[i][k];
 }
 
-inline double element_time_step(const double x[3][8], double volume, HexShape shape,
-                                double wave_speed) {
+// Characteristic length L_e = V / A_max (tetrahedra: the smallest altitude 3 V / A_max).
+inline double element_length(const double x[3][8], double volume, HexShape shape) {
   const double amax2 = hex::max_face_area_squared(x);
   double length = volume / std::sqrt(amax2);
   if (shape == HexShape::kTetrahedron) length *= 3.0;  // smallest altitude
-  return length / wave_speed;
+  return length;
+}
+
+inline double element_time_step(const double x[3][8], double volume, HexShape shape,
+                                double wave_speed) {
+  return element_length(x, volume, shape) / wave_speed;
 }
 
 using Partial = KernelPartial;
@@ -272,18 +277,12 @@ inline Lanes volume_ratio_cbrt(Lanes j) {
 }
 
 // IHQ 1-3: viscous, Q = C qdot with C = QM rho c V^{2/3} / 4 and rho = rho0 V0 / V;
-// V^{2/3} = (V0^{1/3} J^{1/3})^2.
+// V^{2/3} = r^2 with r = V^{1/3} = V0^{1/3} J^{1/3} (element_length below).
 template <bool kOrthogonal>
-void viscous_hourglass(const HexBlock& block, const Batch& b, double dt, HourglassTerms& h) {
+void viscous_hourglass(const HexBlock& block, double dt, Lanes r, Lanes density,
+                       HourglassTerms& h) {
   Lanes qdot[4][3];
   hourglass_velocities<kOrthogonal>(h, qdot);
-  std::size_t off[kLanes];
-  lane_offsets(b, 1, off);
-  const Lanes v0 = load_lanes(block.volume0.data(), off);
-  const Lanes r0 = load_lanes(block.volume0_cbrt.data(), off);
-  const Lanes inv_v = 1.0 / h.volume;
-  const Lanes r = r0 * volume_ratio_cbrt(h.volume / v0);
-  const Lanes density = block.material.rho * v0 * inv_v;
   const Lanes c = block.hourglass.qm * density * block.material.wave_speed * (r * r) * 0.25;
   Lanes wsum{};
   for (int a = 0; a < 4; ++a)
@@ -400,6 +399,61 @@ inline void store_history(HexBlock& block, std::size_t e, int lane, const Lanes*
   }
 }
 
+// Current density rho0 V0 / V of the batch's elements.
+inline Lanes current_density(const HexBlock& block, const Batch& b, Lanes volume) {
+  std::size_t off[kLanes];
+  lane_offsets(b, 1, off);
+  return block.material.rho * load_lanes(block.volume0.data(), off) * (1.0 / volume);
+}
+
+// Current density rho0 V0 / V and length l = V^{1/3} = V0^{1/3} J^{1/3} of the batch's elements.
+inline void density_and_length(const HexBlock& block, const Batch& b, Lanes volume, Lanes& density,
+                               Lanes& length) {
+  std::size_t off[kLanes];
+  lane_offsets(b, 1, off);
+  const Lanes v0 = load_lanes(block.volume0.data(), off);
+  const Lanes r0 = load_lanes(block.volume0_cbrt.data(), off);
+  density = block.material.rho * v0 * (1.0 / volume);
+  length = r0 * volume_ratio_cbrt(volume / v0);
+}
+
+// Artificial bulk viscosity (LS-DYNA theory manual, "Artificial Bulk Viscosity"; von Neumann &
+// Richtmyer 1950 quadratic term, Landshoff 1955 linear term):
+//   q = rho l (Q1 l e_kk^2 - Q2 c e_kk)  for e_kk < 0,  q = 0 otherwise,
+// e_kk the volumetric strain rate, c the P-wave speed, l the element length. The manual names
+// l = V^{1/3}; we use the time-step length L_e = V / A_max (equal for a cube), because the
+// step formula below, Q = Q2 c + Q1 L_e |e_kk|, is the stability limit of exactly this q: a
+// 1-D element damped by q with length l has Q = (l / L_e)(Q2 c + Q1 l |e_kk|), so with
+// V^{1/3} > L_e (flat elements) the LS-DYNA step would be unstable (seen: a bar of 10:1 plates
+// blew up at TSSFAC 0.9). q is a pressure: it enters
+// the nodal forces as -q on the diagonal of the stress, never the stored stress. With
+// e = min(e_kk, 0) the formula is branch-free. The energy it dissipates over a step is
+// q |e_kk| V dt >= 0 (V the mid-step volume, where e_kk is evaluated).
+inline double bulk_viscosity_pressure(const BulkViscositySettings& bv, double wave_speed,
+                                      double density, double length, double ekk) {
+  const double e = ekk < 0.0 ? ekk : 0.0;
+  return density * length * (bv.q1 * length * e * e - bv.q2 * wave_speed * e);
+}
+inline Lanes bulk_viscosity_pressure(const BulkViscositySettings& bv, double wave_speed,
+                                     Lanes density, Lanes length, Lanes ekk) {
+  const Lanes e = ekk < 0.0 ? ekk : Lanes{};  // lane-wise select, no branch
+  return density * length * (bv.q1 * length * e * e - bv.q2 * wave_speed * e);
+}
+
+// Critical step with bulk viscosity (LS-DYNA theory manual, "Time Step Control", solid
+// elements): dt_e = L_e / (Q + sqrt(Q^2 + c^2)), Q = Q2 c + Q1 L_e |e_kk| while e_kk < 0,
+// Q = 0 otherwise (then dt_e = L_e / sqrt(c^2) = L_e / c exactly, as without viscosity).
+inline double viscous_time_step(const BulkViscositySettings& bv, double c, double length,
+                                double ekk) {
+  const double q = ekk < 0.0 ? bv.q2 * c - bv.q1 * length * ekk : 0.0;
+  return length / (q + std::sqrt(q * q + c * c));
+}
+inline Lanes viscous_time_step(const BulkViscositySettings& bv, double c, Lanes length, Lanes ekk) {
+  const Lanes linear = Lanes{} + bv.q2 * c;
+  const Lanes q = ekk < 0.0 ? linear - bv.q1 * length * ekk : Lanes{};
+  return length / (q + lane_sqrt(q * q + c * c));
+}
+
 // The hourglass forms the kernel is instantiated for (IHQ 3 == 2, IHQ 5 == 4).
 enum class HourglassForm { kViscousLsDyna, kViscousFB, kStiffnessFB, kBelytschkoBindeman };
 
@@ -449,6 +503,25 @@ void elform1_batch(HexBlock& block, std::size_t first, int count, const NodalVie
   load_history<M>(block, b, hist);
   M::update(block.material, block.plastic, d, w, dt, sig, hist);
 
+  // Characteristic length L_e = V / A_max at n+1 (tetrahedra: 3 V / A_max): the critical
+  // step L_e / c and the length of the bulk viscosity.
+  Lanes shape_factor;
+  for (int l = 0; l < kLanes; ++l)
+    shape_factor[l] = block.shape[b.element(l)] == HexShape::kTetrahedron ? 3.0 : 1.0;
+  const Lanes elem_length =
+      vol * shape_factor / lane_sqrt(hex::max_face_area_squared_from_base(ax));
+
+  // Density (and V^{1/3} for the viscous hourglass) at n+1; bulk viscosity pressure.
+  const bool bulk = block.bulk_viscosity.on();
+  Lanes density{}, length{}, q_bulk{}, ekk{};
+  if constexpr (!kStateful) density_and_length(block, b, vol, density, length);
+  if (bulk) {
+    if constexpr (kStateful) density = current_density(block, b, vol);
+    ekk = L[0] + L[4] + L[8];
+    q_bulk = bulk_viscosity_pressure(block.bulk_viscosity, block.material.wave_speed, density,
+                                     elem_length, ekk);
+  }
+
   HourglassTerms h{ax, av, g, vol, {w[0], w[1], w[2]}, {}, {}};
   Lanes state[4][3];
   if constexpr (kStateful) {
@@ -462,7 +535,7 @@ void elform1_batch(HexBlock& block, std::size_t first, int count, const NodalVie
   else if constexpr (kForm == HourglassForm::kBelytschkoBindeman)
     corotational_hourglass(block, dt, state, h);
   else
-    viscous_hourglass<kOrthogonal>(block, b, dt, h);
+    viscous_hourglass<kOrthogonal>(block, dt, length, density, h);
 
   // Nodal forces f_iI = sum_k (P G_k)_i s_k(I) + sum_a Q_ai s_(4+a)(I), P = sigma - T.
   const Lanes P0[3][3] = {
@@ -470,6 +543,8 @@ void elform1_batch(HexBlock& block, std::size_t first, int count, const NodalVie
   Lanes P[3][3];
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) P[i][j] = P0[i][j];
+  if (bulk)
+    for (int i = 0; i < 3; ++i) P[i][i] -= q_bulk;
   if constexpr (kOrthogonal) {
     const Lanes inv_v = 1.0 / vol;
     for (int i = 0; i < 3; ++i)
@@ -487,13 +562,13 @@ void elform1_batch(HexBlock& block, std::size_t first, int count, const NodalVie
   }
   hex::expand_nodal(coef, f);
 
-  // Critical step L_e / c with L_e = V / A_max (tetrahedra: 3 V / A_max).
-  Lanes shape_factor;
-  for (int l = 0; l < kLanes; ++l)
-    shape_factor[l] = block.shape[b.element(l)] == HexShape::kTetrahedron ? 3.0 : 1.0;
-  const Lanes elem_dt =
-      vol * shape_factor /
-      (lane_sqrt(hex::max_face_area_squared_from_base(ax)) * block.material.wave_speed);
+  // Critical step L_e / c, with bulk viscosity L_e / (Q + sqrt(Q^2 + c^2)).
+  Lanes elem_dt = elem_length / block.material.wave_speed;
+  Lanes bulk_work{};
+  if (bulk) {
+    elem_dt = viscous_time_step(block.bulk_viscosity, block.material.wave_speed, elem_length, ekk);
+    bulk_work = -q_bulk * ekk * vm * dt;
+  }
   Lanes fsum{};
   for (int i = 0; i < 3; ++i)
     for (int n = 0; n < 8; ++n) fsum += f[i][n];
@@ -519,6 +594,7 @@ void elform1_batch(HexBlock& block, std::size_t first, int count, const NodalVie
         for (int i = 0; i < 3; ++i) q[3 * a + i] = state[a][i][l];
     }
     part.hourglass_work += h.work[l];
+    part.bulk_viscosity_work += bulk_work[l];
     if (!std::isfinite(fsum[l])) part.record_failure(ie, vol[l]);
     if (b.slots[l] == kIdentitySlots) {
       for (int n = 0; n < 8; ++n)
@@ -645,17 +721,27 @@ void elform2_element(HexBlock& block, std::size_t e, const NodalView& nv, double
       f[2][n] += dzx * bx + dyz * by + dzz * bz;
     }
   }
-  const double pbar = pressure_volume / g.volume;
+  double pbar = pressure_volume / g.volume;
+  // Bulk viscosity on the mean dilatation (see bulk_viscosity_pressure).
+  const BulkViscositySettings& bv = block.bulk_viscosity;
+  double q_bulk = 0.0;
+  const double length = element_length(x, g.volume, block.shape[e]);
+  if (bv.on()) {
+    const double density = block.material.rho * block.volume0[e] / g.volume;
+    q_bulk = bulk_viscosity_pressure(bv, block.material.wave_speed, density, length, div_bar);
+    pbar -= q_bulk;
+    part.bulk_viscosity_work += -q_bulk * div_bar * gm.volume * dt;
+  }
   for (int i = 0; i < 3; ++i)
     for (int n = 0; n < 8; ++n) f[i][n] += pbar * g.b[i][n];
 
   if (inverted || !finite_forces(f)) part.record_failure(static_cast<std::int64_t>(e), g.volume);
   scatter_forces(slots, f, out);
-  const auto ie = static_cast<std::int64_t>(e);
-  part.record_dt(
-      scaled_step(block.step_scale, ie,
-                  element_time_step(x, g.volume, block.shape[e], block.material.wave_speed)),
-      ie);
+  const double speed = block.material.wave_speed;
+  part.record_dt(scaled_step(block.step_scale, static_cast<std::int64_t>(e),
+                             bv.on() ? viscous_time_step(bv, speed, length, div_bar)
+                                     : length / speed),
+                 static_cast<std::int64_t>(e));
 }
 
 HexShape detect_shape(const std::int32_t* c) {

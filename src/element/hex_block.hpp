@@ -47,12 +47,22 @@ struct HourglassSettings {
   double qm = 0.1;  // coefficient
 };
 
+// Artificial bulk viscosity of a block (part *HOURGLASS Q1/Q2, else *CONTROL_BULK_VISCOSITY;
+// docs/theory.md): q = rho l (q1 l e_kk^2 - q2 c e_kk) while the volume shrinks (e_kk < 0).
+// Both zero: off (IMPETUS decks, Lagrange hexahedra).
+struct BulkViscositySettings {
+  double q1 = 0.0;  // quadratic coefficient
+  double q2 = 0.0;  // linear coefficient
+  bool on() const { return q1 > 0.0 || q2 > 0.0; }
+};
+
 struct HexBlock {
   model::Id part_id = 0;
   int part_index = 0;
   int elform =
       1;  // 1: one-point + hourglass; 2: selective-reduced (2x2x2 deviatoric, 1pt volumetric)
   HourglassSettings hourglass;
+  BulkViscositySettings bulk_viscosity;
   // Elastic constants of every material (wave speed, hourglass, contact stiffness), then the
   // material's own: index in material::SolidMaterials (material/registry.hpp) selects the stress
   // update once per block; plasticity parameters for the J2 materials.
@@ -118,6 +128,7 @@ struct HexBlock {
 // What one pass of a kernel over a block reports back to the solver.
 struct KernelResult {
   double hourglass_work = 0.0;       // work done by hourglass forces this step (energy units)
+  double bulk_viscosity_work = 0.0;  // work done by the bulk viscosity pressure this step
   double min_dt = 1e300;             // smallest critical step over the block (no TSSFAC)
   std::int64_t min_dt_element = -1;  // index within the block
   bool failed = false;               // negative/zero volume or non-finite result

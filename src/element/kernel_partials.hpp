@@ -16,6 +16,7 @@ namespace rf::element {
 
 struct alignas(64) KernelPartial {
   double hourglass_work = 0.0;
+  double bulk_viscosity_work = 0.0;
   double min_dt = 1e300;
   std::int64_t min_dt_element = -1;
   std::int64_t failed_element = -1;
@@ -49,6 +50,7 @@ inline KernelResult combine_partials(const KernelPartials& partials, int threads
   for (int t = 0; t < threads; ++t) {
     const KernelPartial& p = partials[t];
     r.hourglass_work += p.hourglass_work;
+    r.bulk_viscosity_work += p.bulk_viscosity_work;
     if (p.min_dt < r.min_dt) {
       r.min_dt = p.min_dt;
       r.min_dt_element = p.min_dt_element;

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -212,8 +213,10 @@ struct Hourglass {
   Id id = 0;
   int ihq = 0;      // 0: use *CONTROL_HOURGLASS default
   double qm = 0.1;  // hourglass coefficient
-  double q1 = 1.5;  // bulk viscosity (read, kept for later)
-  double q2 = 0.06;
+  // Bulk viscosity coefficients of the parts that use this card; NaN (field blank): the
+  // *CONTROL_BULK_VISCOSITY value (docs/keywords.md).
+  double q1 = std::numeric_limits<double>::quiet_NaN();
+  double q2 = std::numeric_limits<double>::quiet_NaN();
   double qb = 0.0;
   double qw = 0.0;
   SourceLocation where;
@@ -704,6 +707,16 @@ struct HourglassControl {
   double qh = 0.1;
 };
 
+// *CONTROL_BULK_VISCOSITY: artificial bulk viscosity of solid elements (docs/theory.md). On by
+// default in LS-DYNA decks with LS-DYNA's defaults; IMPETUS decks have none (docs/impetus.md).
+struct BulkViscosityControl {
+  double q1 = 1.5;       // quadratic coefficient
+  double q2 = 0.06;      // linear coefficient
+  int type = 1;          // 1, or -1/-2 (LS-DYNA: also shells; accepted only without shells)
+  int btype = 0;         // beams (0 only when the model has beams)
+  SourceLocation where;  // the card, when the deck has one
+};
+
 // *DATABASE_CROSS_SECTION_PLANE(_ID) (docs/output.md#secforccsv): a cutting plane through the
 // parts of a part set, whose transmitted force and moment go to secforc.csv.
 struct CrossSection {
@@ -842,6 +855,7 @@ struct Model {
   Termination termination;
   TimestepControl timestep;
   HourglassControl hourglass_control;
+  BulkViscosityControl bulk_viscosity;
   OutputControl output;
   ImplicitControl implicit;
 

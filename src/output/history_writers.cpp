@@ -19,6 +19,7 @@ std::string matsum_text(double time, const std::vector<solver::PartSummary>& par
     for (double v : p.momentum) fmt::format_to(out, ",{:.17g}", v);
     for (double v : p.rigid_velocity) fmt::format_to(out, ",{:.17g}", v);
     fmt::format_to(out, ",{:.17g}", p.added_mass);
+    fmt::format_to(out, ",{:.17g}", p.bulk_viscosity_energy);
     text.push_back('\n');
   }
   return fmt::to_string(text);

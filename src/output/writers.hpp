@@ -37,6 +37,7 @@ struct GlstatRow {
   double damping_work = 0.0;  // the part of external_work done by *DAMPING_* (negative)
   double added_mass = 0.0;    // mass scaling: mass added to the deformable nodes so far
   double mass_scaling_work = 0.0;  // the part of external_work: 1/2 dm v^2 of mass added in the run
+  double bulk_viscosity_energy = 0.0;  // dissipated by the bulk viscosity (not in internal)
 };
 
 // Plain CSV file with a fixed header; rows are buffered and reach the file whole (never a
@@ -96,7 +97,7 @@ inline constexpr std::string_view kGlstatHeader =
     "time,dt,cycle,kinetic_energy,internal_energy,hourglass_energy,external_work,total_energy,"
     "energy_ratio,momentum_x,momentum_y,momentum_z,angular_momentum_x,angular_momentum_y,"
     "angular_momentum_z,switch_energy,frozen_energy,rigidwall_work,contact_energy,modal_energy,"
-    "damping_work,added_mass,mass_scaling_work";
+    "damping_work,added_mass,mass_scaling_work,bulk_viscosity_energy";
 inline constexpr std::string_view kNodoutHeader = "time,node,x,y,z,vx,vy,vz,ax,ay,az";
 inline constexpr std::string_view kRbdoutHeader =
     "time,body,mass,x,y,z,vx,vy,vz,ax,ay,az,wx,wy,wz,r11,r12,r13,r21,r22,r23,r31,r32,r33";

@@ -47,6 +47,7 @@ void SimulationAccess::write_members(Simulation& s, const Group& g) {
   g.set("energy_kinetic", e.kinetic);
   g.set("energy_internal_work", e.internal_work);
   g.set("energy_hourglass", e.hourglass);
+  g.set("energy_bulk_viscosity", e.bulk_viscosity);
   g.set("energy_external_work", e.external_work);
   g.set("energy_initial_total", e.initial_total);
   g.set("energy_switch", e.switch_energy);
@@ -87,6 +88,8 @@ void SimulationAccess::read_members(Simulation& s, const Group& g) {
   e.kinetic = g.get_double("energy_kinetic");
   e.internal_work = g.get_double("energy_internal_work");
   e.hourglass = g.get_double("energy_hourglass");
+  e.bulk_viscosity =
+      g.has_attribute("energy_bulk_viscosity") ? g.get_double("energy_bulk_viscosity") : 0.0;
   e.external_work = g.get_double("energy_external_work");
   e.initial_total = g.get_double("energy_initial_total");
   e.switch_energy = g.get_double("energy_switch");
@@ -137,6 +140,8 @@ void SimulationAccess::write_output(Simulation& s, const Group& g) {
     const auto& hourglass = s.part_histories_->hourglass();
     g.write("part_internal_work", std::span<const double>(work.data(), work.size()));
     g.write("part_hourglass", std::span<const double>(hourglass.data(), hourglass.size()));
+    const auto& bulk = s.part_histories_->bulk_viscosity();
+    g.write("part_bulk_viscosity", std::span<const double>(bulk.data(), bulk.size()));
   }
   write_schedule(g, "glstat", s.glstat_schedule_.interval, s.glstat_schedule_.next,
                  s.glstat_schedule_.last_cycle);
@@ -191,6 +196,14 @@ void SimulationAccess::read_output(Simulation& s, const Group& g) {
     }
     work.assign(dumped_work.begin(), dumped_work.end());
     hourglass.assign(dumped_hourglass.begin(), dumped_hourglass.end());
+    if (g.has("part_bulk_viscosity")) {
+      const auto dumped_bulk = g.read_doubles("part_bulk_viscosity");
+      auto& bulk = s.part_histories_->bulk_viscosity();
+      if (dumped_bulk.size() != bulk.size()) {
+        g.fail("part_bulk_viscosity", "the number of parts differs from the dumped run's");
+      }
+      bulk.assign(dumped_bulk.begin(), dumped_bulk.end());
+    }
   }
   if (s.fields_) {
     const auto frames = read_frames(g);

@@ -188,6 +188,25 @@ element::HourglassSettings resolve_hourglass(const model::Model& model, const mo
   return hg;
 }
 
+// LS-DYNA decks: *CONTROL_BULK_VISCOSITY (on with LS-DYNA's defaults when absent), the part's
+// *HOURGLASS Q1/Q2 where given. IMPETUS decks: none (docs/impetus.md). Order > 1 (Lagrange
+// hexahedra): not applied (docs/theory.md).
+element::BulkViscositySettings resolve_bulk_viscosity(const model::Model& model,
+                                                      const model::Part& part) {
+  element::BulkViscositySettings bv;
+  if (model.dialect == "impetus") return bv;
+  bv.q1 = model.bulk_viscosity.q1;
+  bv.q2 = model.bulk_viscosity.q2;
+  if (part.hgid != 0) {
+    const auto it = model.hourglass.find(part.hgid);
+    if (it != model.hourglass.end()) {
+      if (!std::isnan(it->second.q1)) bv.q1 = it->second.q1;
+      if (!std::isnan(it->second.q2)) bv.q2 = it->second.q2;
+    }
+  }
+  return bv;
+}
+
 ResolvedMaterial resolve_material(const model::Model& model, const model::Part& part,
                                   unsigned family, const char* family_name) {
   const auto mat_it = model.materials.find(part.mid);
@@ -238,6 +257,22 @@ std::int32_t NodeIndex::at(model::Id id, const model::SourceLocation& where,
 }
 
 State build_state(const model::Model& model, const NodeIndex& node_index) {
+  // LS-DYNA's TYPE -1/-2 add bulk viscosity to shells and BTYPE 1/2 to beams; RigidFlex applies
+  // it to solids only, so those values are accepted only where they change nothing.
+  const model::BulkViscosityControl& bulk = model.bulk_viscosity;
+  if (bulk.type < 0 && !model.shells.empty()) {
+    throw InputError(context_of(bulk.where, "TYPE"),
+                     fmt::format("bulk viscosity TYPE {} also acts on shells, which is not "
+                                 "supported (the model has {} shell elements): use TYPE 1 "
+                                 "(solids only)",
+                                 bulk.type, model.shells.size()));
+  }
+  if (bulk.btype != 0 && !model.beams.empty()) {
+    throw InputError(context_of(bulk.where, "BTYPE"),
+                     fmt::format("bulk viscosity in beams (BTYPE {}) is not supported (the model "
+                                 "has {} beam elements): use BTYPE 0",
+                                 bulk.btype, model.beams.size()));
+  }
   State state;
   NodalState& nodes = state.nodes;
   const std::size_t model_nodes = model.nodes.size();
@@ -296,6 +331,8 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
     block.order = part_order(model, pid);
     // Rigid parts: the section and hourglass do not matter; E and PR only for contact later.
     if (!block.rigid) block.hourglass = resolve_hourglass(model, part);
+    if (!block.rigid && block.order == 1)
+      block.bulk_viscosity = resolve_bulk_viscosity(model, part);
     block.material = material::make_elastic(mat.rho, mat.e, mat.pr);
     if (!block.rigid) {
       // The registry says which element families the material runs on (material/registry.hpp).

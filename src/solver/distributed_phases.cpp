@@ -40,8 +40,9 @@ void Simulation::start_distributed_run() {
     refuse(model.part_modes.begin()->second.where, "PID", "a flexible body (*PART_MODES)");
   }
   distribution_ = std::make_unique<parallel::ElementDistribution>(parallel::world(), state_);
+  // Hourglass work per block (hexahedra, shells, beams), then the bulk viscosity's per block.
   rank_block_work_.assign(
-      state_.hex_blocks.size() + state_.shell_blocks.size() + state_.beam_blocks.size(), 0.0);
+      2 * (state_.hex_blocks.size() + state_.shell_blocks.size() + state_.beam_blocks.size()), 0.0);
   // matsum's part work is summed over the ranks at output times, so every rank keeps its share.
   if (model.output.matsum && !part_histories_)
     part_histories_ = std::make_unique<PartHistories>(state_, rigid_);
@@ -50,8 +51,9 @@ void Simulation::start_distributed_run() {
 void Simulation::sum_partial_forces_across_ranks() {
   const parallel::Communicator& comm = distribution_->communicator();
   distribution_->sum_partial_forces(state_, &rank_block_work_);
-  // The hourglass work in block order, as one process adds it.
-  for (std::size_t b = 0; b < rank_block_work_.size(); ++b) {
+  // The hourglass and bulk viscosity work in block order, as one process adds them.
+  const std::size_t blocks = rank_block_work_.size() / 2;
+  for (std::size_t b = 0; b < blocks; ++b) {
     const bool hex = b < state_.hex_blocks.size();
     if (hex ? state_.hex_blocks[b].rigid
             : (b < state_.hex_blocks.size() + state_.shell_blocks.size()
@@ -60,7 +62,9 @@ void Simulation::sum_partial_forces_across_ranks() {
                          .rigid))
       continue;
     energy_.hourglass += rank_block_work_[b];
-    if (hex && part_histories_) part_histories_->add_hourglass(b, rank_block_work_[b]);
+    energy_.bulk_viscosity += rank_block_work_[blocks + b];
+    if (hex && part_histories_)
+      part_histories_->add_hourglass(b, rank_block_work_[b], rank_block_work_[blocks + b]);
   }
   parallel::StepAgreement a;
   if (std::isfinite(element_dt_)) {

@@ -86,6 +86,7 @@ bool scale_masses(MassScaling& scaling, State& state, const std::vector<std::int
   const double target = scaling.target_step;
   bool changed = false;
   double min_step = std::numeric_limits<double>::infinity();
+  double old_min_step = std::numeric_limits<double>::infinity();
   model::Id min_element = controlling_element;
   std::vector<double> raw;
   auto rescale = [&](auto& blocks, std::vector<std::vector<double>>& factors) {
@@ -99,6 +100,7 @@ bool scale_masses(MassScaling& scaling, State& state, const std::vector<std::int
       if (block.step_scale.empty()) block.step_scale.assign(block.size(), 1.0);
       for (std::size_t e = 0; e < block.size(); ++e) {
         if (!(raw[e] > 0.0)) continue;  // a failed element: the breakdown check reports it
+        old_min_step = std::min(old_min_step, raw[e] * block.step_scale[e]);
         const double needed = (target / raw[e]) * (target / raw[e]);
         const double factor = start && scaling.uniform_start ? needed : std::max(s[e], needed);
         if (factor != s[e]) {
@@ -117,9 +119,16 @@ bool scale_masses(MassScaling& scaling, State& state, const std::vector<std::int
   rescale(state.hex_blocks, scaling.hex_factor);
   rescale(state.shell_blocks, scaling.shell_factor);
   rescale(state.beam_blocks, scaling.beam_factor);
-  element_dt = min_step;
+  if (!changed) return false;  // the kernels' step stands (it may include bulk viscosity)
+  // The kernels' step is the elastic step times the bulk viscosity's reduction of a compressing
+  // element (hex_block.cpp); the steps here are elastic only. The reduction seen at the
+  // smallest step is carried over to the new smallest step, so the step never exceeds what the
+  // kernels would report.
+  const double viscous_share =
+      std::isfinite(element_dt) && old_min_step > 0.0 ? std::min(1.0, element_dt / old_min_step)
+                                                      : 1.0;
+  element_dt = min_step * viscous_share;
   controlling_element = min_element;
-  if (!changed) return false;
 
   // Nodal masses and inertias from scratch: physical plus every element's (s_e - 1) shares.
   NodalState& nodes = state.nodes;

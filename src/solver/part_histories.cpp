@@ -25,6 +25,7 @@ PartHistories::PartHistories(const State& state, const RigidSystem& rigid) {
   }
   internal_work_.assign(parts_.size(), 0.0);
   hourglass_.assign(parts_.size(), 0.0);
+  bulk_viscosity_.assign(parts_.size(), 0.0);
 }
 
 void PartHistories::add_step_work(const State& state, const RigidSystem& rigid, const Vec3Array& vp,
@@ -85,8 +86,9 @@ std::vector<PartSummary> PartHistories::summaries(const State& state,
   std::vector<PartSummary> rows(parts_.size());
   for (std::size_t p = 0; p < parts_.size(); ++p) {
     rows[p].part = parts_[p];
-    rows[p].internal_energy = internal_work_[p] - hourglass_[p];
+    rows[p].internal_energy = internal_work_[p] - hourglass_[p] - bulk_viscosity_[p];
     rows[p].hourglass_energy = hourglass_[p];
+    rows[p].bulk_viscosity_energy = bulk_viscosity_[p];
   }
   const NodalState& nodes = state.nodes;
   for (std::size_t i = 0; i < nodes.size(); ++i) {

@@ -18,6 +18,7 @@ struct PartSummary {
   double internal_energy = 0.0;  // work of the part's element forces, hourglass excluded
   double kinetic_energy = 0.0;
   double hourglass_energy = 0.0;
+  double bulk_viscosity_energy = 0.0;  // excluded from internal_energy
   std::array<double, 3> momentum{};
   std::array<double, 3> rigid_velocity{};  // centre-of-mass velocity of a rigid part, else 0
   double added_mass = 0.0;  // mass scaling: mass added to the part's elements (solver/mass_scaling)
@@ -37,14 +38,18 @@ class PartHistories {
   // (v_previous = v^{n-1/2}, state.nodes.v = v^{n+1/2}, dt_average as in the global balance).
   void add_step_work(const State& state, const RigidSystem& rigid, const Vec3Array& v_previous,
                      double dt_average);
-  // Hourglass work of hex block `block` in the last force evaluation.
-  void add_hourglass(std::size_t block, double work) { hourglass_[part_of_block_[block]] += work; }
+  // Hourglass and bulk viscosity work of hex block `block` in the last force evaluation.
+  void add_hourglass(std::size_t block, double work, double bulk_viscosity_work) {
+    hourglass_[part_of_block_[block]] += work;
+    bulk_viscosity_[part_of_block_[block]] += bulk_viscosity_work;
+  }
 
   std::vector<PartSummary> summaries(const State& state, const RigidSystem& rigid) const;
 
   // Accumulated per-part work (restart dumps).
   std::vector<double>& internal_work() { return internal_work_; }
   std::vector<double>& hourglass() { return hourglass_; }
+  std::vector<double>& bulk_viscosity() { return bulk_viscosity_; }
 
  private:
   std::vector<model::Id> parts_;       // ascending part IDs (then nodal rigid body PIDs)
@@ -52,6 +57,7 @@ class PartHistories {
   std::vector<int> owner_of_node_;     // node -> index into parts_ (-1: no element)
   std::vector<double> internal_work_;  // per part, hourglass included
   std::vector<double> hourglass_;      // per part
+  std::vector<double> bulk_viscosity_;  // per part
   Vec3Array displacement_;             // scratch: the step's work displacement per node
 };
 

@@ -896,6 +896,7 @@ void Simulation::write_output_if_due(bool force) {
     row.damping_work = energy_.damping_work;
     row.added_mass = mass_scaling_.added_mass;
     row.mass_scaling_work = mass_scaling_.mass_scaling_work;
+    row.bulk_viscosity_energy = energy_.bulk_viscosity;
     glstat_->write(row);
     glstat_schedule_.mark_written(t, cycle);
   }
@@ -1046,11 +1047,14 @@ void Simulation::compute_internal_forces() {
     element::HexBlock& block = state_.hex_blocks[b];
     if (block.rigid) continue;  // moved by its body; no stress, no step limit
     const element::KernelResult r = element::compute_block_forces(block, view, state_.dt);
-    if (distribution_) {  // summed over the ranks first
+    if (distribution_) {  // summed over the ranks first (viscosity in the second half)
       rank_block_work_[b] = r.hourglass_work;
+      rank_block_work_[rank_block_work_.size() / 2 + b] = r.bulk_viscosity_work;
     } else {
       energy_.hourglass += r.hourglass_work;
-      if (part_histories_) part_histories_->add_hourglass(b, r.hourglass_work);
+      energy_.bulk_viscosity += r.bulk_viscosity_work;
+      if (part_histories_)
+        part_histories_->add_hourglass(b, r.hourglass_work, r.bulk_viscosity_work);
     }
     if (r.failed && breakdown_message_.empty()) {
       breakdown_message_ = fmt::format(
@@ -1226,8 +1230,9 @@ void Simulation::select_time_step() {
           dt, initial_dt_, state_.time, controlling_element_));
     }
   }
-  // Land exactly on the termination time.
-  if (end_time_ > 0.0 && state_.time + dt > end_time_ && end_time_ - state_.time > 1e-3 * dt) {
+  // Land exactly on the termination time: shorten the step, or stretch it by at most 0.1 %
+  // rather than leave a remainder below 1e-3 dt (which was then overshot by a whole step).
+  if (end_time_ > 0.0 && state_.time + dt * (1.0 + 1e-3) > end_time_ && end_time_ > state_.time) {
     dt = end_time_ - state_.time;
   }
   state_.dt_prev = state_.dt;

@@ -53,6 +53,8 @@ struct EnergyAccount {
   double kinetic = 0.0;
   double internal_work = 0.0;  // work of internal forces, hourglass included
   double hourglass = 0.0;      // hourglass part of internal_work
+  // Bulk viscosity part of internal_work (energy the artificial viscosity has dissipated).
+  double bulk_viscosity = 0.0;
   double external_work = 0.0;  // loads, body forces and reactions
   // The part of external_work done by rigid walls (their forces are in f_ext).
   double rigidwall_work = 0.0;
@@ -74,7 +76,7 @@ struct EnergyAccount {
   double momentum[3] = {0, 0, 0};
   double angular_momentum[3] = {0, 0, 0};
 
-  double internal() const { return internal_work - hourglass + modal_elastic; }
+  double internal() const { return internal_work - hourglass - bulk_viscosity + modal_elastic; }
   double total() const {
     return kinetic + internal_work + modal_elastic + switch_energy + contact_energy;
   }

@@ -83,6 +83,7 @@ inline DenseModel dense_stiffness(const solver::Simulation& sim) {
                                   v[2].data()};
     for (const auto& original : state.hex_blocks) {
       element::HexBlock block = original;  // fresh stresses
+      block.bulk_viscosity = {};           // a damping, not stiffness: the unit rate would swamp K
       std::fill(block.stress.begin(), block.stress.end(), 0.0);
       std::fill(block.hourglass_state.begin(), block.hourglass_state.end(), 0.0);
       element::compute_block_forces(block, view, eps);

@@ -122,6 +122,38 @@ void control_hourglass(const Block& block, ReaderContext& context) {
   warn_unread_lines(block, cursor, context);
 }
 
+// *CONTROL_BULK_VISCOSITY Q1 Q2 TYPE BTYPE TSTYPE (docs/keywords.md). TYPE -1/-2 add shells
+// in LS-DYNA, which RigidFlex does not do: they are accepted only for models without shells
+// (checked when the model is built, as is BTYPE for beams). TYPE 2 (2-D solids) is an error.
+void control_bulk_viscosity(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  auto& b = context.model.bulk_viscosity;
+  b.where = block.location();
+  if (const auto card = single_card(block, cursor)) {
+    b.where = card->location();
+    b.q1 = non_negative(*card, 0, "Q1", 1.5);
+    b.q2 = non_negative(*card, 1, "Q2", 0.06);
+    b.type = card->flag(2, "TYPE", 1);
+    if (b.type == 0) b.type = 1;
+    if (b.type != 1 && b.type != -1 && b.type != -2) {
+      throw card->error("TYPE", fmt::format("bulk viscosity type {} is not supported (1; -1 and "
+                                            "-2 only for models without shells; 2 is for 2-D "
+                                            "solids)",
+                                            b.type));
+    }
+    b.btype = card->flag(3, "BTYPE", 0);
+    if (b.btype < 0 || b.btype > 2) {
+      throw card->error("BTYPE",
+                        fmt::format("value {} is not a beam bulk viscosity type 0..2", b.btype));
+    }
+    const int tstype = card->flag(4, "TSTYPE", 0);
+    if (tstype != 0 && tstype != 1) {
+      throw card->error("TSTYPE", fmt::format("value {} is not 0 or 1", tstype));
+    }
+  }
+  warn_unread_lines(block, cursor, context);
+}
+
 // *CONTROL_SHELL: the fields that change the shell physics are read and checked; values this
 // solver does not implement are errors (docs/keywords.md).
 void control_shell(const Block& block, ReaderContext& context) {

@@ -637,8 +637,9 @@ void hourglass(const Block& block, ReaderContext& context) {
     h.id = positive_id(card, 0, "HGID", "hourglass");
     h.ihq = card.flag(1, "IHQ", 0);
     h.qm = card.real(2, "QM", 0.1);
-    h.q1 = card.real(4, "Q1", 1.5);
-    h.q2 = card.real(5, "Q2", 0.06);
+    // Blank Q1/Q2 keep NaN: the parts then use *CONTROL_BULK_VISCOSITY's coefficients.
+    if (!card.blank(4)) h.q1 = card.real(4, "Q1", 1.5);
+    if (!card.blank(5)) h.q2 = card.real(5, "Q2", 0.06);
     h.qb = card.real(6, "QB", h.qm);
     h.qw = card.real(7, "QW", h.qm);
     h.where = card.location();
@@ -646,6 +647,8 @@ void hourglass(const Block& block, ReaderContext& context) {
       throw card.error("IHQ", fmt::format("value {} is not a hourglass type 0..10", h.ihq));
     }
     if (h.qm < 0.0) throw card.error("QM", fmt::format("value {} must not be negative", h.qm));
+    if (h.q1 < 0.0) throw card.error("Q1", fmt::format("value {} must not be negative", h.q1));
+    if (h.q2 < 0.0) throw card.error("Q2", fmt::format("value {} must not be negative", h.q2));
     check_unique(context.model.hourglass, h.id, card, "HGID", "hourglass");
     context.model.hourglass.emplace(h.id, std::move(h));
   } while (!only_blank_lines_left(cursor, block));

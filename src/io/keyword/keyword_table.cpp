@@ -94,6 +94,7 @@ const std::vector<KeywordEntry>& table() {
       {"*CONTROL_TERMINATION", control_termination, {}},
       {"*CONTROL_TIMESTEP", control_timestep, {}},
       {"*CONTROL_HOURGLASS", control_hourglass, {}},
+      {"*CONTROL_BULK_VISCOSITY", control_bulk_viscosity, {}},
       {"*CONTROL_IMPLICIT_GENERAL", control_implicit_general, {}},
       {"*CONTROL_IMPLICIT_EIGENVALUE", control_implicit_eigenvalue, {}},
       {"*DATABASE_GLSTAT", database_ascii, {}},
