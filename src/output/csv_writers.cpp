@@ -145,7 +145,8 @@ void GlstatWriter::write(const GlstatRow& row) {
                          row.momentum[0],         row.momentum[1],         row.momentum[2],
                          row.angular_momentum[0], row.angular_momentum[1], row.angular_momentum[2],
                          row.switch_energy,       row.frozen_energy,       row.rigidwall_work,
-                         row.contact_energy,      row.modal_energy,        row.damping_work};
+                         row.contact_energy,      row.modal_energy,        row.damping_work,
+                         row.spring_energy,       row.damper_energy};
   bool first = true;
   for (double value : rest) {
     if (!first) line.push_back(',');

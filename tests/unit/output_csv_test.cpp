@@ -71,6 +71,8 @@ TEST(OutputCsv, GlstatHeaderAndBitExactValues) {
   row.contact_energy = 1.0 / 9.0;
   row.modal_energy = 2.0 / 9.0;
   row.damping_work = -4.0 / 11.0;
+  row.spring_energy = 3.0 / 13.0;
+  row.damper_energy = 5.0 / 17.0;
   GlstatRow second = row;
   second.time = 2.0 / 3.0;
   second.cycle = 7;
@@ -85,9 +87,9 @@ TEST(OutputCsv, GlstatHeaderAndBitExactValues) {
             "time,dt,cycle,kinetic_energy,internal_energy,hourglass_energy,external_work,"
             "total_energy,energy_ratio,momentum_x,momentum_y,momentum_z,angular_momentum_x,"
             "angular_momentum_y,angular_momentum_z,switch_energy,frozen_energy,rigidwall_work,"
-            "contact_energy,modal_energy,damping_work");
+            "contact_energy,modal_energy,damping_work,spring_energy,damper_energy");
   const auto f = split_csv(lines[1]);
-  ASSERT_EQ(f.size(), 21u);
+  ASSERT_EQ(f.size(), 23u);
   expect_bits(f[0], row.time);
   expect_bits(f[1], row.dt);
   EXPECT_EQ(f[2], "123456789012");
@@ -96,8 +98,9 @@ TEST(OutputCsv, GlstatHeaderAndBitExactValues) {
                          row.momentum[0],         row.momentum[1],         row.momentum[2],
                          row.angular_momentum[0], row.angular_momentum[1], row.angular_momentum[2],
                          row.switch_energy,       row.frozen_energy,       row.rigidwall_work,
-                         row.contact_energy,      row.modal_energy,        row.damping_work};
-  for (int i = 0; i < 18; ++i) expect_bits(f[3 + i], rest[i]);
+                         row.contact_energy,      row.modal_energy,        row.damping_work,
+                         row.spring_energy,       row.damper_energy};
+  for (int i = 0; i < 20; ++i) expect_bits(f[3 + i], rest[i]);
   const auto g = split_csv(lines[2]);
   ASSERT_EQ(g.size(), 21u);
   expect_bits(g[0], second.time);
