@@ -59,8 +59,8 @@ struct DiscreteBlock {
   // The same sum as the internal energy, so kinetic + spring + damper energy balances exactly.
   double spring_energy = 0.0;
   double damper_energy = 0.0;
-  // Energy the springs hold at time zero from their OFFSET (their internal work may fall by as
-  // much below zero without any instability).
+  // Energy the springs hold at time zero from their OFFSET (not part of the energy sums, which
+  // start at zero: the springs' work may fall by as much below zero).
   double preload_energy = 0.0;
 
   std::size_t size() const { return element_id.size(); }

@@ -551,14 +551,17 @@ void write_hex_blocks(const Group& g, const std::vector<element::HexBlock>& bloc
 
 void write_discrete_blocks(const Group& g, const std::vector<element::DiscreteBlock>& blocks) {
   std::vector<std::int64_t> part_id, size;
-  std::vector<double> spring_energy, damper_energy, axial_force;
+  std::vector<double> spring_energy, damper_energy, axial_force, force;
   for (const auto& block : blocks) {
     part_id.push_back(block.part_id);
     size.push_back(static_cast<std::int64_t>(block.size()));
     spring_energy.push_back(block.spring_energy);
     damper_energy.push_back(block.damper_energy);
     axial_force.insert(axial_force.end(), block.axial_force.begin(), block.axial_force.end());
+    force.insert(force.end(), block.force.begin(), block.force.end());
   }
+  // The slots of the last evaluation: the next step's work (spring and damper energy) uses them.
+  g.write("force", std::span<const double>(force));
   g.write("part_id", std::span<const std::int64_t>(part_id));
   g.write("size", std::span<const std::int64_t>(size));
   g.write("spring_energy", std::span<const double>(spring_energy));
@@ -572,11 +575,12 @@ void read_discrete_blocks(const Group& g, std::vector<element::DiscreteBlock>& b
   const std::vector<double> spring_energy = g.read_doubles("spring_energy");
   const std::vector<double> damper_energy = g.read_doubles("damper_energy");
   const std::vector<double> axial_force = g.read_doubles("axial_force");
+  const std::vector<double> force = g.read_doubles("force");
   std::size_t total = 0;
   for (const auto& block : blocks) total += block.size();
   if (part_id.size() != blocks.size() || size.size() != blocks.size() ||
       spring_energy.size() != blocks.size() || damper_energy.size() != blocks.size() ||
-      axial_force.size() != total) {
+      axial_force.size() != total || force.size() != element::kDiscreteSlot * total) {
     g.fail("part_id", fmt::format("describes {} discrete blocks, the model rebuilt from the "
                                   "dump's deck has {}",
                                   part_id.size(), blocks.size()));
@@ -594,6 +598,9 @@ void read_discrete_blocks(const Group& g, std::vector<element::DiscreteBlock>& b
     std::copy(axial_force.begin() + static_cast<std::ptrdiff_t>(at),
               axial_force.begin() + static_cast<std::ptrdiff_t>(at + block.size()),
               block.axial_force.begin());
+    std::copy(force.begin() + static_cast<std::ptrdiff_t>(element::kDiscreteSlot * at),
+              force.begin() + static_cast<std::ptrdiff_t>(element::kDiscreteSlot * (at + block.size())),
+              block.force.begin());
     at += block.size();
   }
 }

@@ -57,8 +57,8 @@ void read_nodes(const io::h5::Group& g, solver::NodalState& nodes, solver::Vec3A
 void write_hex_blocks(const io::h5::Group& g, const std::vector<element::HexBlock>& blocks);
 void read_hex_blocks(const io::h5::Group& g, std::vector<element::HexBlock>& blocks);
 
-// Discrete elements (springs, dampers): their forces follow from the nodal state, so only the
-// energies (the damper's is cumulative) and the last axial forces are kept, per block.
+// Discrete elements (springs, dampers): the work sums (spring and damper energy), the last axial
+// forces and force slots (the next step's work uses them), per block.
 void write_discrete_blocks(const io::h5::Group& g,
                            const std::vector<element::DiscreteBlock>& blocks);
 void read_discrete_blocks(const io::h5::Group& g, std::vector<element::DiscreteBlock>& blocks);

@@ -286,6 +286,12 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
     }
     const model::Material& mat = mat_it->second;
     const int material_index = material::material_index(mat.kind);
+    if (model::is_discrete_material(mat.kind)) {
+      throw InputError(context_of(part.where, "MID"),
+                       fmt::format("part {} has solid elements but its material {} is a {}, "
+                                   "which serves only *ELEMENT_DISCRETE parts",
+                                   pid, mat.id, mat.keyword));
+    }
     if (material_index < 0 && mat.kind != model::MaterialKind::Rigid) {
       throw InputError(context_of(mat.where, "MID"),
                        fmt::format("part {} uses {} (material {}), which this version does not "

@@ -102,7 +102,7 @@ TEST(OutputCsv, GlstatHeaderAndBitExactValues) {
                          row.spring_energy,       row.damper_energy};
   for (int i = 0; i < 20; ++i) expect_bits(f[3 + i], rest[i]);
   const auto g = split_csv(lines[2]);
-  ASSERT_EQ(g.size(), 21u);
+  ASSERT_EQ(g.size(), 23u);
   expect_bits(g[0], second.time);
   EXPECT_EQ(g[2], "7");
 }
