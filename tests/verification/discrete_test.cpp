@@ -277,6 +277,36 @@ TEST(Discrete, OffsetGivesTensionAtTimeZero) {
   EXPECT_LT(v.x[1] * s.tip[0] + v.z[1] * s.tip[2], 0.0);
 }
 
+// *MAT_SPRING_NONLINEAR_ELASTIC: a straight curve through the origin with slope K is the linear
+// spring (same period); a bilinear curve gives the interpolated force at an OFFSET and the
+// first segment's slope below the curve's start.
+TEST(Discrete, NonlinearSpringFollowsItsCurve) {
+  SpringMass s;
+  std::string deck = spring_mass_deck(s);
+  const std::string linear = "*MAT_SPRING_ELASTIC\n1,800\n";
+  const std::size_t at = deck.find(linear);
+  ASSERT_NE(at, std::string::npos);
+  deck.replace(at, linear.size(),
+               "*MAT_SPRING_NONLINEAR_ELASTIC\n1,7\n*DEFINE_CURVE\n7\n-1.0,-800.0\n1.0,800.0\n");
+  const Trace trace = run_trace(deck, 0.5 * s.m * s.v0 * s.v0);
+  const double w = std::sqrt(s.k / s.m);
+  EXPECT_NEAR(period_of(trace) * w / (2 * std::numbers::pi), 1.0, 2e-4);
+  EXPECT_LT(trace.max_balance_error, 1e-10);
+  for (const auto& [offset, force] : {std::pair{0.02, 5.0 + 95.0 / 0.09 * 0.01},
+                                      std::pair{-0.01, -5.0}}) {
+    SpringMass p;
+    p.offset = offset;
+    p.v0 = 0.0;
+    p.end = 1e-3;
+    std::string bilinear = spring_mass_deck(p);
+    bilinear.replace(bilinear.find(linear), linear.size(),
+                     "*MAT_S04\n1,7\n*DEFINE_CURVE\n7\n0.0,0.0\n0.01,5.0\n0.1,100.0\n");
+    solver::Simulation sim(read(bilinear), {});
+    EXPECT_NEAR(sim.state().discrete_blocks.at(0).axial_force[0], force, 1e-9 * std::abs(force))
+        << "offset " << offset;
+  }
+}
+
 TEST(Discrete, GlstatReportsSpringAndDamperEnergy) {
   SpringMass s;
   const double w = std::sqrt(s.k / s.m);
@@ -339,6 +369,8 @@ TEST(DiscreteInput, BadCardsAreInputErrors) {
                "DC", "positive");
   expect_error(part + section + "*MAT_SPRING_NONLINEAR_ELASTIC\n1,3,4\n" + element,
                "*MAT_SPRING_NONLINEAR_ELASTIC", "LCR", "not supported");
+  expect_error(part + section + "*MAT_SPRING_NONLINEAR_ELASTIC\n1,3\n" + element,
+               "*MAT_SPRING_NONLINEAR_ELASTIC", "LCD", "not defined");
   // Torsional springs, clearance, deflection limits.
   expect_error(part + "*SECTION_DISCRETE\n1,1\n" + spring + element, "*SECTION_DISCRETE", "DRO",
                "torsional");
