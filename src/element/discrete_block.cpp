@@ -48,7 +48,7 @@ double largest_slope(const DiscreteBlock& block) {
   double k = 0.0;
   for (std::size_t i = 1; i < block.curve_elongation.size(); ++i) {
     const double s = (block.curve_force[i] - block.curve_force[i - 1]) /
-                      (block.curve_elongation[i] - block.curve_elongation[i - 1]);
+                     (block.curve_elongation[i] - block.curve_elongation[i - 1]);
     k = std::max(k, std::abs(s));
   }
   return k;
@@ -75,9 +75,9 @@ void initialize_discrete_block(DiscreteBlock& block, const NodalView& nodes,
   if (block.law == DiscreteLaw::kNonlinearSpring) {
     const auto& x = block.curve_elongation;
     if (x.empty() || x.size() != block.curve_force.size()) {
-      throw InputError(model::context_of(where, "LCD"),
-                       fmt::format("discrete part {}: the force curve has no points",
-                                   block.part_id));
+      throw InputError(
+          model::context_of(where, "LCD"),
+          fmt::format("discrete part {}: the force curve has no points", block.part_id));
     }
     for (std::size_t i = 1; i < x.size(); ++i) {
       if (!(x[i] > x[i - 1])) {

@@ -27,9 +27,9 @@ void build_discrete_blocks(const model::Model& model, const NodeIndex& node_inde
     const model::DiscreteElement& first = model.discretes[indices.front()];
     const auto part_it = model.parts.find(pid);
     if (part_it == model.parts.end()) {
-      throw InputError(context_of(first.where, "PID"),
-                       fmt::format("element {} refers to part {}, which is not defined",
-                                   first.id, pid));
+      throw InputError(
+          context_of(first.where, "PID"),
+          fmt::format("element {} refers to part {}, which is not defined", first.id, pid));
     }
     const model::Part& part = part_it->second;
     if (!model.discrete_sections.count(part.secid)) {
@@ -40,9 +40,9 @@ void build_discrete_blocks(const model::Model& model, const NodeIndex& node_inde
     }
     const auto mat_it = model.materials.find(part.mid);
     if (mat_it == model.materials.end()) {
-      throw InputError(context_of(part.where, "MID"),
-                       fmt::format("part {} refers to material {}, which is not defined", pid,
-                                   part.mid));
+      throw InputError(
+          context_of(part.where, "MID"),
+          fmt::format("part {} refers to material {}, which is not defined", pid, part.mid));
     }
     const model::Material& mat = mat_it->second;
     element::DiscreteBlock block;
@@ -62,9 +62,9 @@ void build_discrete_blocks(const model::Model& model, const NodeIndex& node_inde
         block.law = element::DiscreteLaw::kNonlinearSpring;
         const auto curve = model.curves.find(mat.lcd);
         if (curve == model.curves.end()) {
-          throw InputError(context_of(mat.where, "LCD"),
-                           fmt::format("material {} refers to curve {}, which is not defined",
-                                       mat.id, mat.lcd));
+          throw InputError(
+              context_of(mat.where, "LCD"),
+              fmt::format("material {} refers to curve {}, which is not defined", mat.id, mat.lcd));
         }
         const model::Curve& c = curve->second;
         if (c.function || c.abscissa.empty()) {
@@ -129,8 +129,8 @@ void prepare_discrete_time_steps(State& state, const RigidSystem& rigid) {
     for (std::size_t e = 0; e < block.size(); ++e) {
       const std::int32_t a = block.conn[2 * e], b = block.conn[2 * e + 1];
       // Both on one rigid body: the force is internal to the body and limits nothing.
-      const bool same_body = rigid.is_rigid(a) && rigid.is_rigid(b) &&
-                             rigid.body_of_node[a] == rigid.body_of_node[b];
+      const bool same_body =
+          rigid.is_rigid(a) && rigid.is_rigid(b) && rigid.body_of_node[a] == rigid.body_of_node[b];
       block.inverse_mass[e] = same_body ? 0.0 : inverse_mass(a) + inverse_mass(b);
     }
   }

@@ -42,8 +42,8 @@ std::string spring_mass_deck(const SpringMass& s) {
   deck += fmt::format("*ELEMENT_MASS\n1,2,{:.17g}\n", s.m);
   deck += "*SECTION_DISCRETE\n1,0\n0.0,0.0\n";
   deck += fmt::format("*PART\nspring\n1,1,1\n*MAT_SPRING_ELASTIC\n1,{:.17g}\n", s.k);
-  deck += fmt::format("*ELEMENT_DISCRETE\n{:>8}{:>8}{:>8}{:>8}{:>8}{:>16}{:>8}{:>16.9g}\n", 1, 1,
-                      1, 2, 0, "1.0", 0, s.offset);
+  deck += fmt::format("*ELEMENT_DISCRETE\n{:>8}{:>8}{:>8}{:>8}{:>8}{:>16}{:>8}{:>16.9g}\n", 1, 1, 1,
+                      2, 0, "1.0", 0, s.offset);
   if (s.c > 0.0) {
     deck += fmt::format("*PART\ndamper\n2,1,2\n*MAT_DAMPER_VISCOUS\n2,{:.17g}\n", s.c);
     deck += "*ELEMENT_DISCRETE\n2,2,1,2\n";
@@ -85,7 +85,8 @@ Trace run_trace(const std::string& deck, double kinetic0) {
     if ((v_prev > 0.0) != (v > 0.0) && sim.state().cycle > 1) {
       // Velocities are half-step values: v^{n+1/2} belongs to t^n + dt / 2.
       const double tv_prev = t_prev - 0.5 * sim.state().dt_prev, tv = t - 0.5 * sim.state().dt;
-      if (v_prev > 0.0) trace.down_crossings.push_back(tv_prev + (tv - tv_prev) * v_prev / (v_prev - v));
+      if (v_prev > 0.0)
+        trace.down_crossings.push_back(tv_prev + (tv - tv_prev) * v_prev / (v_prev - v));
       trace.peaks.push_back(peak);
       peak = 0.0;
     }
@@ -94,8 +95,9 @@ Trace run_trace(const std::string& deck, double kinetic0) {
       spring += block.spring_energy;
       damper += block.damper_energy;
     }
-    trace.max_balance_error = std::max(
-        trace.max_balance_error, std::abs(sim.energy().kinetic + spring + damper - kinetic0) / kinetic0);
+    trace.max_balance_error =
+        std::max(trace.max_balance_error,
+                 std::abs(sim.energy().kinetic + spring + damper - kinetic0) / kinetic0);
     t_prev = t;
     v_prev = v;
   }
@@ -119,10 +121,11 @@ TEST(Discrete, SpringMassOscillatesAtSqrtKOverM) {
   // The scheme's own frequency at this step, and the physical one it converges to.
   const double dt = 0.02 * 2.0 / w;
   const double w_h = 2.0 / dt * std::asin(0.5 * w * dt);
-  std::printf("spring-mass: period %.9f s, exact %.9f s (ratio %.3g - 1), central difference "
-              "%.9f s; energy error %.3g\n",
-              period, 2 * std::numbers::pi / w, period * w / (2 * std::numbers::pi) - 1.0,
-              2 * std::numbers::pi / w_h, trace.max_balance_error);
+  std::printf(
+      "spring-mass: period %.9f s, exact %.9f s (ratio %.3g - 1), central difference "
+      "%.9f s; energy error %.3g\n",
+      period, 2 * std::numbers::pi / w, period * w / (2 * std::numbers::pi) - 1.0,
+      2 * std::numbers::pi / w_h, trace.max_balance_error);
   EXPECT_NEAR(trace.dt, dt, 1e-12 * dt);  // TSSFAC x 2 sqrt(m / K), the node 1 held
   EXPECT_NEAR(period * w / (2 * std::numbers::pi), 1.0, 2e-4);
   EXPECT_NEAR(period * w_h / (2 * std::numbers::pi), 1.0, 2e-5);
@@ -141,10 +144,11 @@ TEST(Discrete, TheStepFromTheSpringIsStableAtTheLimit) {
   const double dt = 0.98 * 2.0 / w;
   const double w_h = 2.0 / dt * std::asin(0.5 * w * dt);
   const double period = period_of(trace);
-  std::printf("spring-mass at TSSFAC 0.98: period %.6f s vs central-difference %.6f s, largest "
-              "elongation %.6g (v0 / w = %.6g)\n",
-              period, 2 * std::numbers::pi / w_h,
-              *std::max_element(trace.peaks.begin(), trace.peaks.end()), s.v0 / w);
+  std::printf(
+      "spring-mass at TSSFAC 0.98: period %.6f s vs central-difference %.6f s, largest "
+      "elongation %.6g (v0 / w = %.6g)\n",
+      period, 2 * std::numbers::pi / w_h, *std::max_element(trace.peaks.begin(), trace.peaks.end()),
+      s.v0 / w);
   // Bounded after about 90 periods (growth would be exponential past the limit).
   EXPECT_LT(*std::max_element(trace.peaks.begin(), trace.peaks.end()), 20.0 * s.v0 / w);
   // 2.3 steps per period: the linearly interpolated crossings are good to a few 1e-3.
@@ -164,13 +168,14 @@ TEST(Discrete, DamperDecaysWithTheDampingRatio) {
   const std::size_t first = 2, last = trace.peaks.size() - 2;
   const double periods = 0.5 * static_cast<double>(last - first);
   const double decrement = std::log(trace.peaks[first] / trace.peaks[last]) / periods;
-  const double measured = decrement / std::sqrt(4 * std::numbers::pi * std::numbers::pi +
-                                                decrement * decrement);
+  const double measured =
+      decrement / std::sqrt(4 * std::numbers::pi * std::numbers::pi + decrement * decrement);
   const double period = period_of(trace);
   const double wd = w * std::sqrt(1.0 - zeta * zeta);
-  std::printf("damped: zeta %.6f (expected %.6f), damped period %.6f s (expected %.6f), "
-              "energy error %.3g\n",
-              measured, zeta, period, 2 * std::numbers::pi / wd, trace.max_balance_error);
+  std::printf(
+      "damped: zeta %.6f (expected %.6f), damped period %.6f s (expected %.6f), "
+      "energy error %.3g\n",
+      measured, zeta, period, 2 * std::numbers::pi / wd, trace.max_balance_error);
   EXPECT_NEAR(measured / zeta, 1.0, 1e-2);
   // The damper acts with the half-step velocity: the period shifts by O(zeta w dt) = 2e-3.
   EXPECT_NEAR(period * wd / (2 * std::numbers::pi), 1.0, 2e-3);
@@ -204,10 +209,11 @@ TEST(Discrete, TwoFreeMassesKeepMomentumAndEnergy) {
     worst_balance = std::max(worst_balance, std::abs(sim.energy().kinetic + stored - ke0) / ke0);
   }
   const double damper = sim.state().discrete_blocks[1].damper_energy;
-  std::printf("two masses: momentum drift %.3g, energy balance error %.3g, damper dissipated "
-              "%.6g of %.6g, step %.6g (limit 2 / sqrt(K (1/m1 + 1/m2)) = %.6g)\n",
-              worst_momentum, worst_balance, damper, ke0, sim.state().dt,
-              2.0 / std::sqrt(k * (1.0 / m1 + 1.0 / m2)));
+  std::printf(
+      "two masses: momentum drift %.3g, energy balance error %.3g, damper dissipated "
+      "%.6g of %.6g, step %.6g (limit 2 / sqrt(K (1/m1 + 1/m2)) = %.6g)\n",
+      worst_momentum, worst_balance, damper, ke0, sim.state().dt,
+      2.0 / std::sqrt(k * (1.0 / m1 + 1.0 / m2)));
   EXPECT_LT(worst_momentum, 1e-12);
   EXPECT_LT(worst_balance, 1e-10);
   EXPECT_GT(damper, 0.03 * ke0);  // the damper did take energy out (most of KE0 is drift)
@@ -292,8 +298,8 @@ TEST(Discrete, NonlinearSpringFollowsItsCurve) {
   const double w = std::sqrt(s.k / s.m);
   EXPECT_NEAR(period_of(trace) * w / (2 * std::numbers::pi), 1.0, 2e-4);
   EXPECT_LT(trace.max_balance_error, 1e-10);
-  for (const auto& [offset, force] : {std::pair{0.02, 5.0 + 95.0 / 0.09 * 0.01},
-                                      std::pair{-0.01, -5.0}}) {
+  for (const auto& [offset, force] :
+       {std::pair{0.02, 5.0 + 95.0 / 0.09 * 0.01}, std::pair{-0.01, -5.0}}) {
     SpringMass p;
     p.offset = offset;
     p.v0 = 0.0;
@@ -315,8 +321,9 @@ TEST(Discrete, GlstatReportsSpringAndDamperEnergy) {
   const auto dir = std::filesystem::temp_directory_path() / "rigidflex_discrete_glstat";
   std::filesystem::remove_all(dir);
   {
-    solver::Simulation sim(read(spring_mass_deck(s)),
-                           solver::SimulationOptions{.output_directory = dir, .write_fields = false});
+    solver::Simulation sim(
+        read(spring_mass_deck(s)),
+        solver::SimulationOptions{.output_directory = dir, .write_fields = false});
     sim.run();
   }
   std::ifstream in(dir / "glstat.csv");
@@ -381,22 +388,23 @@ TEST(DiscreteInput, BadCardsAreInputErrors) {
   // Orientation vectors, a repeated node, an undefined node, coincident nodes.
   expect_error(part + section + spring + "*ELEMENT_DISCRETE\n1,1,1,2,3\n", "*ELEMENT_DISCRETE",
                "VID", "not supported");
-  expect_error(part + section + spring + "*ELEMENT_DISCRETE\n1,1,1,1\n", "*ELEMENT_DISCRETE",
-               "N2", "repeats N1");
-  expect_error(part + section + spring + "*ELEMENT_DISCRETE\n1,1,1,7\n", "*ELEMENT_DISCRETE",
-               "N2", "not defined");
+  expect_error(part + section + spring + "*ELEMENT_DISCRETE\n1,1,1,1\n", "*ELEMENT_DISCRETE", "N2",
+               "repeats N1");
+  expect_error(part + section + spring + "*ELEMENT_DISCRETE\n1,1,1,7\n", "*ELEMENT_DISCRETE", "N2",
+               "not defined");
   expect_error("*NODE\n3,1,0,0\n" + part + section + spring + "*ELEMENT_DISCRETE\n1,1,2,3\n",
                "*ELEMENT_DISCRETE", "N2", "coincide");
   // A field that is not a number, with its line.
   expect_error(part + section + spring + "*ELEMENT_DISCRETE\n1,1,1,2,0,abc\n", "*ELEMENT_DISCRETE",
                "S", "abc");
   // A solid material on a discrete part, a spring material on a solid part.
-  expect_error("*PART\ns\n1,1,1\n" + section + "*MAT_ELASTIC\n1,7800,2e11,0.3\n" + element,
-               "*PART", "MID", "*MAT_SPRING_ELASTIC");
-  expect_error("*NODE\n3,0,1,0\n4,0,0,1\n5,1,1,0\n6,1,0,1\n7,0,1,1\n8,1,1,1\n"
-               "*ELEMENT_SOLID\n1,1,1,2,5,3,4,6,8,7\n*PART\ns\n1,1,1\n*SECTION_SOLID\n1,1\n" +
-                   spring,
-               "*PART", "MID", "serves only *ELEMENT_DISCRETE");
+  expect_error("*PART\ns\n1,1,1\n" + section + "*MAT_ELASTIC\n1,7800,2e11,0.3\n" + element, "*PART",
+               "MID", "*MAT_SPRING_ELASTIC");
+  expect_error(
+      "*NODE\n3,0,1,0\n4,0,0,1\n5,1,1,0\n6,1,0,1\n7,0,1,1\n8,1,1,1\n"
+      "*ELEMENT_SOLID\n1,1,1,2,5,3,4,6,8,7\n*PART\ns\n1,1,1\n*SECTION_SOLID\n1,1\n" +
+          spring,
+      "*PART", "MID", "serves only *ELEMENT_DISCRETE");
   // A discrete element in a part whose section is a *SECTION_SOLID.
   expect_error("*PART\ns\n1,1,1\n*SECTION_SOLID\n1,1\n" + spring + element, "*ELEMENT_DISCRETE",
                "PID", "not a *SECTION_DISCRETE");
