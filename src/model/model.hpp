@@ -123,6 +123,24 @@ struct SectionBeam {
   SourceLocation where;
 };
 
+// *ELEMENT_DISCRETE: a spring or damper between two nodes, acting along the current N1 -> N2
+// line (VID 0, the only orientation supported).
+struct DiscreteElement {
+  Id id = 0;
+  Id pid = 0;
+  std::array<Id, 2> nodes{};
+  double scale = 1.0;   // S: scale factor on the force
+  double offset = 0.0;  // OFFSET: initial elongation (positive: tension at time zero)
+  SourceLocation where;
+};
+
+// *SECTION_DISCRETE as far as it is supported: DRO 0 (translational), no clearance, failure or
+// deflection limits, no dynamic magnification.
+struct SectionDiscrete {
+  Id id = 0;
+  SourceLocation where;
+};
+
 // *CONTROL_SHELL fields that change the physics (the others are accepted at their defaults).
 struct ShellControl {
   int theory = 2;           // default ELFORM of *SECTION_SHELL ELFORM 0
@@ -137,7 +155,23 @@ struct ShellControl {
 
 // Material cards. Each kind is its own struct; the variant-like tag keeps dispatch out of
 // per-element loops (the solver groups elements by material kind once).
-enum class MaterialKind { Elastic, Rigid, PlasticKinematic, PiecewiseLinearPlasticity };
+enum class MaterialKind {
+  Elastic,
+  Rigid,
+  PlasticKinematic,
+  PiecewiseLinearPlasticity,
+  // Discrete-element materials (*ELEMENT_DISCRETE parts only, docs/elements.md): force laws,
+  // not stress laws; they carry K, DC or LCD below and no density.
+  SpringElastic,           // *MAT_SPRING_ELASTIC (S01): F = K (elongation)
+  DamperViscous,           // *MAT_DAMPER_VISCOUS (S02): F = DC (elongation rate)
+  SpringNonlinearElastic,  // *MAT_SPRING_NONLINEAR_ELASTIC (S04): F = curve LCD (elongation)
+};
+
+// True for the materials of discrete elements (springs and dampers).
+inline bool is_discrete_material(MaterialKind kind) {
+  return kind == MaterialKind::SpringElastic || kind == MaterialKind::DamperViscous ||
+         kind == MaterialKind::SpringNonlinearElastic;
+}
 
 // The plasticity fields of *MAT_PLASTIC_KINEMATIC (003) and *MAT_PIECEWISE_LINEAR_PLASTICITY
 // (024) as read; curves are resolved (and checked) when the solver state is built.
@@ -181,6 +215,11 @@ struct Material {
   std::array<double, 3> output_a{};
   std::array<double, 3> output_v{};
   PlasticCard plastic;  // PlasticKinematic and PiecewiseLinearPlasticity
+  // Discrete materials: K (S01, force per elongation), DC (S02, force per elongation rate),
+  // LCD (S04, force vs elongation curve).
+  double spring_k = 0.0;
+  double damper_dc = 0.0;
+  Id lcd = 0;
   SourceLocation where;
 };
 
@@ -766,6 +805,8 @@ struct OutputControl {
   std::vector<SourceLocation> history_shell_set_where;
   std::vector<CrossSection> cross_sections;  // secforc.csv rows, in this order
   double secforc_dt = 0.0;                   // *DATABASE_SECFORC DT; 0: about 1000 rows per run
+  bool jntforc = false;                      // *DATABASE_JNTFORC present (jntforc.csv)
+  double jntforc_dt = 0.0;                   // 0: about 1000 rows per run
 };
 
 // *CONTROL_IMPLICIT_GENERAL and *CONTROL_IMPLICIT_EIGENVALUE (docs/eigen.md): with IMFLAG 1 and
@@ -807,6 +848,8 @@ struct Model {
   std::vector<BeamElement> beams;    // in input order
   std::map<Id, SectionShell> shell_sections;
   std::map<Id, SectionBeam> beam_sections;
+  std::vector<DiscreteElement> discretes;  // *ELEMENT_DISCRETE, in input order
+  std::map<Id, SectionDiscrete> discrete_sections;
   ShellControl shell_control;
   std::map<Id, Material> materials;
   std::map<Id, Hourglass> hourglass;

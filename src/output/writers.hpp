@@ -38,6 +38,10 @@ struct GlstatRow {
   double added_mass = 0.0;    // mass scaling: mass added to the deformable nodes so far
   double mass_scaling_work = 0.0;  // the part of external_work: 1/2 dm v^2 of mass added in the run
   double bulk_viscosity_energy = 0.0;  // dissipated by the bulk viscosity (not in internal)
+  // Discrete elements (both in internal_energy): the energy springs hold relative to time zero
+  // and the energy dampers have dissipated so far.
+  double spring_energy = 0.0;
+  double damper_energy = 0.0;
 };
 
 // Plain CSV file with a fixed header; rows are buffered and reach the file whole (never a
@@ -90,6 +94,7 @@ struct CsvContinuation {
   std::int64_t elout = -1;     // elout.csv
   std::int64_t secforc = -1;   // secforc.csv
   std::int64_t elout_shell = -1;  // elout_shell.csv
+  std::int64_t jntforc = -1;      // jntforc.csv
 };
 
 // Column headers, exactly as written (docs/output.md).
@@ -97,7 +102,7 @@ inline constexpr std::string_view kGlstatHeader =
     "time,dt,cycle,kinetic_energy,internal_energy,hourglass_energy,external_work,total_energy,"
     "energy_ratio,momentum_x,momentum_y,momentum_z,angular_momentum_x,angular_momentum_y,"
     "angular_momentum_z,switch_energy,frozen_energy,rigidwall_work,contact_energy,modal_energy,"
-    "damping_work,added_mass,mass_scaling_work,bulk_viscosity_energy";
+    "damping_work,added_mass,mass_scaling_work,bulk_viscosity_energy,spring_energy,damper_energy";
 inline constexpr std::string_view kNodoutHeader = "time,node,x,y,z,vx,vy,vz,ax,ay,az";
 inline constexpr std::string_view kRbdoutHeader =
     "time,body,mass,x,y,z,vx,vy,vz,ax,ay,az,wx,wy,wz,r11,r12,r13,r21,r22,r23,r31,r32,r33";
@@ -143,6 +148,23 @@ struct RwforcRow {
   double normal_impulse = 0.0;
   double work = 0.0;
 };
+
+inline constexpr std::string_view kJntforcHeader =
+    "time,joint,force_x,force_y,force_z,force_resultant,moment_x,moment_y,moment_z,"
+    "moment_resultant";
+
+// One row of jntforc.csv: a joint at an output time t^n. The force and moment the joint exerts
+// on its body B (the nodes N2, N4, N6), global axes, from the last evaluation of the penalty
+// springs (t^n); the moment is taken about the joint's first node pair (N1).
+struct JntforcRow {
+  double time = 0.0;
+  std::int64_t joint = 0;
+  std::array<double, 3> force{};
+  std::array<double, 3> moment{};
+};
+
+// The jntforc.csv lines of one output time (src/output/jntforc_writer.cpp).
+std::string jntforc_text(const std::vector<JntforcRow>& rows);
 
 inline constexpr std::string_view kRcforcHeader =
     "time,contact,slave_fx,slave_fy,slave_fz,master_fx,master_fy,master_fz,contact_nodes";

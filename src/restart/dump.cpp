@@ -549,6 +549,63 @@ void write_hex_blocks(const Group& g, const std::vector<element::HexBlock>& bloc
   }
 }
 
+void write_discrete_blocks(const Group& g, const std::vector<element::DiscreteBlock>& blocks) {
+  std::vector<std::int64_t> part_id, size;
+  std::vector<double> spring_energy, damper_energy, axial_force, force;
+  for (const auto& block : blocks) {
+    part_id.push_back(block.part_id);
+    size.push_back(static_cast<std::int64_t>(block.size()));
+    spring_energy.push_back(block.spring_energy);
+    damper_energy.push_back(block.damper_energy);
+    axial_force.insert(axial_force.end(), block.axial_force.begin(), block.axial_force.end());
+    force.insert(force.end(), block.force.begin(), block.force.end());
+  }
+  // The slots of the last evaluation: the next step's work (spring and damper energy) uses them.
+  g.write("force", std::span<const double>(force));
+  g.write("part_id", std::span<const std::int64_t>(part_id));
+  g.write("size", std::span<const std::int64_t>(size));
+  g.write("spring_energy", std::span<const double>(spring_energy));
+  g.write("damper_energy", std::span<const double>(damper_energy));
+  g.write("axial_force", std::span<const double>(axial_force));
+}
+
+void read_discrete_blocks(const Group& g, std::vector<element::DiscreteBlock>& blocks) {
+  const std::vector<std::int64_t> part_id = g.read_int64("part_id");
+  const std::vector<std::int64_t> size = g.read_int64("size");
+  const std::vector<double> spring_energy = g.read_doubles("spring_energy");
+  const std::vector<double> damper_energy = g.read_doubles("damper_energy");
+  const std::vector<double> axial_force = g.read_doubles("axial_force");
+  const std::vector<double> force = g.read_doubles("force");
+  std::size_t total = 0;
+  for (const auto& block : blocks) total += block.size();
+  if (part_id.size() != blocks.size() || size.size() != blocks.size() ||
+      spring_energy.size() != blocks.size() || damper_energy.size() != blocks.size() ||
+      axial_force.size() != total || force.size() != element::kDiscreteSlot * total) {
+    g.fail("part_id", fmt::format("describes {} discrete blocks, the model rebuilt from the "
+                                  "dump's deck has {}",
+                                  part_id.size(), blocks.size()));
+  }
+  std::size_t at = 0;
+  for (std::size_t b = 0; b < blocks.size(); ++b) {
+    auto& block = blocks[b];
+    if (part_id[b] != block.part_id || size[b] != static_cast<std::int64_t>(block.size())) {
+      g.fail("part_id", fmt::format("discrete block {} is part {} ({} elements), the rebuilt "
+                                    "model has part {} ({} elements)",
+                                    b, part_id[b], size[b], block.part_id, block.size()));
+    }
+    block.spring_energy = spring_energy[b];
+    block.damper_energy = damper_energy[b];
+    std::copy(axial_force.begin() + static_cast<std::ptrdiff_t>(at),
+              axial_force.begin() + static_cast<std::ptrdiff_t>(at + block.size()),
+              block.axial_force.begin());
+    std::copy(
+        force.begin() + static_cast<std::ptrdiff_t>(element::kDiscreteSlot * at),
+        force.begin() + static_cast<std::ptrdiff_t>(element::kDiscreteSlot * (at + block.size())),
+        block.force.begin());
+    at += block.size();
+  }
+}
+
 void read_hex_blocks(const Group& g, std::vector<element::HexBlock>& blocks) {
   if (count_of(g, "count") != blocks.size()) {
     g.fail("count", fmt::format("is {} element blocks, the model rebuilt from the dump's deck has "
@@ -866,6 +923,9 @@ void write_restart_dump(solver::Simulation& sim, const std::filesystem::path& pa
         write_model_input(root.create_group("model"), dumper->input());
         write_nodes(root.create_group("nodes"), state.nodes, SimulationAccess::v_previous(sim));
         write_hex_blocks(root.create_group("blocks"), state.hex_blocks);
+        if (!state.discrete_blocks.empty()) {
+          write_discrete_blocks(root.create_group("discrete"), state.discrete_blocks);
+        }
         write_rigid_system(root.create_group("rigid"), SimulationAccess::rigid(sim), model);
         write_boundary(root.create_group("boundary"), SimulationAccess::boundary(sim), model);
         SimulationAccess::write_members(sim, root.create_group("simulation"));

@@ -5,6 +5,7 @@
 //   /model       the deck texts, dialect and --set overrides (write_model_input)
 //   /nodes       nodal arrays (write_nodes)
 //   /blocks/NNNN per-element state of each HexBlock (write_hex_blocks)
+//   /discrete    energies and forces of the discrete blocks (only when the model has any)
 //   /rigid       the rigid system, wholesale: bodies, body_of_node, motions, loads
 //   /boundary    resolved constraints and loads, wholesale (write_boundary)
 //   /simulation  Simulation's own members (SimulationAccess::write_members)
@@ -55,6 +56,12 @@ void read_nodes(const io::h5::Group& g, solver::NodalState& nodes, solver::Vec3A
 
 void write_hex_blocks(const io::h5::Group& g, const std::vector<element::HexBlock>& blocks);
 void read_hex_blocks(const io::h5::Group& g, std::vector<element::HexBlock>& blocks);
+
+// Discrete elements (springs, dampers): the work sums (spring and damper energy), the last axial
+// forces and force slots (the next step's work uses them), per block.
+void write_discrete_blocks(const io::h5::Group& g,
+                           const std::vector<element::DiscreteBlock>& blocks);
+void read_discrete_blocks(const io::h5::Group& g, std::vector<element::DiscreteBlock>& blocks);
 
 // `model` resolves time functions to IDs (write) and back (read). Read replaces the whole
 // system (bodies may have been created or removed during the run); node_count checks indices.

@@ -157,7 +157,8 @@ Restarted restart_from_dump(const RestartOptions& options) {
       {"spcforc", &sim_options.continuation.spcforc},
       {"elout", &sim_options.continuation.elout},
       {"secforc", &sim_options.continuation.secforc},
-      {"elout_shell", &sim_options.continuation.elout_shell}};
+      {"elout_shell", &sim_options.continuation.elout_shell},
+      {"jntforc", &sim_options.continuation.jntforc}};
   for (const auto& [name, target] : histories) {
     const std::string attribute = std::string(name) + "_bytes";
     if (!output.has_attribute(attribute)) continue;
@@ -200,6 +201,14 @@ Restarted restart_from_dump(const RestartOptions& options) {
   solver::State& state = SimulationAccess::state(sim);
   read_nodes(root.group("nodes"), state.nodes, SimulationAccess::v_previous(sim));
   read_hex_blocks(root.group("blocks"), state.hex_blocks);
+  if (!state.discrete_blocks.empty()) {
+    if (!root.has("discrete")) {
+      root.fail("discrete",
+                "is missing: the dump has no discrete-element state, the model "
+                "rebuilt from its deck has springs or dampers");
+    }
+    read_discrete_blocks(root.group("discrete"), state.discrete_blocks);
+  }
   read_rigid_system(root.group("rigid"), SimulationAccess::rigid(sim), sim_model,
                     state.nodes.size());
   read_boundary(root.group("boundary"), SimulationAccess::boundary(sim), sim_model);

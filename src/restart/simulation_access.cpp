@@ -56,6 +56,14 @@ void SimulationAccess::write_members(Simulation& s, const Group& g) {
   g.set("energy_contact", e.contact_energy);
   g.set("energy_damping_work", e.damping_work);
   g.set("switch_dt_cap", s.switch_dt_cap_);
+  if (!s.joints_.empty()) {  // the last joint forces, which jntforc.csv reports
+    std::vector<double> joint_loads;
+    for (const auto& joint : s.joints_.joints) {
+      for (int k = 0; k < 3; ++k) joint_loads.push_back(joint.force[k]);
+      for (int k = 0; k < 3; ++k) joint_loads.push_back(joint.moment[k]);
+    }
+    g.write("joint_force_moment", std::span<const double>(joint_loads));
+  }
   for (int k = 0; k < 3; ++k) {
     g.set(fmt::format("energy_momentum_{}", k), e.momentum[k]);
     g.set(fmt::format("energy_angular_momentum_{}", k), e.angular_momentum[k]);
@@ -99,6 +107,20 @@ void SimulationAccess::read_members(Simulation& s, const Group& g) {
   e.damping_work =
       g.has_attribute("energy_damping_work") ? g.get_double("energy_damping_work") : 0.0;
   s.switch_dt_cap_ = g.get_double("switch_dt_cap");
+  if (!s.joints_.empty() && g.has("joint_force_moment")) {
+    const std::vector<double> joint_loads = g.read_doubles("joint_force_moment");
+    if (joint_loads.size() != 6 * s.joints_.joints.size()) {
+      g.fail("joint_force_moment", fmt::format("holds {} values, the rebuilt model has {} joints",
+                                               joint_loads.size(), s.joints_.joints.size()));
+    }
+    for (std::size_t j = 0; j < s.joints_.joints.size(); ++j) {
+      auto& joint = s.joints_.joints[j];
+      for (int k = 0; k < 3; ++k) {
+        joint.force[k] = joint_loads[6 * j + k];
+        joint.moment[k] = joint_loads[6 * j + 3 + k];
+      }
+    }
+  }
   for (int k = 0; k < 3; ++k) {
     e.momentum[k] = g.get_double(fmt::format("energy_momentum_{}", k));
     e.angular_momentum[k] = g.get_double(fmt::format("energy_angular_momentum_{}", k));
@@ -135,6 +157,9 @@ void SimulationAccess::write_output(Simulation& s, const Group& g) {
                  s.secforc_schedule_.last_cycle);
   write_schedule(g, "elout_shell", s.elout_shell_schedule_.interval, s.elout_shell_schedule_.next,
                  s.elout_shell_schedule_.last_cycle);
+  g.set("jntforc_bytes", s.jntforc_csv_ ? s.jntforc_csv_->flushed_size() : std::int64_t{-1});
+  write_schedule(g, "jntforc", s.jntforc_schedule_.interval, s.jntforc_schedule_.next,
+                 s.jntforc_schedule_.last_cycle);
   if (s.part_histories_) {
     const auto& work = s.part_histories_->internal_work();
     const auto& hourglass = s.part_histories_->hourglass();
@@ -178,6 +203,7 @@ void SimulationAccess::read_output(Simulation& s, const Group& g) {
     read_schedule(g, "elout", s.elout_schedule_);
   }
   if (g.has_attribute("secforc_bytes")) read_schedule(g, "secforc", s.secforc_schedule_);
+  if (g.has_attribute("jntforc_bytes")) read_schedule(g, "jntforc", s.jntforc_schedule_);
   if (g.has_attribute("elout_shell_bytes")) {
     read_schedule(g, "elout_shell", s.elout_shell_schedule_);
   }

@@ -220,6 +220,12 @@ ResolvedMaterial resolve_material(const model::Model& model, const model::Part& 
   out.rigid = mat.kind == model::MaterialKind::Rigid;
   out.elastic = material::make_elastic(mat.rho, mat.e, mat.pr);
   if (out.rigid) return out;
+  if (model::is_discrete_material(mat.kind)) {
+    throw InputError(context_of(part.where, "MID"),
+                     fmt::format("part {} has {} but its material {} is a {}, which serves "
+                                 "only *ELEMENT_DISCRETE parts",
+                                 part.id, family_name, mat.id, mat.keyword));
+  }
   out.index = material::material_index(mat.kind);
   if (out.index < 0) {
     throw InputError(context_of(mat.where, "MID"),
@@ -315,6 +321,12 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
     }
     const model::Material& mat = mat_it->second;
     const int material_index = material::material_index(mat.kind);
+    if (model::is_discrete_material(mat.kind)) {
+      throw InputError(context_of(part.where, "MID"),
+                       fmt::format("part {} has solid elements but its material {} is a {}, "
+                                   "which serves only *ELEMENT_DISCRETE parts",
+                                   pid, mat.id, mat.keyword));
+    }
     if (material_index < 0 && mat.kind != model::MaterialKind::Rigid) {
       throw InputError(context_of(mat.where, "MID"),
                        fmt::format("part {} uses {} (material {}), which this version does not "
@@ -380,6 +392,7 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
     element::add_block_lumped_mass(block, nodes.mass);
   }
   build_structural_blocks(model, node_index, state);
+  build_discrete_blocks(model, node_index, state);
   state.added_mass = add_mass_elements(model, node_index, state);
 
   // Node -> element-slot incidence, counted then filled (CSR).

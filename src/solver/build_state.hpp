@@ -48,6 +48,19 @@ void check_structural_support(const model::Model& model, const State& state);
 // Adds the shell and beam force slots to nodes.f_int and sets rotations.m_int (fixed order).
 void assemble_structural_forces(State& state);
 
+// Discrete element blocks (springs, dampers), one per part (solver/build_discrete.cpp).
+void build_discrete_blocks(const model::Model& model, const NodeIndex& node_index, State& state);
+// The inverse masses each discrete element's step is based on; rigid-body nodes count with
+// their body's mass. Call once the rigid bodies exist (and after a part switch).
+struct RigidSystem;
+void prepare_discrete_time_steps(State& state, const RigidSystem& rigid);
+// Adds the discrete elements' forces to nodes.f_int (serial, fixed order).
+void assemble_discrete_forces(State& state);
+// Adds the work of the discrete elements' forces over the step, with the nodal displacements
+// dt_avg (v^{n-1/2} + v^{n+1/2}) / 2 of the energy sums, to their blocks' spring and damper
+// energies.
+void add_discrete_work(State& state, const Vec3Array& v_previous, double dt_avg);
+
 // Builds nodes, element blocks (one per part), lumped masses and the node->element-slot
 // incidence. Throws rf::InputError for inconsistent input and rf::SolverError for inverted
 // elements in the reference configuration.

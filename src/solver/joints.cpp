@@ -161,7 +161,9 @@ void add_joint_forces(JointSystem& joints, State& state) {
       axis.normalize();
     }
     joint.force.setZero();
+    joint.moment.setZero();
     joint.gap = 0.0;
+    const Eigen::Vector3d origin = position(nodes.x, joint.node[0]);
     for (int p = 0; p < joint.pairs; ++p) {
       const std::int32_t a = joint.node[2 * p], b = joint.node[2 * p + 1];
       Eigen::Vector3d g = position(nodes.x, b) - position(nodes.x, a);
@@ -180,6 +182,7 @@ void add_joint_forces(JointSystem& joints, State& state) {
       nodes.f_int.y[b] += f.y();
       nodes.f_int.z[b] += f.z();
       joint.force += f;
+      joint.moment += (position(nodes.x, a) - origin).cross(f);
     }
   }
 }

@@ -27,6 +27,9 @@ struct SolverJoint {
   // Total force the joint exerts on its body-A nodes (N1, N3, N5) in the last evaluation; the
   // body-B nodes get the opposite.
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  // Moment of the pair forces on the body-A nodes about N1 in the last evaluation (a revolute or
+  // translational joint carries one; a spherical joint's single pair none).
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();
   double gap = 0.0;  // largest constrained separation of a pair in the last evaluation
 };
 

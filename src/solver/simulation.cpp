@@ -75,6 +75,7 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
   for (const auto& block : state_.hex_blocks) element_count_ += block.size();
   for (const auto& block : state_.shell_blocks) element_count_ += block.size();
   for (const auto& block : state_.beam_blocks) element_count_ += block.size();
+  for (const auto& block : state_.discrete_blocks) element_count_ += block.size();
   check_structural_support(model_, state_);
   end_time_ = model.termination.endtim;
   end_cycle_ = model.termination.endcyc;
@@ -257,6 +258,13 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
       secforc_csv_ = std::make_unique<output::CsvFile>(options_.output_directory / "secforc.csv",
                                                        std::string(output::kSecforcHeader),
                                                        options_.continuation.secforc);
+    }
+    if (model.output.jntforc && !joints_.empty()) {
+      jntforc_rows_.reserve(joints_.joints.size());
+      jntforc_schedule_.interval = default_interval(model.output.jntforc_dt, span, 1000.0);
+      jntforc_csv_ = std::make_unique<output::CsvFile>(options_.output_directory / "jntforc.csv",
+                                                       std::string(output::kJntforcHeader),
+                                                       options_.continuation.jntforc);
     }
     if (options_.write_fields) {
       d3plot_schedule_.interval = default_interval(model.output.d3plot_dt, span, 20.0);
@@ -469,7 +477,7 @@ void Simulation::run(const std::function<void(const Simulation&)>& on_progress) 
 // in memory until a buffer fills.
 void Simulation::flush_csv_files() {
   for (output::CsvFile* file : {matsum_csv_.get(), spcforc_csv_.get(), elout_csv_.get(),
-                                elout_shell_csv_.get(), secforc_csv_.get()}) {
+                                elout_shell_csv_.get(), secforc_csv_.get(), jntforc_csv_.get()}) {
     if (file) file->flush();
   }
   if (glstat_) glstat_->flush();
@@ -761,6 +769,7 @@ void Simulation::update_velocities() {
   energy_.internal_work +=
       sums[1] + rigid_sums.modal_damping_loss - rigid_sums.modal_stiffening_work;
   if (part_histories_) part_histories_->add_step_work(state_, rigid_, vp, dt_avg);  // matsum
+  if (!state_.discrete_blocks.empty()) add_discrete_work(state_, vp, dt_avg);  // glstat columns
   energy_.external_work +=
       sums[2] - sums[9] + reaction_work + rigid_sums.external_work + rigid_sums.modal_inertia_work;
   energy_.contact_energy -= sums[9];
@@ -776,8 +785,16 @@ void Simulation::update_velocities() {
   // An elastic body cannot give back more strain energy than it stored: internal work well
   // below zero means a mode is growing without bound (the step exceeds the stability limit;
   // L_e / c is exact for meshes, not for a few elements with free corners).
+  // Springs and dampers are left out of this check: their step limit is the exact one of the
+  // two-mass system (docs/elements.md), at which the half-step kinetic energy of an oscillating
+  // mass swings far above its true energy and the spring's work far below zero without any
+  // instability (the check is a heuristic for meshes).
+  double discrete_work = 0.0;
+  for (const auto& block : state_.discrete_blocks) {
+    discrete_work += block.spring_energy + block.damper_energy;
+  }
   const double scale = energy_.initial_total + std::abs(energy_.external_work) + energy_.kinetic;
-  if (energy_.internal_work < -0.05 * scale && scale > 0.0) {
+  if (energy_.internal_work - discrete_work < -0.05 * scale && scale > 0.0) {
     throw SolverError(fmt::format(
         "numerical instability at time {:.6g} (cycle {}): internal energy {:.6g} is negative "
         "while kinetic energy grew to {:.6g}; the time step is above the stability limit of "
@@ -897,6 +914,10 @@ void Simulation::write_output_if_due(bool force) {
     row.added_mass = mass_scaling_.added_mass;
     row.mass_scaling_work = mass_scaling_.mass_scaling_work;
     row.bulk_viscosity_energy = energy_.bulk_viscosity;
+    for (const auto& block : state_.discrete_blocks) {
+      row.spring_energy += block.spring_energy;
+      row.damper_energy += block.damper_energy;
+    }
     glstat_->write(row);
     glstat_schedule_.mark_written(t, cycle);
   }
@@ -991,6 +1012,23 @@ void Simulation::write_output_if_due(bool force) {
     secforc_csv_->write_text(output::secforc_text(t, section_rows_));
     secforc_schedule_.mark_written(t, cycle);
   }
+  if (jntforc_csv_ && wanted(jntforc_schedule_)) {
+    jntforc_rows_.clear();
+    for (const SolverJoint& joint : joints_.joints) {
+      output::JntforcRow row;
+      row.time = t;
+      row.joint = joint.id;
+      // joint.force and joint.moment act on body A; body B gets the opposite (about N1, which
+      // coincides with N2 up to the penalty gap).
+      for (int k = 0; k < 3; ++k) {
+        row.force[k] = joint.force[k] == 0.0 ? 0.0 : -joint.force[k];
+        row.moment[k] = joint.moment[k] == 0.0 ? 0.0 : -joint.moment[k];
+      }
+      jntforc_rows_.push_back(row);
+    }
+    jntforc_csv_->write_text(output::jntforc_text(jntforc_rows_));
+    jntforc_schedule_.mark_written(t, cycle);
+  }
   if (fields_ && wanted(d3plot_schedule_)) {
     if (walls_.empty()) {
       fields_->write_frame(state_);
@@ -1072,6 +1110,8 @@ void Simulation::compute_internal_forces() {
   assemble_internal_forces(state_);
   assemble_structural_forces(state_);
   if (distribution_) sum_partial_forces_across_ranks();
+  // Springs and dampers after the ranks' sum: every rank computes all of them (replicated).
+  compute_discrete_forces();
   if (!joints_.empty()) {  // penalty springs: their stiffness needs the first step
     prepare_joint_stiffness(joints_, rigid_, state_, initial_dt_);
     add_joint_forces(joints_, state_);
@@ -1117,6 +1157,35 @@ void Simulation::compute_structural_forces() {
   }
 }
 
+// Springs and dampers: forces into their slots, then added to f_int; the step they allow from
+// the masses of their nodes (rigid-body nodes count with their body, which part switching may
+// change, so the masses are looked up each cycle: a few elements).
+void Simulation::compute_discrete_forces() {
+  if (state_.discrete_blocks.empty()) return;
+  prepare_discrete_time_steps(state_, rigid_);
+  const element::NodalView view = view_of(state_.nodes);
+  discrete_dt_ = std::numeric_limits<double>::infinity();
+  for (auto& block : state_.discrete_blocks) {
+    const element::KernelResult r = element::compute_discrete_forces(block, view);
+    if (r.min_dt < discrete_dt_ && r.min_dt_element >= 0) {
+      discrete_dt_ = r.min_dt;
+      discrete_controlling_element_ = block.element_id[r.min_dt_element];
+    }
+    if (r.failed && breakdown_message_.empty()) {
+      breakdown_message_ = fmt::format(
+          "discrete element {} of part {}: its nodes have come together (length {:.6g}), so the "
+          "line of action is undefined, at time {:.6g} (cycle {})",
+          block.element_id[r.failed_element], block.part_id, r.failed_volume, state_.time,
+          state_.cycle);
+    }
+    if (r.min_dt < element_dt_) {
+      element_dt_ = r.min_dt;
+      if (r.min_dt_element >= 0) controlling_element_ = block.element_id[r.min_dt_element];
+    }
+  }
+  assemble_discrete_forces(state_);
+}
+
 void Simulation::compute_contact_forces() {
   contact::compute_contact_forces(contacts_, state_, state_.dt);
 }
@@ -1154,6 +1223,11 @@ void Simulation::scale_masses_if_needed() {
     const double work = mass_scaling_.mass_scaling_work - before;
     energy_.external_work += work;
     energy_.kinetic += work;
+    // The scaling sees the continuum elements only: springs and dampers keep their limit.
+    if (discrete_dt_ < element_dt_) {
+      element_dt_ = discrete_dt_;
+      controlling_element_ = discrete_controlling_element_;
+    }
   }
 }
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -181,6 +182,7 @@ class Simulation {
   // omega^{n-1/2} -> omega^{n+1/2} of the nodes with rotations; their energy and spin sums.
   std::array<double, 6> update_rotations(double dt_avg);
   void compute_structural_forces();  // shells and beams (part of compute_internal_forces)
+  void compute_discrete_forces();    // springs and dampers (part of compute_internal_forces)
   void apply_rigid_walls();  // (inside update_velocities) walls stop nodes and bodies
   void write_output_if_due(bool force);
   void update_positions();         // x^{n+1} = x^n + dt v^{n+1/2}
@@ -240,6 +242,9 @@ class Simulation {
   double end_time_ = 0.0;
   std::int64_t end_cycle_ = 0;
   double element_dt_ = 0.0;  // min critical element step (without TSSFAC) at the last evaluation
+  // The springs' and dampers' share of it (mass scaling recomputes the continuum elements').
+  double discrete_dt_ = std::numeric_limits<double>::infinity();
+  model::Id discrete_controlling_element_ = 0;
   double initial_dt_ = 0.0;
   double dt_average_ = 0.0;  // (dt^{n-1/2} + dt^{n+1/2}) / 2
   std::int64_t element_count_ = 0;
@@ -292,6 +297,10 @@ class Simulation {
   std::vector<CrossSectionCut> cross_sections_;
   std::unique_ptr<output::CsvFile> secforc_csv_;
   OutputSchedule secforc_schedule_;
+  // *DATABASE_JNTFORC: jntforc.csv (only when the card is present and the model has joints).
+  std::unique_ptr<output::CsvFile> jntforc_csv_;
+  OutputSchedule jntforc_schedule_;
+  std::vector<output::JntforcRow> jntforc_rows_;
   std::vector<SectionForce> section_rows_;
   std::vector<double> reduction_scratch_;
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "element/beam_block.hpp"
+#include "element/discrete_block.hpp"
 #include "element/hex_block.hpp"
 #include "element/shell_block.hpp"
 #include "model/model.hpp"
@@ -101,6 +102,7 @@ struct State {
   std::vector<element::HexBlock> hex_blocks;  // one block per part (contiguous elements)
   std::vector<element::ShellBlock> shell_blocks;  // one block per shell part
   std::vector<element::BeamBlock> beam_blocks;    // one block per beam part
+  std::vector<element::DiscreteBlock> discrete_blocks;  // springs and dampers, one per part
   RotationalState rotations;
   StructuralIncidence structural_incidence;
   NodeIncidence incidence;

@@ -12,7 +12,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
+#include <sstream>
 
 #include "deck_builder.hpp"
 #include "model/error.hpp"
@@ -161,6 +164,82 @@ TEST(Joint, SphericalPendulumSwingsWithTheExactLargeAmplitudePeriod) {
   // The joints' dashpots take a little energy; the ledger (spring energy and losses are
   // internal energy) still closes.
   EXPECT_NEAR(s.energy_ratio, 1.0, 1e-6);
+}
+
+// jntforc.csv: at the bottom of the swing the pivot holds the bar's weight and its centripetal
+// force, R = M g + M w^2 d with w^2 = 2 M g d (1 - cos theta0) / I_O (energy conservation; the
+// angular acceleration and so the horizontal reaction vanish there). The file reports the force
+// on body B (the bar) in global axes.
+TEST(Joint, JntforcReportsThePivotReactionOfThePendulum) {
+  const Block g = ground(), b = bar(kTheta0);
+  const double period = pendulum_period();
+  const auto dir = std::filesystem::temp_directory_path() / "rigidflex_jntforc_test";
+  std::filesystem::remove_all(dir);
+  const double output_dt = 1e-3;
+  std::string deck =
+      "*KEYWORD\n" + g.text() + b.text() + rigid_parts() +
+      fmt::format("*CONSTRAINED_JOINT_SPHERICAL_ID\n3,pivot\n{},{}\n", g.node(1, 1, 0),
+                  b.node(1, 1, b.nz)) +
+      gravity('Z', kG, 1) + fmt::format("*DATABASE_JNTFORC\n{:.17g}\n", output_dt) +
+      fmt::format("*CONTROL_TERMINATION\n{:.17g},0\n*CONTROL_TIMESTEP\n1.0e-3\n*END\n",
+                  0.3 * period);
+  const MassSums m = lumped_sums(bar(0.0));
+  const double d = -m.first_z / m.mass;
+  const double w2 = 2.0 * m.mass * kG * d * (1.0 - std::cos(kTheta0)) / m.second_y;
+  const double expected = m.mass * kG + m.mass * w2 * d;
+  double bottom_time = 0.0;
+  {
+    solver::Simulation sim(
+        read(deck), solver::SimulationOptions{.output_directory = dir, .write_fields = false});
+    const std::int32_t tip = dense(sim, b.node(1, 1, 0));
+    const auto& x = sim.state().nodes.x;
+    double x_prev = x.x[tip], t_prev = 0.0;
+    while (!sim.finished() && bottom_time == 0.0) {
+      sim.cycle();
+      if ((x_prev < 0.0) != (x.x[tip] < 0.0)) {
+        bottom_time = t_prev + (sim.state().time - t_prev) * x_prev / (x_prev - x.x[tip]);
+      }
+      x_prev = x.x[tip];
+      t_prev = sim.state().time;
+    }
+    sim.run();
+  }
+  ASSERT_GT(bottom_time, 0.0);
+  std::ifstream in(dir / "jntforc.csv");
+  std::string header, line;
+  std::getline(in, header);
+  EXPECT_EQ(header,
+            "time,joint,force_x,force_y,force_z,force_resultant,moment_x,moment_y,moment_z,"
+            "moment_resultant");
+  // The rows within 2 ms of the bottom, averaged (the penalty spring rings at a few kHz).
+  double sum_z = 0.0, sum_x = 0.0, sum_y = 0.0, largest_moment = 0.0;
+  int near = 0, rows = 0;
+  while (std::getline(in, line)) {
+    std::vector<double> v;
+    std::stringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) v.push_back(std::stod(cell));
+    ASSERT_EQ(v.size(), 10u) << line;
+    ++rows;
+    EXPECT_EQ(v[1], 3.0);
+    EXPECT_NEAR(v[5], std::hypot(v[2], v[3], v[4]), 1e-9 * (1.0 + v[5]));
+    largest_moment = std::max(largest_moment, v[9]);
+    if (std::abs(v[0] - bottom_time) <= 2e-3) {
+      sum_x += v[2];
+      sum_y += v[3];
+      sum_z += v[4];
+      ++near;
+    }
+  }
+  ASSERT_GT(near, 0);
+  const double fz = sum_z / near, fx = sum_x / near, fy = sum_y / near;
+  std::printf(
+      "jntforc: pivot force at the bottom %.6g N (expected M g + M w^2 d = %.6g N, static "
+      "M g = %.6g N), horizontal %.3g N, %d rows\n",
+      fz, expected, m.mass * kG, std::hypot(fx, fy), rows);
+  EXPECT_NEAR(fz / expected, 1.0, 1e-2);
+  EXPECT_LT(std::hypot(fx, fy), 2e-2 * expected);
+  EXPECT_LT(largest_moment, 1e-9 * expected);  // one pair: no moment about N1
+  EXPECT_NEAR(rows, 0.3 * period / output_dt, 2.0);
 }
 
 TEST(Joint, RevoluteHingeCarriesASideLoadAlongItsAxis) {

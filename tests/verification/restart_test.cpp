@@ -196,6 +196,19 @@ std::string deformable_mass_scaled() {
   return deck;
 }
 
+// The deformable deck with discrete elements: a mass hung on a spring and a damper from the
+// block's corner (the damper's dissipated energy and the spring energy cross the dump, glstat's
+// last columns).
+std::string deformable_with_springs() {
+  std::string deck = restart_decks::deformable(4e-5);
+  deck.insert(deck.rfind("*END"),
+              "*NODE\n900,6.0,2.0,2.0\n*ELEMENT_MASS\n900,900,1.0e-7\n"
+              "*SECTION_DISCRETE\n10,0\n0.0,0.0\n*PART\nspring\n10,10,10\n*PART\ndamper\n11,10,11\n"
+              "*MAT_SPRING_ELASTIC\n10,100.0\n*MAT_DAMPER_VISCOUS\n11,1.0e-3\n"
+              "*ELEMENT_DISCRETE\n900,10,25,900,0,1.0,0,0.05\n901,11,900,25\n");
+  return deck;
+}
+
 const Case kCases[] = {
     {"deformable", restart_decks::deformable(4e-5), "", {}, 6e-6, 1},
     {"deformable", restart_decks::deformable(4e-5), "", {}, 6e-6, 2},
@@ -227,6 +240,8 @@ const Case kCases[] = {
     {"sections", deformable_with_sections(), "", {}, 6e-6, 2},
     {"mass_scaling", deformable_mass_scaled(), "", {}, 6e-6, 1},
     {"mass_scaling", deformable_mass_scaled(), "", {}, 6e-6, 2},
+    {"springs", deformable_with_springs(), "", {}, 6e-6, 1},
+    {"springs", deformable_with_springs(), "", {}, 6e-6, 2},
 };
 
 INSTANTIATE_TEST_SUITE_P(Restart, RestartBitwise, testing::ValuesIn(kCases), case_name);

@@ -685,15 +685,21 @@ void finish_model(ReaderContext& context) {
                      located_error(where, "PID",
                                    fmt::format("element {} refers to part {}, which is not defined",
                                                eid, pid)));
-    } else if (!sections.count(part->second.secid) && !context.skipped_sections.count(part->second.secid) &&
-               (m.solid_sections.count(part->second.secid) || m.shell_sections.count(part->second.secid) ||
-                m.beam_sections.count(part->second.secid))) {
+    } else if (!sections.count(part->second.secid) &&
+               !context.skipped_sections.count(part->second.secid) &&
+               (m.solid_sections.count(part->second.secid) ||
+                m.shell_sections.count(part->second.secid) ||
+                m.beam_sections.count(part->second.secid) ||
+                m.discrete_sections.count(part->second.secid))) {
+      const std::string k(kind);
       context.report(kReferenceErrors,
                      located_error(where, "PID",
                                    fmt::format("{} element {} is in part {}, whose section {} is "
                                                "not a *SECTION_{}",
                                                kind, eid, pid, part->second.secid,
-                                               std::string(kind) == "shell" ? "SHELL" : "BEAM")));
+                                               k == "shell"  ? "SHELL"
+                                               : k == "beam" ? "BEAM"
+                                                             : "DISCRETE")));
     }
     std::size_t k = 0;
     for (const model::Id n : element_nodes) {
@@ -710,10 +716,13 @@ void finish_model(ReaderContext& context) {
   };
   for (const auto& e : m.shells) check_structural(e.id, e.pid, e.where, e.nodes, "shell", m.shell_sections);
   for (const auto& e : m.beams) check_structural(e.id, e.pid, e.where, e.nodes, "beam", m.beam_sections);
+  for (const auto& e : m.discretes)
+    check_structural(e.id, e.pid, e.where, e.nodes, "discrete", m.discrete_sections);
   for (const auto& e : m.solids) {
     const auto part = m.parts.find(e.pid);
     if (part != m.parts.end() && !m.solid_sections.count(part->second.secid) &&
-        (m.shell_sections.count(part->second.secid) || m.beam_sections.count(part->second.secid))) {
+        (m.shell_sections.count(part->second.secid) || m.beam_sections.count(part->second.secid) ||
+         m.discrete_sections.count(part->second.secid))) {
       context.report(kReferenceErrors,
                      located_error(e.where, "PID",
                                    fmt::format("solid element {} is in part {}, whose section {} "
@@ -729,7 +738,7 @@ void finish_model(ReaderContext& context) {
   }();
   for (const auto& [id, p] : m.parts) {
     if (!m.solid_sections.count(p.secid) && !m.shell_sections.count(p.secid) &&
-        !m.beam_sections.count(p.secid)) {
+        !m.beam_sections.count(p.secid) && !m.discrete_sections.count(p.secid)) {
       const auto skipped = context.skipped_sections.find(p.secid);
       if (skipped != context.skipped_sections.end()) {
         const auto& s = skipped->second;
@@ -742,8 +751,9 @@ void finish_model(ReaderContext& context) {
         context.report(kReferenceErrors,
                        located_error(p.where, "SECID",
                                      fmt::format("part {} refers to section {}, which is not "
-                                                 "defined (no *SECTION_SOLID, *SECTION_SHELL or "
-                                                 "*SECTION_BEAM has SECID {})",
+                                                 "defined (no *SECTION_SOLID, *SECTION_SHELL, "
+                                                 "*SECTION_BEAM or *SECTION_DISCRETE has SECID "
+                                                 "{})",
                                                  id, p.secid, p.secid)));
       }
     }
@@ -862,7 +872,8 @@ void check_runnable(ReaderContext& context) {
                                            "the deck has no *CONTROL_TERMINATION: nothing says "
                                            "when the analysis ends (add one with ENDTIM)"));
   }
-  if (m.solids.empty() && m.shells.empty() && m.beams.empty() && m.nodal_rigid_bodies.empty()) {
+  if (m.solids.empty() && m.shells.empty() && m.beams.empty() && m.discretes.empty() &&
+      m.nodal_rigid_bodies.empty()) {
     std::string skipped;
     for (const auto& [keyword, count] : m.unknown_keywords) {
       if (keyword.starts_with("*ELEMENT_")) {
@@ -901,6 +912,7 @@ void check_runnable(ReaderContext& context) {
   for (const auto& e : m.beams) {
     if (deformable_part(e.pid)) return;
   }
+  if (!m.discretes.empty()) return;  // springs and dampers give a step from the nodal masses
   context.report(kModelErrors,
                  located_error(deck, "",
                                "the model has no deformable elements, so nothing limits the time "

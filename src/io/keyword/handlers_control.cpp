@@ -264,6 +264,9 @@ void database_ascii(const Block& block, ReaderContext& context) {
     context.model.output.elout_dt = dt;
   } else if (block.base == "*DATABASE_SECFORC") {
     context.model.output.secforc_dt = dt;
+  } else if (block.base == "*DATABASE_JNTFORC") {
+    context.model.output.jntforc_dt = dt;
+    context.model.output.jntforc = true;
   } else {
     context.model.output.nodout_dt = dt;
   }

@@ -1,6 +1,8 @@
 // Mesh, parts, sections, materials and sets.
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "io/keyword/handlers.hpp"
 #include "io/keyword/number.hpp"
 
@@ -220,6 +222,98 @@ void element_beam(const Block& block, ReaderContext& context) {
     }
     context.model.beams.push_back(e);
   }
+}
+
+// *ELEMENT_DISCRETE: EID PID N1 N2 VID S PF OFFSET (I8 x5, E16, I8, E16 in standard format).
+// Only VID 0 (the force acts along the current N1 -> N2 line) is supported; PF only concerns
+// LS-DYNA's own print file and is read and ignored.
+void element_discrete(const Block& block, ReaderContext& context) {
+  static const Layout layout{8, 8, 8, 8, 8, 16, 8, 16};
+  CardCursor cursor(block, context.parameters);
+  while (true) {
+    cursor.skip_blank_lines();
+    if (cursor.at_end()) break;
+    const Card card = cursor.next(1, layout, "EID PID N1 N2 VID S PF OFFSET");
+    model::DiscreteElement e;
+    e.id = positive_id(card, 0, "EID", "element");
+    e.pid = card.id(1, "PID");
+    if (e.pid <= 0) throw card.error("PID", "a discrete element needs a positive part ID");
+    e.where = card.location();
+    e.nodes = {card.id(2, "N1"), card.id(3, "N2")};
+    if (e.nodes[0] <= 0) throw card.error("N1", "a discrete element needs positive node IDs");
+    if (e.nodes[1] <= 0) throw card.error("N2", "a discrete element needs positive node IDs");
+    if (e.nodes[0] == e.nodes[1]) {
+      throw card.error("N2", "N2 repeats N1: a spring or damper needs two different nodes");
+    }
+    if (card.id(4, "VID") != 0) {
+      throw card.error("VID",
+                       "orientation vectors (*DEFINE_SD_ORIENTATION) are not supported: "
+                       "leave VID blank or 0 (the force acts along N1 -> N2)");
+    }
+    e.scale = card.real(5, "S", 1.0);
+    if (!std::isfinite(e.scale)) throw card.error("S", "the scale factor must be finite");
+    card.integer(6, "PF", 0);  // print flag: output selection of LS-DYNA's deforc only
+    e.offset = card.real(7, "OFFSET", 0.0);
+    const auto [it, inserted] = context.element_origin.try_emplace(
+        e.id, std::pair{context.current_file_index, card.line_number()});
+    if (!inserted) {
+      throw card.error("EID", fmt::format("element {} is already defined at {}", e.id,
+                                          context.origin_text(it->second)));
+    }
+    context.model.discretes.push_back(e);
+  }
+}
+
+// *SECTION_DISCRETE: SECID DRO KD V0 CL FD, then (optional) CDL TDL. Only the translational
+// spring/damper (DRO 0) without clearance, failure, deflection limits or dynamic magnification.
+void section_discrete(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  do {
+    read_title(block, cursor);
+    const int first = block.has_option("TITLE") ? 2 : 1;
+    const Card card = cursor.next(first, kEightByTen, "SECID DRO KD V0 CL FD");
+    model::SectionDiscrete s;
+    s.id = positive_id(card, 0, "SECID", "section");
+    const int dro = card.flag(1, "DRO", 0);
+    if (dro == 1) {
+      throw card.error("DRO",
+                       "torsional springs and dampers (DRO 1) are not supported yet "
+                       "(supported: DRO 0, translational)");
+    }
+    if (dro != 0) throw card.error("DRO", fmt::format("value {} is not 0 or 1", dro));
+    static const char* const kRefused[] = {"KD", "V0", "CL", "FD"};
+    for (std::size_t k = 0; k < 4; ++k) {
+      if (card.real(2 + k, kRefused[k], 0.0) != 0.0) {
+        throw card.error(kRefused[k],
+                         "dynamic magnification, clearance and failure deflection are not "
+                         "supported (leave KD, V0, CL and FD blank or 0)");
+      }
+    }
+    // The second card (CDL TDL) is optional in practice; a blank or zero limit means none.
+    if (cursor.remaining() > 0 && !only_blank_lines_left(cursor, block)) {
+      // A second card follows unless the next line starts another section (a SECID): the
+      // second card has only two fields, so a line with more than two is a new first card.
+      const std::optional<Card> limits = cursor.next_optional(first + 1, kEightByTen);
+      if (limits) {
+        if (!limits->blank(2)) {
+          throw limits->error("CDL",
+                              "expected the second card (CDL TDL), found a line with "
+                              "more than two fields");
+        }
+        static const char* const kLimits[] = {"CDL", "TDL"};
+        for (std::size_t k = 0; k < 2; ++k) {
+          if (limits->real(k, kLimits[k], 0.0) != 0.0) {
+            throw limits->error(kLimits[k],
+                                "deflection limits (CDL, TDL) are not supported "
+                                "(leave blank or 0)");
+          }
+        }
+      }
+    }
+    s.where = card.location();
+    check_unique(context.model.discrete_sections, s.id, card, "SECID", "section");
+    context.model.discrete_sections.emplace(s.id, std::move(s));
+  } while (!only_blank_lines_left(cursor, block));
 }
 
 void part(const Block& block, ReaderContext& context) {
@@ -770,6 +864,51 @@ void change_p_order(const Block& block, ReaderContext& context) {
     change.where = card.location();
     context.model.p_order_changes.push_back(change);
   }
+}
+
+// The discrete-element materials: *MAT_SPRING_ELASTIC (S01) MID K, *MAT_DAMPER_VISCOUS (S02)
+// MID DC, *MAT_SPRING_NONLINEAR_ELASTIC (S04) MID LCD LCR.
+void mat_discrete(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  read_title(block, cursor);
+  const int n = block.has_option("TITLE") ? 2 : 1;
+  const std::string& base = block.base;
+  model::Material m;
+  if (base == "*MAT_SPRING_ELASTIC" || base == "*MAT_S01") {
+    m.kind = model::MaterialKind::SpringElastic;
+  } else if (base == "*MAT_DAMPER_VISCOUS" || base == "*MAT_S02") {
+    m.kind = model::MaterialKind::DamperViscous;
+  } else {
+    m.kind = model::MaterialKind::SpringNonlinearElastic;
+  }
+  const char* fields = m.kind == model::MaterialKind::SpringElastic   ? "MID K"
+                       : m.kind == model::MaterialKind::DamperViscous ? "MID DC"
+                                                                      : "MID LCD LCR";
+  const Card card = cursor.next(n, kEightByTen, fields);
+  m.id = positive_id(card, 0, "MID", "material");
+  m.keyword = block.keyword;
+  m.where = card.location();
+  if (m.kind == model::MaterialKind::SpringElastic) {
+    m.spring_k = card.real(1, "K", 0.0);
+    if (!(m.spring_k > 0.0) || !std::isfinite(m.spring_k)) {
+      throw card.error("K",
+                       fmt::format("the spring stiffness must be positive (got {})", m.spring_k));
+    }
+  } else if (m.kind == model::MaterialKind::DamperViscous) {
+    m.damper_dc = card.real(1, "DC", 0.0);
+    if (!(m.damper_dc > 0.0) || !std::isfinite(m.damper_dc)) {
+      throw card.error("DC",
+                       fmt::format("the damping constant must be positive (got {})", m.damper_dc));
+    }
+  } else {
+    m.lcd = card.id(1, "LCD");
+    if (m.lcd <= 0) throw card.error("LCD", "give the force vs elongation curve (LCD > 0)");
+    if (card.id(2, "LCR") != 0) {
+      throw card.error("LCR", "the rate scale curve LCR is not supported (leave blank or 0)");
+    }
+  }
+  add_material(context, card, std::move(m));
+  warn_unread_lines(block, cursor, context);
 }
 
 }  // namespace rf::io::handlers

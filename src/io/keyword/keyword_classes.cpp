@@ -53,7 +53,8 @@ constexpr std::array kRules{
     Rule{"*SECTION_TSHELL", true, kPhysics,
          "a thick-shell section: thick shells are not supported yet"},
     Rule{"*SECTION_DISCRETE", true, kPhysics,
-         "a discrete-element section: springs and dampers are not supported yet"},
+         "a discrete-element section variant that is not supported (supported: "
+         "*SECTION_DISCRETE(_TITLE))"},
     Rule{"*SECTION_SPH", true, kPhysics, "an SPH section"},
     Rule{"*ELEMENT_", true, kPhysics, "an element keyword"},
     Rule{"*ELEMENT_SHELL", true, kPhysics,
@@ -63,7 +64,8 @@ constexpr std::array kRules{
          "a beam element variant that is not supported (supported: *ELEMENT_BEAM, "
          "_ORIENTATION)"},
     Rule{"*ELEMENT_TSHELL", true, kPhysics, "thick-shell elements: not supported yet"},
-    Rule{"*ELEMENT_DISCRETE", true, kPhysics, "discrete elements: not supported yet"},
+    Rule{"*ELEMENT_DISCRETE", true, kPhysics,
+         "a discrete element variant that is not supported (supported: *ELEMENT_DISCRETE)"},
     Rule{"*ELEMENT_MASS", true, kPhysics, "point masses: not supported yet"},
     Rule{"*ELEMENT_SPH", true, kPhysics, "SPH particles"},
     Rule{"*PART", true, kPhysics, "a part definition"},
