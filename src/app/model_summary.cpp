@@ -34,7 +34,9 @@ const char* shape_of(const model::SolidElement& e) {
 
 void print_model_summary(const model::Model& model, std::FILE* out) {
   // Building the simulation validates every cross reference exactly as `run` would.
-  const solver::Simulation sim(model, solver::SimulationOptions{});
+  solver::SimulationOptions options;
+  options.relax = false;  // reported below, run by `run`
+  const solver::Simulation sim(model, options);
   print_model_summary(model, sim, out);
 }
 
@@ -257,6 +259,14 @@ void print_model_summary(const model::Model& model, const solver::Simulation& si
   fmt::print(
       out, "termination: ENDTIM {:g}{}\n", model.termination.endtim,
       model.termination.endcyc > 0 ? fmt::format(", ENDCYC {}", model.termination.endcyc) : "");
+  if (solver::dynamic_relaxation_requested(model)) {
+    const auto& dr = model.dynamic_relaxation;
+    fmt::print(out,
+               "dynamic relaxation before the transient: DRTOL {:g}, DRFCTR {:g}, NRCYCK {}{} "
+               "(curves with SIDR 1 act only then)\n",
+               dr.drtol, dr.drfctr, dr.nrcyck,
+               dr.drterm > 0.0 ? fmt::format(", DRTERM {:g}", dr.drterm) : "");
+  }
   fmt::print(out, "time step: TSSFAC {:g}, first step {:.4g} (controlled by element {})\n",
              model.timestep.tssfac, state.dt, sim.controlling_element());
   fmt::print(out, "warnings: {}\n", model.warnings.size() + sim.warnings().size());

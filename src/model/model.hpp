@@ -741,6 +741,20 @@ struct TimestepControl {
   double dt_max = 0.0;  // IMPETUS *TIME dt_max; 0: no cap
 };
 
+// *CONTROL_DYNAMIC_RELAXATION (docs/keywords.md, docs/theory.md#dynamic-relaxation): a damped
+// pseudo-dynamic phase before the transient that brings preloads (curves with SIDR 1 or 2) to
+// static equilibrium. Active with IDRFLG 1 or -1, or IDRFLG 0 and a curve flagged SIDR 1/2;
+// never with IDRFLG -999.
+struct DynamicRelaxationControl {
+  int nrcyck = 250;       // cycles between convergence checks
+  double drtol = 1e-3;    // converged: distortional kinetic energy / its peak below this
+  double drfctr = 0.995;  // velocities scaled by this every cycle
+  double drterm = 0.0;    // pseudo-time at which the phase ends anyway; 0: no limit
+  double tssfdr = 0.0;    // step scale factor during the phase; 0: TSSFAC
+  int idrflg = 0;
+  SourceLocation where;  // the keyword, when the deck has one
+};
+
 struct HourglassControl {
   int ihq = 1;
   double qh = 0.1;
@@ -897,6 +911,7 @@ struct Model {
 
   Termination termination;
   TimestepControl timestep;
+  DynamicRelaxationControl dynamic_relaxation;
   HourglassControl hourglass_control;
   BulkViscosityControl bulk_viscosity;
   OutputControl output;

@@ -71,8 +71,26 @@ std::vector<std::int32_t> select_geometry(const State& state, const model::Geome
                                       seed.feature_angle_deg, seed.pid);
 }
 
+namespace {
+bool relaxation_running = false;
+}
+
+bool dynamic_relaxation_running() {
+  return relaxation_running;
+}
+DynamicRelaxationPhase::DynamicRelaxationPhase() {
+  relaxation_running = true;
+}
+DynamicRelaxationPhase::~DynamicRelaxationPhase() {
+  relaxation_running = false;
+}
+
 double ScaledCurve::operator()(double t) const {
-  if (curve) return scale * model::evaluate(*curve, t - shift);
+  if (curve) {
+    // SIDR 0: transient only; 1: dynamic relaxation only; 2: both (LS-DYNA *DEFINE_CURVE).
+    if (relaxation_running ? curve->sidr == 0 : curve->sidr == 1) return 0.0;
+    return scale * model::evaluate(*curve, t - shift);
+  }
   if (function) return scale * (*function)(t - shift);
   return scale;
 }

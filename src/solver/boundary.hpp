@@ -21,6 +21,19 @@ struct ScaledCurve {
   double operator()(double t) const;
 };
 
+// Which analysis phase the time functions serve (*DEFINE_CURVE SIDR): during dynamic relaxation
+// only curves flagged SIDR 1 or 2 act (SIDR 0 curves give 0); in the transient SIDR 1 curves
+// give 0. Constants and *FUNCTIONs act in both. One flag per process, set between cycles by
+// the dynamic relaxation phase alone (DynamicRelaxationPhase), read by every thread.
+bool dynamic_relaxation_running();
+class DynamicRelaxationPhase {
+ public:
+  DynamicRelaxationPhase();
+  ~DynamicRelaxationPhase();
+  DynamicRelaxationPhase(const DynamicRelaxationPhase&) = delete;
+  DynamicRelaxationPhase& operator=(const DynamicRelaxationPhase&) = delete;
+};
+
 // The time function of a card: curve `lcid`, else *FUNCTION `function`, else the constant `sf`.
 // Throws an input error naming LCID (or FUNCTION) when the ID is not defined.
 ScaledCurve make_time_function(const model::Model& model, model::Id lcid, model::Id function,

@@ -16,11 +16,6 @@ namespace rf::solver {
 
 namespace {
 
-element::NodalView view_of(const NodalState& nodes) {
-  return {nodes.x.x.data(), nodes.x.y.data(), nodes.x.z.data(),
-          nodes.v.x.data(), nodes.v.y.data(), nodes.v.z.data()};
-}
-
 // Mass of one element without scaling (the sum of its lumped shares).
 double element_mass(const element::HexBlock& b, std::size_t e) {
   return b.material.rho * b.volume0[e];
@@ -88,7 +83,7 @@ bool scale_masses(MassScaling& scaling, State& state, const std::vector<std::int
   double min_step = std::numeric_limits<double>::infinity();
   double old_min_step = std::numeric_limits<double>::infinity();
   model::Id min_element = controlling_element;
-  std::vector<double> raw;
+  std::vector<double>& raw = scaling.scratch.raw_step;
   auto rescale = [&](auto& blocks, std::vector<std::vector<double>>& factors) {
     factors.resize(blocks.size());
     for (std::size_t b = 0; b < blocks.size(); ++b) {
@@ -133,8 +128,11 @@ bool scale_masses(MassScaling& scaling, State& state, const std::vector<std::int
   // Nodal masses and inertias from scratch: physical plus every element's (s_e - 1) shares.
   NodalState& nodes = state.nodes;
   RotationalState& rot = state.rotations;
-  std::vector<double> added(nodes.size(), 0.0), added_inertia(rot.inertia.size(), 0.0);
-  std::vector<double> excess;
+  std::vector<double>& added = scaling.scratch.added;
+  std::vector<double>& added_inertia = scaling.scratch.added_inertia;
+  std::vector<double>& excess = scaling.scratch.excess;
+  added.assign(nodes.size(), 0.0);  // same sizes every time: no allocation after the first
+  added_inertia.assign(rot.inertia.size(), 0.0);
   auto minus_one = [&](const std::vector<double>& s) {
     excess.resize(s.size());
     for (std::size_t e = 0; e < s.size(); ++e) excess[e] = s[e] - 1.0;
@@ -144,7 +142,7 @@ bool scale_masses(MassScaling& scaling, State& state, const std::vector<std::int
     if (scaling.hex_factor[b].empty()) continue;
     element::add_hex_lumped_mass(state.hex_blocks[b], added, minus_one(scaling.hex_factor[b]));
   }
-  std::vector<double> no_inertia;  // trusses in a model without rotations
+  std::vector<double>& no_inertia = scaling.scratch.no_inertia;  // trusses without rotations
   auto& inertia_sink = rot.empty() ? no_inertia : added_inertia;
   for (std::size_t b = 0; b < state.shell_blocks.size(); ++b) {
     if (scaling.shell_factor[b].empty()) continue;

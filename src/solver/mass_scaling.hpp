@@ -42,6 +42,11 @@ struct MassScaling {
   double added_mass = 0.0;           // sum of nodal mass minus physical mass, deformable nodes
   double mass_scaling_work = 0.0;    // kinetic energy given by mass added during the run
   std::int64_t rescaled_cycles = 0;  // cycles in which mass was added after the start
+  // Work arrays of scale_masses, kept so that a cycle that adds mass allocates nothing once
+  // they have their sizes.
+  struct Scratch {
+    std::vector<double> raw_step, added, added_inertia, excess, no_inertia;
+  } scratch;
 
   bool active() const { return target_step > 0.0; }
 };

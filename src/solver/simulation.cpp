@@ -52,11 +52,6 @@ std::array<double, N> deterministic_sum(std::int64_t n, std::vector<double>& scr
 
 using PhaseClock = std::chrono::steady_clock;
 
-element::NodalView view_of(const NodalState& nodes) {
-  return {nodes.x.x.data(), nodes.x.y.data(), nodes.x.z.data(),
-          nodes.v.x.data(), nodes.v.y.data(), nodes.v.z.data()};
-}
-
 double default_interval(double configured, double end_time, double rows) {
   return configured > 0.0 ? configured : end_time / rows;
 }
@@ -291,6 +286,8 @@ ModeLoader Simulation::mode_loader() const {
 }
 
 void Simulation::initialize() {
+  const bool relaxed = options_.relax && dynamic_relaxation_requested(model_);
+  if (relaxed) relax_dynamically();
   apply_initial_velocities(model_, node_index_, state_);
   initialize_rigid_velocities(model_, node_index_, rigid_, state_);
   v_previous_ = state_.nodes.v;
@@ -340,6 +337,9 @@ void Simulation::initialize() {
   energy_.kinetic = sums[0];
   energy_.modal_elastic = rigid_sums.modal_elastic;
   energy_.initial_total = sums[0] + rigid_sums.modal_elastic;
+  // After dynamic relaxation the transient starts with the strain (and contact penalty) energy
+  // the preload stored: part of the initial total, not work done in the transient.
+  if (relaxed) energy_.initial_total += energy_.internal_work + energy_.contact_energy;
   for (int k = 0; k < 3; ++k) {
     energy_.momentum[k] = sums[1 + k];
     energy_.angular_momentum[k] = sums[4 + k];
@@ -351,6 +351,128 @@ void Simulation::initialize() {
   select_time_step();
   initial_dt_ = state_.dt;
   dt_average_ = 0.5 * state_.dt;  // first half step: v^{1/2} = v^0 + dt/2 a^0
+}
+
+// Dynamic relaxation (*CONTROL_DYNAMIC_RELAXATION; LS-DYNA keyword manual, "Dynamic
+// relaxation"; Underwood, "Dynamic relaxation", in Computational Methods for Transient
+// Analysis, 1983): the explicit cycle under the curves flagged SIDR 1 or 2, with every velocity
+// multiplied by DRFCTR each cycle, until the distortional kinetic energy has fallen below DRTOL
+// times its peak (checked every NRCYCK cycles) or the pseudo-time reaches DRTERM. The
+// transient then starts at t = 0 from the relaxed geometry and stresses, at rest (initial
+// velocities are applied afterwards, as LS-DYNA's PHASE 0), with the stored energy in the
+// initial total. Nothing is written during the phase.
+void Simulation::relax_dynamically() {
+  const model::DynamicRelaxationControl& control = model_.dynamic_relaxation;
+  if (!model_.part_modes.empty()) {
+    throw InputError(model::context_of(control.where, "IDRFLG"),
+                     "dynamic relaxation with flexible bodies (*PART_MODES) is not supported "
+                     "(set IDRFLG -999, or flag no curve with SIDR 1 or 2)");
+  }
+  const DynamicRelaxationPhase phase;
+  NodalState& nodes = state_.nodes;
+  RotationalState& rot = state_.rotations;
+  auto scale_velocities = [&](double f) {
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      nodes.v.x[i] *= f;
+      nodes.v.y[i] *= f;
+      nodes.v.z[i] *= f;
+    }
+    for (std::size_t r = 0; r < rot.size(); ++r) {
+      rot.w.x[r] *= f;
+      rot.w.y[r] *= f;
+      rot.w.z[r] *= f;
+    }
+    for (auto& body : rigid_.bodies) {  // v_node = v_c + w x r scales with both
+      body.state.velocity *= f;
+      body.state.angular_momentum *= f;
+      body.state.angular_velocity *= f;
+    }
+  };
+  // Kinetic energy of the deformable nodes (and their spins) less that of their common
+  // translation: what still moves relative to a rigid drift.
+  auto distortional_kinetic_energy = [&]() {
+    double kinetic = 0.0, mass = 0.0, p[3] = {0.0, 0.0, 0.0};
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      if (!rigid_.empty() && rigid_.body_of_node[i] >= 0) continue;
+      const double m = nodes.mass[i];
+      const double vx = nodes.v.x[i], vy = nodes.v.y[i], vz = nodes.v.z[i];
+      kinetic += 0.5 * m * (vx * vx + vy * vy + vz * vz);
+      mass += m;
+      p[0] += m * vx;
+      p[1] += m * vy;
+      p[2] += m * vz;
+    }
+    for (std::size_t r = 0; r < rot.size(); ++r) {
+      if (!rigid_.empty() && rigid_.body_of_node[rot.node[r]] >= 0) continue;
+      kinetic += 0.5 * rot.inertia[r] *
+                 (rot.w.x[r] * rot.w.x[r] + rot.w.y[r] * rot.w.y[r] + rot.w.z[r] * rot.w.z[r]);
+    }
+    if (mass > 0.0) kinetic -= 0.5 * (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) / mass;
+    return std::max(kinetic, 0.0);
+  };
+
+  scale_velocities(0.0);
+  v_previous_ = nodes.v;
+  state_.time = 0.0;
+  state_.cycle = 0;
+  state_.dt_prev = 0.0;
+  compute_internal_forces();
+  compute_contact_forces();
+  compute_external_forces();
+  check_breakdown();
+  scale_masses_if_needed();
+  select_time_step();
+  initial_dt_ = state_.dt;
+  dt_average_ = 0.5 * state_.dt;
+  double peak = 0.0, last = 0.0;
+  bool converged = false;
+  while (true) {
+    update_velocities();
+    scale_velocities(control.drfctr);
+    update_positions();
+    compute_internal_forces();
+    compute_contact_forces();
+    compute_external_forces();
+    check_breakdown();
+    scale_masses_if_needed();
+    select_time_step();
+    ++state_.cycle;
+    if (state_.cycle % control.nrcyck == 0) {
+      last = distortional_kinetic_energy();
+      peak = std::max(peak, last);
+      if (peak > 0.0 && last <= control.drtol * peak) {
+        converged = true;
+        break;
+      }
+    }
+    if (control.drterm > 0.0 && state_.time >= control.drterm) break;
+    const bool interrupted = distribution_ ? agreed_interrupt_ != 0 : interrupt::requested() != 0;
+    if (interrupted) break;
+  }
+  relaxation_ = {state_.cycle, state_.time, peak > 0.0 ? last / peak : 0.0, converged};
+  if (!converged) {
+    warnings_.push_back(
+        {{},
+         fmt::format("dynamic relaxation stopped at pseudo-time {:.6g} after {} cycles before "
+                     "it converged (distortional kinetic energy {:.3g} of its peak, DRTOL {:.3g})"
+                     "; the transient starts from that state",
+                     state_.time, state_.cycle, relaxation_.kinetic_energy_ratio, control.drtol)});
+  }
+  // The transient starts here: at rest, t = 0, with the relaxed geometry and element state. The
+  // ledger keeps the stored energy (internal work, contact penalty); the work of the loads and
+  // of the relaxation damping belongs to the phase, not to the transient.
+  scale_velocities(0.0);
+  state_.time = 0.0;
+  state_.cycle = 0;
+  state_.dt = 0.0;
+  state_.dt_prev = 0.0;
+  initial_dt_ = 0.0;
+  energy_.external_work = 0.0;
+  energy_.rigidwall_work = 0.0;
+  energy_.damping_work = 0.0;
+  energy_.switch_energy = 0.0;
+  energy_.kinetic = 0.0;
+  mass_scaling_.mass_scaling_work = 0.0;
 }
 
 // One explicit cycle, from t^n (forces known) to t^{n+1} (forces known). `lap` books the time
@@ -608,8 +730,9 @@ void Simulation::apply_switch(model::Id swset, const std::vector<model::PartSwit
       for (double& f : block.force) f *= kick;
     }
   }
-  assemble_internal_forces(state_);
-  if (distribution_) distribution_->sum_partial_forces(state_, nullptr, false);
+  // Every family's forces, not only the hexahedra's: shells, beams, springs and joints of the
+  // parts that did not switch still act in this cycle.
+  gather_internal_forces(false);
   for (auto& event : events) {
     if (event.parts.empty()) continue;
     event.swset = swset;
@@ -1077,6 +1200,24 @@ void Simulation::update_positions() {
   state_.time += dt;
 }
 
+// A block's kernel result: the first failure of the cycle becomes the breakdown message (what
+// `describe` says of the failed element, then time and cycle), and the step limit enters the
+// cycle's minimum with its controlling element.
+template <class Describe>
+void Simulation::record_kernel_result(const element::KernelResult& r,
+                                      const std::vector<model::Id>& element_id,
+                                      Describe&& describe) {
+  if (r.failed && breakdown_message_.empty()) {
+    breakdown_message_ =
+        fmt::format("{} at time {:.6g} (cycle {})", describe(element_id[r.failed_element]),
+                    state_.time, state_.cycle);
+  }
+  if (r.min_dt < element_dt_) {
+    element_dt_ = r.min_dt;
+    if (r.min_dt_element >= 0) controlling_element_ = element_id[r.min_dt_element];
+  }
+}
+
 void Simulation::compute_internal_forces() {
   const element::NodalView view = view_of(state_.nodes);
   element_dt_ = std::numeric_limits<double>::infinity();
@@ -1094,23 +1235,29 @@ void Simulation::compute_internal_forces() {
       if (part_histories_)
         part_histories_->add_hourglass(b, r.hourglass_work, r.bulk_viscosity_work);
     }
-    if (r.failed && breakdown_message_.empty()) {
-      breakdown_message_ = fmt::format(
-          "element {} of part {} has non-positive volume {:.6g} (or a non-finite force) at "
-          "time {:.6g} (cycle {})",
-          block.element_id[r.failed_element], block.part_id, r.failed_volume, state_.time,
-          state_.cycle);
-    }
-    if (r.min_dt < element_dt_) {
-      element_dt_ = r.min_dt;
-      if (r.min_dt_element >= 0) controlling_element_ = block.element_id[r.min_dt_element];
-    }
+    record_kernel_result(r, block.element_id, [&](model::Id element) {
+      return fmt::format(
+          "element {} of part {} has non-positive volume {:.6g} (or a non-finite "
+          "force)",
+          element, block.part_id, r.failed_volume);
+    });
   }
   compute_structural_forces();
+  gather_internal_forces(true);
+}
+
+// f_int from every family: the element blocks' force slots (summed over the ranks), then the
+// springs, dampers and joints, which every rank computes whole (replicated). `book_work` adds
+// the ranks' hourglass and viscous work; a switch re-gathers without booking it again.
+void Simulation::gather_internal_forces(bool book_work) {
   assemble_internal_forces(state_);
   assemble_structural_forces(state_);
-  if (distribution_) sum_partial_forces_across_ranks();
-  // Springs and dampers after the ranks' sum: every rank computes all of them (replicated).
+  if (distribution_) {
+    if (book_work)
+      sum_partial_forces_across_ranks();
+    else
+      distribution_->sum_partial_forces(state_, nullptr, false);
+  }
   compute_discrete_forces();
   if (!joints_.empty()) {  // penalty springs: their stiffness needs the first step
     prepare_joint_stiffness(joints_, rigid_, state_, initial_dt_);
@@ -1130,16 +1277,12 @@ void Simulation::compute_structural_forces() {
       rank_block_work_[slot++] = r.hourglass_work;
     else
       energy_.hourglass += r.hourglass_work;
-    if (r.failed && breakdown_message_.empty()) {
-      breakdown_message_ = fmt::format(
-          "{} element {} of part {} has a degenerate shape (non-positive area or length) or a "
-          "non-finite force at time {:.6g} (cycle {})",
-          kind, block.element_id[r.failed_element], block.part_id, state_.time, state_.cycle);
-    }
-    if (r.min_dt < element_dt_) {
-      element_dt_ = r.min_dt;
-      if (r.min_dt_element >= 0) controlling_element_ = block.element_id[r.min_dt_element];
-    }
+    record_kernel_result(r, block.element_id, [&](model::Id element) {
+      return fmt::format(
+          "{} element {} of part {} has a degenerate shape (non-positive area or "
+          "length) or a non-finite force",
+          kind, element, block.part_id);
+    });
   };
   for (auto& block : state_.shell_blocks) {
     if (block.rigid) {
@@ -1171,17 +1314,12 @@ void Simulation::compute_discrete_forces() {
       discrete_dt_ = r.min_dt;
       discrete_controlling_element_ = block.element_id[r.min_dt_element];
     }
-    if (r.failed && breakdown_message_.empty()) {
-      breakdown_message_ = fmt::format(
-          "discrete element {} of part {}: its nodes have come together (length {:.6g}), so the "
-          "line of action is undefined, at time {:.6g} (cycle {})",
-          block.element_id[r.failed_element], block.part_id, r.failed_volume, state_.time,
-          state_.cycle);
-    }
-    if (r.min_dt < element_dt_) {
-      element_dt_ = r.min_dt;
-      if (r.min_dt_element >= 0) controlling_element_ = block.element_id[r.min_dt_element];
-    }
+    record_kernel_result(r, block.element_id, [&](model::Id element) {
+      return fmt::format(
+          "discrete element {} of part {}: its nodes have come together (length "
+          "{:.6g}), so the line of action is undefined,",
+          element, block.part_id, r.failed_volume);
+    });
   }
   assemble_discrete_forces(state_);
 }
@@ -1233,7 +1371,9 @@ void Simulation::scale_masses_if_needed() {
 
 void Simulation::select_time_step() {
   const auto& control = model_.timestep;
-  const double tssfac = control.tssfac > 0.0 ? control.tssfac : 0.9;
+  const bool relaxing = dynamic_relaxation_running();
+  double tssfac = control.tssfac > 0.0 ? control.tssfac : 0.9;
+  if (relaxing && model_.dynamic_relaxation.tssfdr > 0.0) tssfac = model_.dynamic_relaxation.tssfdr;
   double dt = tssfac * element_dt_;
   // Step hysteresis (issue 16). The element step follows the current geometry, which oscillates
   // with the very modes the step must resolve: a step that rises and falls with them modulates
@@ -1306,7 +1446,8 @@ void Simulation::select_time_step() {
   }
   // Land exactly on the termination time: shorten the step, or stretch it by at most 0.1 %
   // rather than leave a remainder below 1e-3 dt (which was then overshot by a whole step).
-  if (end_time_ > 0.0 && state_.time + dt * (1.0 + 1e-3) > end_time_ && end_time_ > state_.time) {
+  if (!relaxing && end_time_ > 0.0 && state_.time + dt * (1.0 + 1e-3) > end_time_ &&
+      end_time_ > state_.time) {
     dt = end_time_ - state_.time;
   }
   state_.dt_prev = state_.dt;

@@ -87,6 +87,25 @@ struct EnergyAccount {
   }
 };
 
+// What the dynamic relaxation phase did (*CONTROL_DYNAMIC_RELAXATION); zero cycles: none ran.
+struct DynamicRelaxationSummary {
+  std::int64_t cycles = 0;
+  double pseudo_time = 0.0;
+  double kinetic_energy_ratio = 0.0;  // distortional kinetic energy / its peak at the end
+  bool converged = false;
+};
+
+// Whether the deck asks for dynamic relaxation: IDRFLG 1 or -1, or IDRFLG 0 with a curve flagged
+// SIDR 1 or 2 (LS-DYNA); never IDRFLG -999.
+inline bool dynamic_relaxation_requested(const model::Model& model) {
+  const int flag = model.dynamic_relaxation.idrflg;
+  if (flag == 1 || flag == -1) return true;
+  if (flag != 0) return false;
+  for (const auto& [id, curve] : model.curves)
+    if (curve.sidr != 0) return true;
+  return false;
+}
+
 // Wall time spent in each phase of the cycle (d3hsp.txt), summed over the run. A steady_clock
 // reading costs tens of nanoseconds; a cycle takes about a dozen, negligible against the work.
 struct PhaseTimes {
@@ -122,6 +141,8 @@ struct SimulationOptions {
   output::CsvContinuation continuation;
   // Reads the mode databases of *PART_MODES (empty: modal::read_mode_database).
   ModeLoader mode_loader;
+  // false: the dynamic relaxation phase a deck asks for is not run (`check` only reports it).
+  bool relax = true;
 };
 
 class Simulation {
@@ -141,6 +162,8 @@ class Simulation {
   // A SIGINT/SIGTERM (solver/interrupt.hpp) ends the run as termination does, at the next
   // cycle boundary, with a restart dump if dumps are enabled: see interrupt_signal().
   void run(const std::function<void(const Simulation&)>& on_progress = {});
+  // What the dynamic relaxation phase did before the transient (none: zero cycles).
+  const DynamicRelaxationSummary& dynamic_relaxation() const { return relaxation_; }
   // The signal that ended run() early, or 0.
   int interrupt_signal() const { return interrupt_signal_; }
   // Wall time per phase so far (this process: a restarted run counts from the restart).
@@ -181,6 +204,10 @@ class Simulation {
   void update_velocities();  // a^n -> v^{n+1/2}, constraints, rigid bodies, energy
   // omega^{n-1/2} -> omega^{n+1/2} of the nodes with rotations; their energy and spin sums.
   std::array<double, 6> update_rotations(double dt_avg);
+  template <class Describe>
+  void record_kernel_result(const element::KernelResult& r,
+                            const std::vector<model::Id>& element_id, Describe&& describe);
+  void gather_internal_forces(bool book_work);
   void compute_structural_forces();  // shells and beams (part of compute_internal_forces)
   void compute_discrete_forces();    // springs and dampers (part of compute_internal_forces)
   void apply_rigid_walls();  // (inside update_velocities) walls stop nodes and bodies
@@ -208,6 +235,7 @@ class Simulation {
   void finish_output_on_ranks();
   bool element_output_due() const;  // rank 0: some element output is due at state_.time
 
+  void relax_dynamically();
   void initialize();
   // Applies one switch (both directions of a set) and repairs forces and the step.
   void apply_switch(model::Id swset, const std::vector<model::PartSwitch>& to_rigid,
@@ -251,6 +279,7 @@ class Simulation {
   std::vector<double> reduction_scratch_rotations_;
   model::Id controlling_element_ = 0;
   bool finished_ = false;
+  DynamicRelaxationSummary relaxation_;  // the phase before the transient, if any
   int interrupt_signal_ = 0;  // SIGINT/SIGTERM seen between cycles: the run ends as at ENDTIM
   PhaseTimes phase_times_;
 

@@ -37,6 +37,12 @@ struct NodalState {
   std::size_t size() const { return id.size(); }
 };
 
+// The element kernels' read-only view of the nodal positions and velocities.
+inline element::NodalView view_of(const NodalState& nodes) {
+  return {nodes.x.x.data(), nodes.x.y.data(), nodes.x.z.data(),
+          nodes.v.x.data(), nodes.v.y.data(), nodes.v.z.data()};
+}
+
 // Rotational degrees of freedom, only for the nodes that need them (shell and beam nodes):
 // struct-of-arrays by rotational index. Solid-only models leave every array empty and pay
 // nothing. The lumped rotational inertia is isotropic (one value per node), as for shells and

@@ -61,6 +61,7 @@ void control_termination(const Block&, ReaderContext&);
 void control_timestep(const Block&, ReaderContext&);
 void control_hourglass(const Block&, ReaderContext&);
 void control_bulk_viscosity(const Block&, ReaderContext&);
+void control_dynamic_relaxation(const Block&, ReaderContext&);
 void control_shell(const Block&, ReaderContext&);
 // handlers_implicit.cpp
 void control_implicit_general(const Block&, ReaderContext&);

@@ -108,6 +108,52 @@ void control_timestep(const Block& block, ReaderContext& context) {
   warn_unread_lines(block, cursor, context);
 }
 
+// *CONTROL_DYNAMIC_RELAXATION NRCYCK DRTOL DRFCTR DRTERM TSSFDR IRELAL EDTTL IDRFLG: the
+// dynamic relaxation of LS-DYNA's IDRFLG 0, 1, -1 and -999 (solver/simulation.cpp,
+// relax_dynamically). The automatic control (IRELAL), prescribed-geometry and implicit
+// initialisation (IDRFLG 2, 3, 5, 6, -3) are errors.
+void control_dynamic_relaxation(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  auto& dr = context.model.dynamic_relaxation;
+  dr.where = block.location();
+  if (const auto card = single_card(block, cursor)) {
+    dr.where = card->location();
+    dr.nrcyck = card->flag(0, "NRCYCK", 250);
+    if (dr.nrcyck == 0) dr.nrcyck = 250;
+    if (dr.nrcyck < 0) throw card->error("NRCYCK", "value must be a positive cycle count");
+    dr.drtol = non_negative(*card, 1, "DRTOL", 1e-3);
+    if (dr.drtol == 0.0) dr.drtol = 1e-3;
+    if (dr.drtol >= 1.0) {
+      throw card->error("DRTOL", fmt::format("value {} must lie in (0, 1)", dr.drtol));
+    }
+    dr.drfctr = non_negative(*card, 2, "DRFCTR", 0.995);
+    if (dr.drfctr == 0.0) dr.drfctr = 0.995;
+    if (dr.drfctr >= 1.0) {
+      throw card->error("DRFCTR", fmt::format("value {} must lie in (0, 1): it scales the "
+                                              "velocities every cycle",
+                                              dr.drfctr));
+    }
+    dr.drterm = non_negative(*card, 3, "DRTERM", 0.0);
+    dr.tssfdr = non_negative(*card, 4, "TSSFDR", 0.0);
+    if (dr.tssfdr > 1.0) {
+      throw card->error("TSSFDR", fmt::format("value {} must lie in (0, 1]", dr.tssfdr));
+    }
+    if (card->flag(5, "IRELAL", 0) != 0) {
+      throw card->error("IRELAL",
+                        "the automatic control of dynamic relaxation (Papadrakakis) is "
+                        "not supported (leave 0: DRFCTR damps the velocities)");
+    }
+    dr.idrflg = card->flag(7, "IDRFLG", 0);
+    if (dr.idrflg != 0 && dr.idrflg != 1 && dr.idrflg != -1 && dr.idrflg != -999) {
+      throw card->error("IDRFLG", fmt::format("value {} is not supported (0, 1, -1 or -999; "
+                                              "prescribed-geometry and implicit initialisation "
+                                              "are not)",
+                                              dr.idrflg));
+    }
+  }
+  warn_unread_lines(block, cursor, context);
+}
+
 void control_hourglass(const Block& block, ReaderContext& context) {
   CardCursor cursor(block, context.parameters);
   auto& h = context.model.hourglass_control;

@@ -383,8 +383,8 @@ void sensor_control(const Block& block, ReaderContext& context) {
     const int sidr = c1.flag(6, "SIDR", 0);
     if (sidr == 1) {
       throw c1.error("SIDR",
-                     "SIDR 1 (dynamic relaxation only) is not supported: RigidFlex has no "
-                     "dynamic relaxation phase");
+                     "SIDR 1 (a sensor control for dynamic relaxation only) is not supported: "
+                     "sensors act in the transient (0 or 2)");
     }
     if (sidr != 0 && sidr != 2) {
       throw c1.error("SIDR", fmt::format("value {} is not 0, 1 or 2", sidr));

@@ -103,6 +103,7 @@ const std::vector<KeywordEntry>& table() {
       {"*CONTROL_TIMESTEP", control_timestep, {}},
       {"*CONTROL_HOURGLASS", control_hourglass, {}},
       {"*CONTROL_BULK_VISCOSITY", control_bulk_viscosity, {}},
+      {"*CONTROL_DYNAMIC_RELAXATION", control_dynamic_relaxation, {}},
       {"*CONTROL_IMPLICIT_GENERAL", control_implicit_general, {}},
       {"*CONTROL_IMPLICIT_EIGENVALUE", control_implicit_eigenvalue, {}},
       {"*DATABASE_GLSTAT", database_ascii, {}},
