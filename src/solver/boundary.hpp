@@ -7,6 +7,7 @@
 
 #include "model/model.hpp"
 #include "solver/build_state.hpp"
+#include "solver/pressure_loads.hpp"
 #include "solver/state.hpp"
 
 namespace rf::solver {
@@ -76,6 +77,8 @@ struct Boundary {
   std::vector<std::uint8_t> rotation_fixed;
   std::vector<PrescribedDof> prescribed;
   std::vector<NodalForce> nodal_forces;
+  std::vector<NodalMoment> nodal_moments;  // *LOAD_NODE DOF 5-7 (solver/pressure_loads.hpp)
+  PressureLoads pressure;                  // *LOAD_SEGMENT*, *LOAD_SHELL*
   std::vector<BodyAcceleration> body_accelerations;
   // Sorted unique nodes with a fixed or prescribed DOF: their reactions enter external work.
   std::vector<std::int32_t> constrained_nodes;
@@ -116,7 +119,8 @@ std::vector<std::int32_t> select_geometry(const State& state, const model::Geome
 // Applies *INITIAL_VELOCITY* cards in input order (later cards override earlier ones).
 void apply_initial_velocities(const model::Model& model, const NodeIndex& node_index, State& state);
 
-// f_ext at time t: nodal loads and body forces (-m a_base, as LS-DYNA *LOAD_BODY).
+// f_ext at time t: nodal loads, pressures and body forces (-m a_base, as LS-DYNA *LOAD_BODY);
+// m_ext: nodal moments.
 void compute_external_forces(const Boundary& boundary, double t, State& state);
 
 // Before the velocity update: fixed DOFs get a = 0, prescribed accelerations (VAD 1) their
