@@ -311,6 +311,27 @@ TEST(Pressure, CantileverTipMomentMatchesBeamTheory) {
   EXPECT_NEAR(sim.energy().ratio(), 1.0, 2e-3);
 }
 
+// A moment on a node of a free rigid shell plate goes to the body: its angular momentum is the
+// angular impulse int M dt (a triangle pulse with corners on the step times: exact).
+TEST(Pressure, MomentOnARigidShellNodeGivesTheBodyTheAngularImpulse) {
+  ShellPlate plate;
+  plate.nx = plate.ny = 2;
+  const double m0 = 3.0, t1 = 0.01;
+  std::string deck = "*KEYWORD\n" + plate.text();
+  deck +=
+      "*PART\nplate\n1,1,1\n*SECTION_SHELL\n1,2,0.8333,2\n0.01,0.01,0.01,0.01\n"
+      "*MAT_RIGID\n1,7800,2e11,0.3\n";
+  deck += fmt::format("*LOAD_NODE_POINT\n{},7,1,{:.17g}\n", plate.node_id(2, 2), m0);
+  deck += fmt::format("*DEFINE_CURVE\n1\n0,0\n{:.17g},1\n{:.17g},0\n1,0\n", t1, 2 * t1);
+  deck += "*CONTROL_TIMESTEP\n1e-4\n*CONTROL_TERMINATION\n0.03\n*END\n";
+  solver::Simulation sim(read(deck), {});
+  sim.run();
+  const auto& e = sim.energy();
+  EXPECT_NEAR(e.angular_momentum[2] / (m0 * t1), 1.0, 1e-12) << e.angular_momentum[2];
+  EXPECT_NEAR(e.momentum[0], 0.0, 1e-12);
+  EXPECT_NEAR(e.kinetic / e.external_work, 1.0, 1e-10);
+}
+
 // Bad input: file, line, keyword and field in every message.
 TEST(Pressure, BadInputNamesFileLineKeywordAndField) {
   ShellPlate plate;
