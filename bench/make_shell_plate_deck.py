@@ -2,9 +2,10 @@
 """Benchmark deck: an N x N plate of 4-node shells (1 m square, 2 mm steel) clamped on one edge,
 its other nodes moving out of plane at 1 m/s, so the plate bends from the first cycle.
 
-Usage: make_shell_plate_deck.py N [NIP] [IHQ] [CYCLES] [MATERIAL] > plate.k
+Usage: make_shell_plate_deck.py N [NIP] [IHQ] [CYCLES] [MATERIAL] [PRESSURE] > plate.k
 MATERIAL: elastic (default) or mat024 (*MAT_PIECEWISE_LINEAR_PLASTICITY, SIGY 200 MPa,
-ETAN 1 GPa). The run ends after CYCLES cycles (default 200): compare ns per element-cycle
+ETAN 1 GPa). PRESSURE (Pa, optional): a constant follower pressure on every shell through
+*LOAD_SEGMENT_SET (one segment per shell; the pressure-load benchmark and MPI test). The run ends after CYCLES cycles (default 200): compare ns per element-cycle
 (`rigidflex run` prints the wall time; d3hsp.txt has the phase times) with the hexahedron cube
 of make_cube_deck.py.
 """
@@ -15,6 +16,7 @@ nip = int(sys.argv[2]) if len(sys.argv) > 2 else 2
 ihq = int(sys.argv[3]) if len(sys.argv) > 3 else 1
 cycles = int(sys.argv[4]) if len(sys.argv) > 4 else 200
 material = sys.argv[5] if len(sys.argv) > 5 else "elastic"
+pressure = float(sys.argv[6]) if len(sys.argv) > 6 else None
 size = 1.0
 w = sys.stdout.write
 
@@ -56,4 +58,11 @@ w("*INITIAL_VELOCITY_NODE\n")
 for j in range(n + 1):
     for i in range(1, n + 1):
         w("%d,0,0,1.0\n" % nid(i, j))
+if pressure is not None:
+    w("*SET_SEGMENT\n%10d\n" % 1)
+    for j in range(n):
+        for i in range(n):
+            w("%10d%10d%10d%10d\n" % (nid(i, j), nid(i + 1, j), nid(i + 1, j + 1), nid(i, j + 1)))
+    w("*LOAD_SEGMENT_SET\n%10d%10d%10.4g\n" % (1, 9, pressure))
+    w("*DEFINE_CURVE\n%10d\n%20.8g%20.8g\n%20.8g%20.8g\n" % (9, 0.0, 1.0, 1.0, 1.0))
 w("*END\n")

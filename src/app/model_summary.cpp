@@ -240,6 +240,9 @@ void print_model_summary(const model::Model& model, const solver::Simulation& si
              "initial velocities: {}\n",
              model.spcs.size(), model.prescribed_motions.size(), model.nodal_loads.size(),
              model.body_loads.size(), model.initial_velocities.size());
+  if (!model.pressure_loads.empty()) {
+    fmt::print(out, "pressure loads: {}\n", model.pressure_loads.size());
+  }
   if (!model.sensors.empty() || !model.sensor_controls.empty()) {
     int kinds[3] = {0, 0, 0};  // node, element, function
     for (const auto& [id, s] : model.sensors) ++kinds[static_cast<int>(s.kind)];

@@ -386,16 +386,34 @@ struct InitialVelocity {
   std::array<double, 3> axis{};
   std::vector<Id> exempt_nodes;  // *INITIAL_VELOCITY IRIGID/NSIDEX exemptions
   int irigid = 0;                // IRIGID as written (-1, 0, 1); see docs/keywords.md
+  int phase = 0;  // _GENERATION PHASE: 0 after dynamic relaxation, 1 before (not supported)
   SourceLocation where;
 };
 
-// *LOAD_NODE_POINT/_SET: a force on each node of the target.
+// *LOAD_NODE_POINT/_SET: a force (DOF 1-3) or a moment (DOF 5-7, nodes with rotations only)
+// on each node of the target.
 struct NodalLoad {
   Target target = Target::Node;
   Id id = 0;
-  int dof = 1;  // 1,2,3 force x,y,z
+  int dof = 1;  // 1,2,3 force x,y,z; 5,6,7 moment about x,y,z
   Id lcid = 0;
   double sf = 1.0;
+  SourceLocation where;
+};
+
+// A follower pressure p(t) = SF curve(t - AT) for t >= AT (zero before) on quadrilateral
+// segments (N3 = N4: triangles); positive pressure acts against the segment normal of the
+// right-hand rule N1 -> N2 -> N3 (solver/pressure_loads.hpp). *LOAD_SEGMENT gives the nodes,
+// *LOAD_SEGMENT_SET a *SET_SEGMENT, *LOAD_SHELL_ELEMENT a shell (its nodes in element order),
+// *LOAD_SHELL_SET a *SET_SHELL.
+enum class PressureTarget { Segment, SegmentSet, Shell, ShellSet };
+struct PressureLoad {
+  PressureTarget target = PressureTarget::Segment;
+  Id id = 0;                  // segment set, shell or shell set ID (not for Segment)
+  std::array<Id, 4> nodes{};  // Segment: N1..N4 (N4 = N3 for a triangle)
+  Id lcid = 0;
+  double sf = 1.0;
+  double at = 0.0;  // arrival (birth) time
   SourceLocation where;
 };
 
@@ -883,6 +901,7 @@ struct Model {
   std::vector<PrescribedMotion> prescribed_motions;
   std::vector<InitialVelocity> initial_velocities;
   std::vector<NodalLoad> nodal_loads;
+  std::vector<PressureLoad> pressure_loads;  // *LOAD_SEGMENT*, *LOAD_SHELL*, in deck order
   std::vector<BodyLoad> body_loads;
 
   std::map<Id, CoordinateSystem> coordinate_systems;

@@ -85,12 +85,14 @@ DynamicRelaxationPhase::~DynamicRelaxationPhase() {
   relaxation_running = false;
 }
 
+double load_curve_value(const model::Curve& curve, double t) {
+  // SIDR 0: transient only; 1: dynamic relaxation only; 2: both (LS-DYNA *DEFINE_CURVE).
+  if (relaxation_running ? curve.sidr == 0 : curve.sidr == 1) return 0.0;
+  return model::evaluate(curve, t);
+}
+
 double ScaledCurve::operator()(double t) const {
-  if (curve) {
-    // SIDR 0: transient only; 1: dynamic relaxation only; 2: both (LS-DYNA *DEFINE_CURVE).
-    if (relaxation_running ? curve->sidr == 0 : curve->sidr == 1) return 0.0;
-    return scale * model::evaluate(*curve, t - shift);
-  }
+  if (curve) return scale * load_curve_value(*curve, t - shift);
   if (function) return scale * (*function)(t - shift);
   return scale;
 }
@@ -253,12 +255,29 @@ Boundary resolve_boundary(const model::Model& model, const NodeIndex& node_index
     }
   }
   for (const auto& load : model.nodal_loads) {
-    const int axis = translation_axis(load.dof, load.where);
-    const auto nodes = resolve_nodes(model, node_index, state, load.target, load.id, load.where,
-                                     load.target == model::Target::Node ? "NID" : "NSID");
+    const char* field = load.target == model::Target::Node ? "NID" : "NSID";
+    const bool moment = load.dof >= 5 && load.dof <= 7;
+    const int axis = moment ? load.dof - 5 : translation_axis(load.dof, load.where);
+    const auto nodes =
+        resolve_nodes(model, node_index, state, load.target, load.id, load.where, field);
     const ScaledCurve value = make_curve(model, load.lcid, load.sf, 0.0, load.where);
-    for (const auto i : nodes) b.nodal_forces.push_back(NodalForce{i, axis, value});
+    if (!moment) {
+      for (const auto i : nodes) b.nodal_forces.push_back(NodalForce{i, axis, value});
+      continue;
+    }
+    // Moments act on nodes with rotational DOFs (shell and beam nodes); a solid node has none.
+    for (const auto i : nodes) {
+      const std::int32_t r = state.rotations.index(i);
+      if (r < 0) {
+        throw InputError(context_of(load.where, field),
+                         fmt::format("DOF {} is a moment, but node {} has no rotational degrees "
+                                     "of freedom (only nodes of shells and beams have them)",
+                                     load.dof, state.nodes.id[i]));
+      }
+      b.nodal_moments.push_back(NodalMoment{r, axis, value});
+    }
   }
+  b.pressure = resolve_pressure_loads(model, node_index);
   for (const auto& body : model.body_loads) {
     b.body_accelerations.push_back(
         BodyAcceleration{body.direction, make_curve(model, body.lcid, body.sf, 0.0, body.where)});
@@ -345,6 +364,17 @@ void compute_external_forces(const Boundary& boundary, double t, State& state) {
     for (std::size_t i = 0; i < n; ++i) fa[i] -= mass[i] * a;
   }
   for (const auto& load : boundary.nodal_forces) f[load.axis][load.node] += load.value(t);
+  add_pressure_forces(boundary.pressure, t, state);
+  RotationalState& rot = state.rotations;
+  if (!rot.empty()) {
+    std::fill(rot.m_ext.x.begin(), rot.m_ext.x.end(), 0.0);
+    std::fill(rot.m_ext.y.begin(), rot.m_ext.y.end(), 0.0);
+    std::fill(rot.m_ext.z.begin(), rot.m_ext.z.end(), 0.0);
+    double* m[3] = {rot.m_ext.x.data(), rot.m_ext.y.data(), rot.m_ext.z.data()};
+    for (const auto& load : boundary.nodal_moments) {
+      m[load.axis][load.rotation] += load.value(t);
+    }
+  }
   add_damping_forces(boundary.damping, boundary.body_force_mass, t, state);
 }
 

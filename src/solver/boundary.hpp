@@ -7,6 +7,7 @@
 
 #include "model/model.hpp"
 #include "solver/build_state.hpp"
+#include "solver/pressure_loads.hpp"
 #include "solver/state.hpp"
 
 namespace rf::solver {
@@ -34,6 +35,9 @@ class DynamicRelaxationPhase {
   DynamicRelaxationPhase& operator=(const DynamicRelaxationPhase&) = delete;
 };
 
+// A load curve's value at t in the current phase: 0 where SIDR says the curve does not act.
+double load_curve_value(const model::Curve& curve, double t);
+
 // The time function of a card: curve `lcid`, else *FUNCTION `function`, else the constant `sf`.
 // Throws an input error naming LCID (or FUNCTION) when the ID is not defined.
 ScaledCurve make_time_function(const model::Model& model, model::Id lcid, model::Id function,
@@ -51,6 +55,13 @@ struct PrescribedDof {
 
 struct NodalForce {
   std::int32_t node = 0;
+  int axis = 0;
+  ScaledCurve value;
+};
+
+// *LOAD_NODE DOF 5-7: a moment about a global axis on a node with rotations.
+struct NodalMoment {
+  std::int32_t rotation = 0;  // rotational index (RotationalState)
   int axis = 0;
   ScaledCurve value;
 };
@@ -89,6 +100,8 @@ struct Boundary {
   std::vector<std::uint8_t> rotation_fixed;
   std::vector<PrescribedDof> prescribed;
   std::vector<NodalForce> nodal_forces;
+  std::vector<NodalMoment> nodal_moments;  // *LOAD_NODE DOF 5-7 (solver/pressure_loads.hpp)
+  PressureLoads pressure;                  // *LOAD_SEGMENT*, *LOAD_SHELL*
   std::vector<BodyAcceleration> body_accelerations;
   // Sorted unique nodes with a fixed or prescribed DOF: their reactions enter external work.
   std::vector<std::int32_t> constrained_nodes;
@@ -129,7 +142,8 @@ std::vector<std::int32_t> select_geometry(const State& state, const model::Geome
 // Applies *INITIAL_VELOCITY* cards in input order (later cards override earlier ones).
 void apply_initial_velocities(const model::Model& model, const NodeIndex& node_index, State& state);
 
-// f_ext at time t: nodal loads and body forces (-m a_base, as LS-DYNA *LOAD_BODY).
+// f_ext at time t: nodal loads, pressures and body forces (-m a_base, as LS-DYNA *LOAD_BODY);
+// m_ext: nodal moments.
 void compute_external_forces(const Boundary& boundary, double t, State& state);
 
 // Before the velocity update: fixed DOFs get a = 0, prescribed accelerations (VAD 1) their

@@ -368,6 +368,14 @@ void Simulation::relax_dynamically() {
                      "dynamic relaxation with flexible bodies (*PART_MODES) is not supported "
                      "(set IDRFLG -999, or flag no curve with SIDR 1 or 2)");
   }
+  for (const auto& v : model_.initial_velocities) {
+    if (v.phase == 1) {
+      throw InputError(model::context_of(v.where, "PHASE"),
+                       "PHASE 1 (initial velocities before dynamic relaxation) is not supported: "
+                       "the transient starts at rest after the relaxation, then the initial "
+                       "velocities apply (PHASE 0)");
+    }
+  }
   const DynamicRelaxationPhase phase;
   NodalState& nodes = state_.nodes;
   RotationalState& rot = state_.rotations;

@@ -79,28 +79,29 @@ TEST(KeywordClasses, EverythingElseChangesThePhysics) {
 
 TEST(KeywordRule, PhysicsKeywordsAreErrorsListedWithTheirLines) {
   const std::string deck = cube(
-      "*LOAD_SEGMENT\n1,1.0\n"    // line 22
-      "*CONTROL_ACCURACY\n1,4\n"  // line 24
-      "*DATABASE_SBTOUT\n1e-3\n"  // line 26: output-only, a warning
-      "*LOAD_SEGMENT\n2,1.0\n");  // line 28
+      "*LOAD_SEGMENT_NONUNIFORM\n1,1.0\n"    // line 22
+      "*CONTROL_ACCURACY\n1,4\n"             // line 24
+      "*DATABASE_SBTOUT\n1e-3\n"             // line 26: output-only, a warning
+      "*LOAD_SEGMENT_NONUNIFORM\n2,1.0\n");  // line 28
   const std::string message = rf::test::input_error_of(deck, "d.k");
   EXPECT_NE(message.find("3 problems in the deck"), std::string::npos) << message;
   EXPECT_NE(message.find("--ignore-unsupported"), std::string::npos) << message;
-  EXPECT_NE(message.find("d.k:22: *LOAD_SEGMENT: not supported: a load"), std::string::npos)
+  EXPECT_NE(message.find("d.k:22: *LOAD_SEGMENT_NONUNIFORM: not supported: a load"),
+            std::string::npos)
       << message;
   EXPECT_NE(message.find("d.k:24: *CONTROL_ACCURACY: not supported: a solver control"),
             std::string::npos)
       << message;
-  EXPECT_NE(message.find("d.k:28: *LOAD_SEGMENT"), std::string::npos) << message;
+  EXPECT_NE(message.find("d.k:28: *LOAD_SEGMENT_NONUNIFORM"), std::string::npos) << message;
   EXPECT_EQ(message.find("SBTOUT"), std::string::npos) << message;
 }
 
 TEST(KeywordRule, IgnoreUnsupportedSkipsThemWithWarnings) {
-  const std::string deck = cube("*LOAD_SEGMENT\n1,1.0\n*DATABASE_SBTOUT\n1e-3\n");
+  const std::string deck = cube("*LOAD_SEGMENT_NONUNIFORM\n1,1.0\n*DATABASE_SBTOUT\n1e-3\n");
   const Model m = read_deck_text(deck, "d.k", ".", ignoring());
   ASSERT_EQ(m.ignored_physics.size(), 1u);
   EXPECT_EQ(m.ignored_physics[0].where.line, 22);
-  EXPECT_EQ(m.ignored_physics[0].where.keyword, "*LOAD_SEGMENT");
+  EXPECT_EQ(m.ignored_physics[0].where.keyword, "*LOAD_SEGMENT_NONUNIFORM");
   EXPECT_NE(m.ignored_physics[0].message.find("skipped because of --ignore-unsupported"),
             std::string::npos);
   ASSERT_EQ(m.warnings.size(), 2u);  // the skipped load and the output request

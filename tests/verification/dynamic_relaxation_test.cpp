@@ -142,6 +142,16 @@ TEST(DynamicRelaxation, UnsupportedOptionsNameTheField) {
   expect_error("*CONTROL_DYNAMIC_RELAXATION\n0,0,0,0,0,1\n", "IRELAL");
   expect_error("*CONTROL_DYNAMIC_RELAXATION\n0,0,1.5\n", "DRFCTR");
   expect_error("*CONTROL_DYNAMIC_RELAXATION\n0,2.0\n", "DRTOL");
+  // Initial velocities before the relaxation (PHASE 1) are refused when the run relaxes.
+  try {
+    solver::Simulation sim(
+        read(cantilever_deck(1, "*INITIAL_VELOCITY_GENERATION\n1,2,0,0,0,1\n0,0,0,0,0,0,1\n",
+                             0.01)),
+        {});
+    ADD_FAILURE() << "no error for PHASE 1";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("PHASE"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -41,6 +41,59 @@ void check_curve(const model::Model& m, Id lcid, const model::SourceLocation& wh
   }
 }
 
+// *LOAD_SEGMENT*, *LOAD_SHELL*: curves, sets, shells and nodes exist (the solver checks the
+// segments' node repetitions again, solver/pressure_loads.cpp).
+void check_pressure_loads(const model::Model& m, const std::unordered_set<Id>& nodes) {
+  std::unordered_set<Id> shells;
+  if (!m.pressure_loads.empty()) {
+    for (const auto& e : m.shells) shells.insert(e.id);
+  }
+  for (const auto& l : m.pressure_loads) {
+    check_curve(m, l.lcid, l.where, "LCID");
+    switch (l.target) {
+      case model::PressureTarget::Segment: {
+        static const char* const kNode[] = {"N1", "N2", "N3", "N4"};
+        for (std::size_t k = 0; k < 4; ++k) {
+          if (!nodes.count(l.nodes[k])) {
+            throw located_error(l.where, kNode[k],
+                                fmt::format("node {} is not defined", l.nodes[k]));
+          }
+        }
+        break;
+      }
+      case model::PressureTarget::SegmentSet:
+        if (!m.segment_sets.count(l.id)) {
+          throw located_error(l.where, "SSID",
+                              fmt::format("segment set {} is not defined (*SET_SEGMENT)", l.id));
+        }
+        break;
+      case model::PressureTarget::Shell:
+        if (!shells.count(l.id)) {
+          throw located_error(
+              l.where, "EID",
+              fmt::format("shell element {} is not defined (*ELEMENT_SHELL)", l.id));
+        }
+        break;
+      case model::PressureTarget::ShellSet: {
+        const auto set = m.shell_sets.find(l.id);
+        if (set == m.shell_sets.end()) {
+          throw located_error(l.where, "ESID",
+                              fmt::format("shell set {} is not defined (*SET_SHELL)", l.id));
+        }
+        for (const Id e : set->second.elements) {
+          if (!shells.count(e)) {
+            throw located_error(l.where, "ESID",
+                                fmt::format("shell set {} lists element {}, which is not a shell "
+                                            "(*ELEMENT_SHELL)",
+                                            l.id, e));
+          }
+        }
+        break;
+      }
+    }
+  }
+}
+
 void check_target(const model::Model& m, const std::unordered_set<Id>& nodes, model::Target target,
                   Id id, const model::SourceLocation& where) {
   switch (target) {
@@ -829,6 +882,7 @@ void finish_model(ReaderContext& context) {
     check_curve(m, l.lcid, l.where, "LCID");
   }
   for (const auto& b : m.body_loads) check_curve(m, b.lcid, b.where, "LCID");
+  check_pressure_loads(m, nodes);
   if (m.timestep.lctm != 0) check_curve(m, m.timestep.lctm, context.lctm_where, "LCTM");
   for (const auto& h : context.history_nodes) {
     if (!nodes.count(h.nsid)) {

@@ -44,6 +44,9 @@ void define_curve_function(const Block&, ReaderContext&);
 void initial_velocity(const Block&, ReaderContext&);
 void initial_velocity_node(const Block&, ReaderContext&);
 void initial_velocity_generation(const Block&, ReaderContext&);
+void load_segment(const Block&, ReaderContext&);      // *LOAD_SEGMENT(_ID)
+void load_segment_set(const Block&, ReaderContext&);  // *LOAD_SEGMENT_SET(_ID)
+void load_shell(const Block&, ReaderContext&);        // *LOAD_SHELL_ELEMENT/_SET(_ID)
 void load_node(const Block&, ReaderContext&);
 void load_body(const Block&, ReaderContext&);
 

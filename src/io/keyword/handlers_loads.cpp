@@ -392,6 +392,11 @@ void initial_velocity_generation(const Block& block, ReaderContext& context) {
       if (length > 0.0 && std::isfinite(length)) {
         for (double& a : v.axis) a /= length;
       }
+      // PHASE 1 (velocities before dynamic relaxation) is refused when the run relaxes.
+      v.phase = c2->flag(6, "PHASE", 0);
+      if (v.phase != 0 && v.phase != 1) {
+        throw c2->error("PHASE", fmt::format("value {} is not 0 or 1", v.phase));
+      }
       v.irigid = c2->flag(7, "IRIGID", 0);
       if (v.irigid < -1 || v.irigid > 1) {
         throw c2->error("IRIGID", fmt::format("value {} is not -1, 0 or 1", v.irigid));
@@ -416,19 +421,162 @@ void load_node(const Block& block, ReaderContext& context) {
     load.target = target;
     load.id = card.id(0, id_field);
     if (load.id <= 0) throw card.error(id_field, "a positive ID is required");
-    load.dof = translational_dof(card, "DOF", card.flag(1, "DOF", 0),
-                                 "; moments and follower forces are not supported");
+    const int dof = card.flag(1, "DOF", 0);
+    if (dof == 4 || dof == 8) {
+      throw card.error("DOF", fmt::format("value {} (a follower {} along the normal of nodes M1 "
+                                          "M2 M3) is not supported; use DOF 1-3 (forces) or 5-7 "
+                                          "(moments about x, y, z)",
+                                          dof, dof == 4 ? "force" : "moment"));
+    }
+    load.dof = dof >= 5 && dof <= 7
+                   ? dof
+                   : translational_dof(card, "DOF", dof, "; 5, 6, 7 for moments about x, y, z");
     load.lcid = card.id(2, "LCID");
     if (load.lcid <= 0) throw card.error("LCID", "a load curve ID is required");
     load.sf = card.real(3, "SF", 1.0);
     if (card.id(4, "CID") != 0) {
       throw card.error("CID", "local coordinate systems are not supported");
     }
+    static const char* const kFollower[] = {"M1", "M2", "M3"};
+    for (std::size_t k = 0; k < 3; ++k) {
+      if (card.id(5 + k, kFollower[k]) != 0) {
+        throw card.error(kFollower[k],
+                         "follower loads (nodes M1 M2 M3) are not supported; "
+                         "leave M1 M2 M3 blank");
+      }
+    }
     load.where = card.location();
     context.model.nodal_loads.push_back(load);
     any = true;
   }
   if (!any) throw block_error(block, 1, id_field, "no load card follows the keyword");
+}
+
+namespace {
+
+// LCID SF AT of a pressure card at fields first..first+2.
+void read_pressure_history(const Card& card, std::size_t first, model::PressureLoad& load) {
+  load.lcid = card.id(first, "LCID");
+  if (load.lcid < 0) {
+    throw card.error("LCID", fmt::format("negative LCID {} (a *DEFINE_FUNCTION of time and "
+                                         "position) is not supported; give a *DEFINE_CURVE",
+                                         load.lcid));
+  }
+  if (load.lcid == 0) throw card.error("LCID", "a load curve ID is required");
+  load.sf = card.real(first + 1, "SF", 1.0);
+  load.at = card.real(first + 2, "AT", 0.0);
+  if (!std::isfinite(load.sf) || !std::isfinite(load.at)) {
+    throw card.error(std::isfinite(load.sf) ? "AT" : "SF", "the value is not a finite number");
+  }
+}
+
+// Fields of a card that this reader does not take must be blank: LS-DYNA versions add fields
+// (death times, options) whose silent loss would change the physics.
+void require_blank(const Card& card, std::size_t first, std::size_t last) {
+  for (std::size_t i = first; i <= last; ++i) {
+    if (!card.blank(i)) {
+      throw card.error(fmt::format("field {}", i + 1).c_str(),
+                       fmt::format("'{}' is given, but this field is not read by RigidFlex (its "
+                                   "meaning would be lost); leave it blank",
+                                   card.text(i)));
+    }
+  }
+}
+
+// Reads the cards of a pressure keyword: with _ID, each data card may be preceded by its own
+// ID card (as LS-PrePost writes them). `read_card` reads one data card.
+template <typename ReadCard>
+void read_pressure_cards(const Block& block, ReaderContext& context, const char* fields,
+                         const char* first_field, ReadCard read_card) {
+  CardCursor cursor(block, context.parameters);
+  const int n = skip_id_card(block, cursor);
+  bool any = false;
+  while (true) {
+    cursor.skip_blank_lines();
+    if (cursor.at_end()) break;
+    if (any && block.has_option("ID") && looks_like_id_card(block, *cursor.peek())) {
+      cursor.next(1, Layout{10, 70}, "ID HEADING");  // the next load's ID card
+      continue;
+    }
+    const Card card = cursor.next(n, kEightByTen, fields);
+    model::PressureLoad load = read_card(card);
+    load.where = card.location();
+    context.model.pressure_loads.push_back(load);
+    any = true;
+  }
+  if (!any) throw block_error(block, n, first_field, "no load card follows the keyword");
+}
+
+}  // namespace
+
+// *LOAD_SEGMENT(_ID): LCID SF AT N1 N2 N3 N4 (N5: quadratic segments, not supported).
+void load_segment(const Block& block, ReaderContext& context) {
+  read_pressure_cards(block, context, "LCID SF AT N1 N2 N3 N4 N5", "LCID", [](const Card& card) {
+    model::PressureLoad load;
+    load.target = model::PressureTarget::Segment;
+    read_pressure_history(card, 0, load);
+    static const char* const kNode[] = {"N1", "N2", "N3", "N4"};
+    for (std::size_t k = 0; k < 4; ++k) {
+      load.nodes[k] = card.id(3 + k, kNode[k]);
+      if (load.nodes[k] < 0 || (k < 3 && load.nodes[k] == 0)) {
+        throw card.error(kNode[k], fmt::format("node ID {} is not valid (N1, N2, N3 are "
+                                               "required; N4 blank or = N3 for a triangle)",
+                                               load.nodes[k]));
+      }
+    }
+    if (load.nodes[3] == 0) load.nodes[3] = load.nodes[2];  // triangle
+    if (card.id(7, "N5") != 0) {
+      throw card.error("N5",
+                       "quadratic segments (mid-side nodes N5-N8) are not supported; "
+                       "give 4-node segments");
+    }
+    // Repeated nodes other than N3 = N4 make no segment (LS-DYNA's triangle is N3 = N4).
+    const auto& q = load.nodes;
+    for (std::size_t a = 0; a < 4; ++a) {
+      for (std::size_t b = a + 1; b < 4; ++b) {
+        if (q[a] == q[b] && !(a == 2 && b == 3)) {
+          throw card.error(kNode[b], fmt::format("node {} appears twice in the segment {} {} "
+                                                 "{} {} (only N3 = N4 is allowed: a "
+                                                 "triangle)",
+                                                 q[b], q[0], q[1], q[2], q[3]));
+        }
+      }
+    }
+    return load;
+  });
+}
+
+// *LOAD_SEGMENT_SET(_ID): SSID LCID SF AT.
+void load_segment_set(const Block& block, ReaderContext& context) {
+  read_pressure_cards(block, context, "SSID LCID SF AT", "SSID", [](const Card& card) {
+    model::PressureLoad load;
+    load.target = model::PressureTarget::SegmentSet;
+    load.id = card.id(0, "SSID");
+    if (load.id <= 0) throw card.error("SSID", "a positive segment set ID is required");
+    read_pressure_history(card, 1, load);
+    require_blank(card, 4, 7);
+    return load;
+  });
+}
+
+// *LOAD_SHELL_ELEMENT(_ID): EID LCID SF AT; *LOAD_SHELL_SET(_ID): ESID LCID SF AT.
+void load_shell(const Block& block, ReaderContext& context) {
+  const bool set = block.base.ends_with("_SET");
+  const char* id_field = set ? "ESID" : "EID";
+  read_pressure_cards(
+      block, context, set ? "ESID LCID SF AT" : "EID LCID SF AT", id_field, [&](const Card& card) {
+        model::PressureLoad load;
+        load.target = set ? model::PressureTarget::ShellSet : model::PressureTarget::Shell;
+        load.id = card.id(0, id_field);
+        if (load.id <= 0) {
+          throw card.error(id_field, set ? "a positive shell set ID is required"
+                                         : "a positive shell element ID is "
+                                           "required");
+        }
+        read_pressure_history(card, 1, load);
+        require_blank(card, 4, 7);
+        return load;
+      });
 }
 
 void load_body(const Block& block, ReaderContext& context) {
