@@ -488,6 +488,10 @@ TEST(GeometricWallInput, UnsupportedValuesAreInputErrors) {
                "SOFT", "not supported");
   expect_error("*RIGIDWALL_PLANAR_FORCES\n0\n0,0,0,0,0,1\n0,8\n", "*RIGIDWALL_PLANAR_FORCES",
                "SSID", "not defined");
+  // The _FORCES card comes after the _FINITE card (read the other way round, "0,1" would be
+  // SSID 1, which is not defined).
+  expect_error("*RIGIDWALL_PLANAR_FINITE_FORCES\n0\n0,0,0,0,0,1\n0,1,0,1,1\n3,0\n",
+               "*RIGIDWALL_PLANAR_FINITE_FORCES card 4 field SOFT", "SOFT", "not supported");
   expect_error("*BOUNDARY_PRESCRIBED_MOTION_NODE\n1,-9,0,5\n0,0\n",
                "*BOUNDARY_PRESCRIBED_MOTION_NODE", "DOF", "not supported");
   expect_error("*BOUNDARY_PRESCRIBED_MOTION_NODE\n1,10,1,5\n0,0\n",

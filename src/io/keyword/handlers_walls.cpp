@@ -1,8 +1,10 @@
-// Rigid walls (*RIGIDWALL_PLANAR and its _ID, _FINITE, _MOVING options) and *DEFINE_BOX.
-// Card layouts follow the LS-DYNA keyword manual (as transcribed in ansys/pydyna): an optional
-// ID card, card 1 NSID NSIDEX BOXID OFFSET BIRTH DEATH RWKSF, card 2 XT YT ZT XH YH ZH FRIC WVEL,
-// the _FINITE card XHEV YHEV ZHEV LENL LENM and the _MOVING card MASS V0, in that order whatever
-// the order of the option words. The solver side is src/contact/rigid_wall.hpp.
+// Rigid walls (*RIGIDWALL_PLANAR with _ID, _FINITE, _MOVING, _FORCES; *RIGIDWALL_GEOMETRIC_FLAT,
+// _PRISM, _CYLINDER, _SPHERE with _ID, _MOTION, _DISPLAY, _INTERIOR) and *DEFINE_BOX. Card layouts
+// follow the LS-DYNA keyword manual (as transcribed in ansys/pydyna). Planar: an optional ID card,
+// card 1 NSID NSIDEX BOXID OFFSET BIRTH DEATH RWKSF, card 2 XT YT ZT XH YH ZH FRIC WVEL, the
+// _FINITE card XHEV YHEV ZHEV LENL LENM, the _MOVING card MASS V0 and the _FORCES card SOFT SSID
+// N1 N2 N3 N4, in that order whatever the order of the option words. The solver side is
+// src/contact/rigid_wall.hpp.
 #include <fmt/format.h>
 
 #include <cmath>
@@ -133,7 +135,16 @@ void rigidwall_planar(const Block& block, ReaderContext& context) {
     wall.lenl = non_negative(c3, 3, "LENL", 0.0);
     wall.lenm = non_negative(c3, 4, "LENM", 0.0);
   }
-  if (block.has_option("FORCES")) {
+  if (wall.moving) {
+    const Card c4 = cursor.next(n++, kEightByTen, "MASS V0");
+    wall.mass = c4.real(0, "MASS", 0.0);
+    if (!(wall.mass > 0.0)) {
+      throw c4.error("MASS",
+                     fmt::format("the mass of a moving wall must be positive (got {})", wall.mass));
+    }
+    wall.v0 = c4.real(1, "V0", 0.0);
+  }
+  if (block.has_option("FORCES")) {  // the last card, after _FINITE's and _MOVING's
     const Card cf = cursor.next(n++, kEightByTen, "SOFT SSID N1 N2 N3 N4");
     const int soft = cf.flag(0, "SOFT", 0);
     if (soft != 0) {
@@ -146,15 +157,6 @@ void rigidwall_planar(const Block& block, ReaderContext& context) {
     // N1..N4 only place the force vector for LS-DYNA's display.
     static const char* const kDisplay[] = {"N1", "N2", "N3", "N4"};
     for (std::size_t k = 0; k < 4; ++k) non_negative_id(cf, 2 + k, kDisplay[k]);
-  }
-  if (wall.moving) {
-    const Card c4 = cursor.next(n++, kEightByTen, "MASS V0");
-    wall.mass = c4.real(0, "MASS", 0.0);
-    if (!(wall.mass > 0.0)) {
-      throw c4.error("MASS",
-                     fmt::format("the mass of a moving wall must be positive (got {})", wall.mass));
-    }
-    wall.v0 = c4.real(1, "V0", 0.0);
   }
   context.model.rigid_walls.push_back(std::move(wall));
   warn_unread_lines(block, cursor, context);
