@@ -161,6 +161,20 @@ void print_model_summary(const model::Model& model, const solver::Simulation& si
                                  s.constraints.translation_count, s.constraints.rotation_count));
   }
   const auto& walls = sim.rigid_walls().walls;
+  auto wall_shape_name = [](const contact::RigidWall& wall) -> std::string {
+    switch (wall.shape) {
+      case contact::WallShape::Prism:
+        return fmt::format("prism (depth {:g})", wall.depth);
+      case contact::WallShape::Cylinder:
+        return wall.kept_inside.empty() || !wall.kept_inside.front() ? "cylinder"
+                                                                     : "cylinder (interior)";
+      case contact::WallShape::Sphere:
+        return "sphere";
+      case contact::WallShape::Plane:
+        break;
+    }
+    return wall.geometric ? "flat" : "planar";
+  };
   auto extent = [](double length) {
     return length > 0.0 ? fmt::format("{:g}", length) : std::string("unbounded");
   };
@@ -168,22 +182,26 @@ void print_model_summary(const model::Model& model, const solver::Simulation& si
   for (const auto& wall : walls) {
     const auto& n = wall.normal;
     const auto& p = wall.origin;
-    fmt::print(out,
-               "  rigid wall {}{}: planar, {}, {}, point ({:.6g}, {:.6g}, {:.6g}), normal ({:.6g}, "
-               "{:.6g}, {:.6g}), {} tracked nodes, {}{}\n",
-               wall.number, wall.id != wall.number ? fmt::format(" (ID {})", wall.id) : "",
-               wall.finite
-                   ? fmt::format("finite {} x {}", extent(wall.length_l), extent(wall.length_m))
-                   : "infinite",
-               wall.moving ? fmt::format("moving (mass {:g}, V0 {:g})", wall.mass, wall.velocity)
-                           : "fixed",
-               p.x(), p.y(), p.z(), n.x(), n.y(), n.z(), wall.nodes.size(),
-               wall.no_sliding       ? "no sliding"
-               : wall.friction > 0.0 ? fmt::format("Coulomb friction {:g}", wall.friction)
-                                     : "frictionless",
-               wall.birth > 0.0 || wall.death < 1e20
-                   ? fmt::format(", birth {:g}, death {:g}", wall.birth, wall.death)
-                   : "");
+    fmt::print(
+        out,
+        "  rigid wall {}{}: {}, {}, {}, point ({:.6g}, {:.6g}, {:.6g}), normal ({:.6g}, "
+        "{:.6g}, {:.6g}), {} tracked nodes, {}{}\n",
+        wall.number, wall.id != wall.number ? fmt::format(" (ID {})", wall.id) : "",
+        wall_shape_name(wall),
+        wall.shape == contact::WallShape::Cylinder || wall.shape == contact::WallShape::Sphere
+            ? fmt::format("radius {:g}", wall.radius)
+        : wall.finite ? fmt::format("finite {} x {}", extent(wall.length_l), extent(wall.length_m))
+                      : "infinite",
+        wall.moving       ? fmt::format("moving (mass {:g}, V0 {:g})", wall.mass, wall.velocity)
+        : wall.prescribed ? std::string("prescribed motion (_MOTION)")
+                          : std::string("fixed"),
+        p.x(), p.y(), p.z(), n.x(), n.y(), n.z(), wall.nodes.size(),
+        wall.no_sliding       ? "no sliding"
+        : wall.friction > 0.0 ? fmt::format("Coulomb friction {:g}", wall.friction)
+                              : "frictionless",
+        wall.birth > 0.0 || wall.death < 1e20
+            ? fmt::format(", birth {:g}, death {:g}", wall.birth, wall.death)
+            : "");
   }
   const auto& contacts = sim.contacts().interfaces;
   if (!contacts.empty()) fmt::print(out, "contacts: {}\n", contacts.size());

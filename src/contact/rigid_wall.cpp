@@ -41,6 +41,75 @@ bool within_extent(const RigidWall& wall, const Vector3d& relative) {
          (wall.length_m == 0.0 || (b >= 0.0 && b <= wall.length_m));
 }
 
+// Where a wall's reference point (the tail XT YT ZT) is now.
+Vector3d wall_position(const RigidWall& wall) {
+  return wall.origin + wall.displacement * wall.motion_direction;
+}
+
+// The point of a wall's surface nearest to a node: signed distance (> 0 on the side the node
+// is kept on), the unit normal there (towards that side) and whether the node is over the
+// wall's extent (a finite plane's rectangle, a finite cylinder's length; nodes beside it are
+// left alone, as beside a *RIGIDWALL_PLANAR_FINITE).
+struct SurfacePoint {
+  double distance = 0.0;
+  Vector3d normal = Vector3d::UnitZ();
+  bool over = true;
+};
+
+// Prism: the box 0 <= a <= LENL, 0 <= b <= LENM, -LENP <= c <= 0 in the frame (l, m, n) of
+// its face (LENL or LENM 0: unbounded that way). Outside, the nearest point is the clamped
+// one (a face, an edge or a corner: an edge or corner pushes along the line from it to the
+// node); a node inside is pushed out through the nearest face.
+SurfacePoint prism_point(const RigidWall& wall, const Vector3d& r) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const Vector3d axes[3] = {wall.edge_l, wall.edge_m, wall.normal};
+  const double lo[3] = {wall.length_l > 0.0 ? 0.0 : -kInf, wall.length_m > 0.0 ? 0.0 : -kInf,
+                        -wall.depth};
+  const double hi[3] = {wall.length_l > 0.0 ? wall.length_l : kInf,
+                        wall.length_m > 0.0 ? wall.length_m : kInf, 0.0};
+  double p[3];
+  Vector3d q = Vector3d::Zero();
+  for (int k = 0; k < 3; ++k) {
+    p[k] = r.dot(axes[k]);
+    q += (p[k] - std::clamp(p[k], lo[k], hi[k])) * axes[k];
+  }
+  const double outside = q.norm();
+  if (outside > 0.0) return {outside, q / outside, true};
+  double depth = kInf;
+  Vector3d normal = wall.normal;
+  for (int k = 0; k < 3; ++k) {
+    if (hi[k] - p[k] < depth) depth = hi[k] - p[k], normal = axes[k];
+    if (p[k] - lo[k] < depth) depth = p[k] - lo[k], normal = -axes[k];
+  }
+  return {-depth, normal, true};
+}
+
+SurfacePoint surface_point(const RigidWall& wall, const Vector3d& position, const Vector3d& x,
+                           bool inside) {
+  const Vector3d r = x - position;
+  switch (wall.shape) {
+    case WallShape::Plane:
+      return {r.dot(wall.normal), wall.normal, within_extent(wall, r)};
+    case WallShape::Prism:
+      return prism_point(wall, r);
+    case WallShape::Cylinder:
+    case WallShape::Sphere: {
+      const bool cylinder = wall.shape == WallShape::Cylinder;
+      const double h = cylinder ? r.dot(wall.normal) : 0.0;
+      const Vector3d radial = r - h * wall.normal;
+      const double rho = radial.norm();
+      // On the axis (or at the centre) any direction normal to it serves.
+      const Vector3d e = rho > 0.0 ? Vector3d(radial / rho) : wall.edge_l;
+      SurfacePoint s;
+      s.over = !cylinder || wall.length == 0.0 || (h >= 0.0 && h <= wall.length);
+      s.distance = inside ? wall.radius - rho : rho - wall.radius;
+      s.normal = inside ? -e : e;
+      return s;
+    }
+  }
+  return {};
+}
+
 // Translations of node i held by an SPC or a prescribed motion: the wall leaves them alone
 // (the constraint's reaction takes the wall force's share along them).
 std::vector<std::uint8_t> held_axes(const solver::Boundary& boundary, std::size_t node_count) {
@@ -98,13 +167,14 @@ Vector3d friction_velocity_change(const RigidWall& wall, const Vector3d& tangent
 // inside the Coulomb disc. Converges to the solution of the contact problem of the body.
 // `wall_velocity` and `wall_inverse_mass` couple a moving wall (0 for a fixed one).
 void solve_body_contacts(const RigidWall& wall, BodyMotion& motion, BodyContact* begin,
-                         BodyContact* end, double& wall_velocity, double wall_inverse_mass) {
-  const Vector3d& n = wall.normal;
+                         BodyContact* end, double& wall_velocity, double wall_inverse_mass,
+                         const Vector3d& wall_motion) {
   Eigen::Matrix<double, 3, 2> tangents;
-  tangents.col(0) = wall.edge_l;
-  tangents.col(1) = wall.edge_m;
   const bool friction = wall.no_sliding || wall.friction > 0.0;
   for (BodyContact* c = begin; c != end; ++c) {
+    const Vector3d& n = c->normal;
+    tangents.col(0) = c->tangent_l;
+    tangents.col(1) = c->tangent_m;
     const Matrix3d r = cross_matrix(c->arm);
     c->response = motion.inverse_mass * Matrix3d::Identity() - r * motion.inverse_inertia * r;
     c->normal_inverse_mass = n.dot(c->response * n) + wall_inverse_mass;
@@ -127,9 +197,15 @@ void solve_body_contacts(const RigidWall& wall, BodyMotion& motion, BodyContact*
   for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
     double change = 0.0, largest = 0.0;
     for (BodyContact* c = begin; c != end; ++c) {
+      const Vector3d& n = c->normal;
+      tangents.col(0) = c->tangent_l;
+      tangents.col(1) = c->tangent_m;
       Vector3d w = motion.inverse_inertia * motion.angular_momentum;
       Vector3d u = motion.velocity + w.cross(c->arm);
-      const double gap_rate = u.dot(n) - wall_velocity + c->gap_rate;
+      // A wall moved by the nodes (_MOVING) has one normal and the velocity solved here; a
+      // fixed or prescribed one moves at c->wall_speed along this contact's normal.
+      const double wall_speed = wall.moving ? wall_velocity : c->wall_speed;
+      const double gap_rate = u.dot(n) - wall_speed + c->gap_rate;
       const double previous = c->normal_impulse;
       c->normal_impulse = std::max(0.0, previous - gap_rate / c->normal_inverse_mass);
       const double dn = c->normal_impulse - previous;
@@ -142,7 +218,7 @@ void solve_body_contacts(const RigidWall& wall, BodyMotion& motion, BodyContact*
       if (!friction) continue;
       w = motion.inverse_inertia * motion.angular_momentum;
       u = motion.velocity + w.cross(c->arm);
-      const Vector2d slip = tangents.transpose() * u;
+      const Vector2d slip = tangents.transpose() * (u - wall_motion);
       const Vector2d before = c->tangent_impulse;
       Vector2d wanted = before - slip / c->tangent_inverse_mass;
       const double limit = c->normal_impulse > 0.0
@@ -189,7 +265,9 @@ RigidWallSystem build_rigid_walls(const model::Model& model, const solver::NodeI
     wall.title = in.title;
     wall.where = in.where;
     wall.origin = vec(in.tail);
-    wall.normal = (vec(in.head) - vec(in.tail)).normalized();
+    const Vector3d axis = vec(in.head) - vec(in.tail);
+    // A sphere needs no direction (its XH YH ZH may repeat the centre).
+    wall.normal = axis.norm() > 0.0 ? Vector3d(axis.normalized()) : Vector3d::UnitZ();
     const Vector3d& normal = wall.normal;
     if (in.finite) {
       const Vector3d edge = vec(in.edge_head) - vec(in.tail);
@@ -210,6 +288,24 @@ RigidWallSystem build_rigid_walls(const model::Model& model, const solver::NodeI
     wall.moving = in.moving;
     wall.mass = in.mass;
     wall.velocity = wall.velocity_before = in.moving ? in.v0 : 0.0;
+    using InShape = model::RigidWall::Shape;
+    wall.geometric = in.shape != InShape::Planar;
+    wall.shape = in.shape == InShape::Prism      ? WallShape::Prism
+                 : in.shape == InShape::Cylinder ? WallShape::Cylinder
+                 : in.shape == InShape::Sphere   ? WallShape::Sphere
+                                                 : WallShape::Plane;
+    wall.depth = in.lenp;
+    wall.radius = in.radius;
+    wall.length = in.lencyl;
+    wall.motion_direction = normal;
+    if (in.motion) {
+      wall.prescribed = true;
+      wall.prescribed_displacement = in.motion_opt == 1;
+      wall.motion_direction = vec(in.motion_direction).normalized();
+      // The curve's abscissa counts from BIRTH (LS-DYNA manual, BIRTH of *RIGIDWALL_GEOMETRIC).
+      wall.motion = solver::make_time_function(model, in.motion_lcid, 0, 1.0, in.birth, in.where);
+    }
+    const bool closed = wall.shape == WallShape::Cylinder || wall.shape == WallShape::Sphere;
 
     // The reader checks these references; models built in code get the same message.
     auto node_set = [&](model::Id sid, const char* field) -> const model::NodeSet& {
@@ -249,7 +345,12 @@ RigidWallSystem build_rigid_walls(const model::Model& model, const solver::NodeI
         for (int k = 0; k < 3; ++k) inside &= x[k] >= box->min[k] && x[k] <= box->max[k];
         if (!inside) continue;
       }
-      const double distance = (x - wall.origin).dot(normal);
+      // A cylinder keeps nodes outside (inside with _INTERIOR); a sphere keeps each node on
+      // the side it starts on.
+      const bool inside = wall.shape == WallShape::Sphere
+                              ? (x - wall.origin).norm() < wall.radius
+                              : wall.shape == WallShape::Cylinder && in.interior;
+      const double distance = surface_point(wall, wall.origin, x, inside).distance;
       // OFFSET (manual): only nodes within this normal distance of the wall are tracked.
       if (in.offset > 0.0 && std::abs(distance) > in.offset) continue;
       const bool front = distance >= -tolerance;
@@ -257,6 +358,20 @@ RigidWallSystem build_rigid_walls(const model::Model& model, const solver::NodeI
       wall.nodes.push_back(static_cast<std::int32_t>(i));
       wall.locked_axes.push_back(held[i]);
       wall.in_front.push_back(front ? 1 : 0);
+      if (closed) wall.kept_inside.push_back(inside ? 1 : 0);
+    }
+    if (in.force_segments != 0) {
+      const auto it = model.segment_sets.find(in.force_segments);
+      if (it == model.segment_sets.end()) {
+        throw InputError(model::context_of(in.where, "SSID"),
+                         fmt::format("segment set {} is not defined", in.force_segments));
+      }
+      wall.segment_nodes.assign(n, 0);
+      for (const auto& segment : it->second.segments) {
+        for (const model::Id id : segment) {
+          if (id != 0) wall.segment_nodes[node_index.at(id, in.where, "SSID")] = 1;
+        }
+      }
     }
     wall.contacts.reserve(wall.nodes.size());
     most_tracked = std::max(most_tracked, wall.nodes.size());
@@ -265,11 +380,15 @@ RigidWallSystem build_rigid_walls(const model::Model& model, const solver::NodeI
                                                 "NSIDEX, BOXID and OFFSET)",
                                                 wall.id)});
     } else if (behind > 0) {
-      warnings.push_back(
-          {in.where, fmt::format("rigid wall {}: {} of its {} tracked nodes start behind the wall "
-                                 "(opposite to its normal XT->XH); it acts on them only once they "
-                                 "are in front of it",
-                                 wall.id, behind, wall.nodes.size())});
+      const char* side =
+          wall.shape == WallShape::Prism ? "inside the prism"
+          : wall.shape == WallShape::Cylinder
+              ? (in.interior ? "outside the cylinder (_INTERIOR)" : "inside the cylinder")
+              : "behind the wall (opposite to its normal XT->XH)";
+      warnings.push_back({in.where, fmt::format("rigid wall {}: {} of its {} tracked nodes start "
+                                                "{}; it acts on them only once they are on the "
+                                                "side it keeps nodes on",
+                                                wall.id, behind, wall.nodes.size(), side)});
     }
     system.walls.push_back(std::move(wall));
   }
@@ -291,27 +410,45 @@ void apply_rigid_walls(RigidWallSystem& system, const solver::RigidSystem& rigid
   const std::int32_t* body_of = rigid.empty() ? nullptr : rigid.body_of_node.data();
 
   for (RigidWall& wall : system.walls) {
-    if (wall.moving) {
+    if (wall.moving || wall.prescribed) {
       wall.displacement += dt_previous * wall.velocity;  // s^n = s^{n-1} + dt V^{n-1/2}
       wall.velocity_before = wall.velocity;
     }
+    if (wall.prescribed) {
+      // V^{n+1/2}: the curve's velocity at mid-step, or the one that lands the wall on the
+      // curve's displacement at t^{n+1}; at rest before BIRTH and after DEATH.
+      double v = 0.0;
+      if (dt > 0.0 && t_n >= wall.birth && t_n <= wall.death) {
+        v = wall.prescribed_displacement ? (wall.motion(t_n + dt) - wall.displacement) / dt
+                                         : wall.motion(t_n + 0.5 * dt);
+      }
+      wall.velocity = v;
+    }
     wall.force.setZero();
+    wall.segment_force.setZero();
     wall.normal_force = 0.0;
     wall.contacts.clear();
-    const Vector3d& n = wall.normal;
-    const Vector3d plane = wall.origin + wall.displacement * n;
+    const Vector3d position = wall_position(wall);
+    const bool closed = !wall.kept_inside.empty();
+    auto surface = [&](std::size_t k, std::int32_t i) {
+      return surface_point(wall, position, node_position(nodes, i),
+                           closed && wall.kept_inside[k] != 0);
+    };
     const bool active =
         wall.active && t_n >= wall.birth && t_n <= wall.death && dt > 0.0 && dt_avg > 0.0;
     if (!active) {
       // Keep track of which side the nodes are on, so that a wall switched on later leaves
       // alone the nodes that went behind it meanwhile.
       for (std::size_t k = 0; k < wall.nodes.size(); ++k) {
-        const double d = (node_position(nodes, wall.nodes[k]) - plane).dot(n);
-        wall.in_front[k] = d >= -system.tolerance ? 1 : 0;
+        wall.in_front[k] = surface(k, wall.nodes[k]).distance >= -system.tolerance ? 1 : 0;
       }
       continue;
     }
+    // The wall's velocity: a _MOVING wall's normal speed before the nodes push it, else the
+    // prescribed translation (zero for a fixed wall).
     const double predicted_wall_velocity = wall.velocity_before;  // nothing but nodes push it
+    const Vector3d wall_motion =
+        wall.prescribed ? Vector3d(wall.velocity * wall.motion_direction) : Vector3d::Zero();
     const double wall_inverse_mass = wall.moving ? 1.0 / wall.mass : 0.0;
     const double inv_dt = 1.0 / dt;
     system.candidates.clear();
@@ -321,15 +458,17 @@ void apply_rigid_walls(RigidWallSystem& system, const solver::RigidSystem& rigid
     // (with their neighbours in reach) for their body's contact solve.
     for (std::size_t k = 0; k < wall.nodes.size(); ++k) {
       const std::int32_t i = wall.nodes[k];
-      const Vector3d relative = node_position(nodes, i) - plane;
-      const double d = relative.dot(n);
-      const bool inside = within_extent(wall, relative);
+      const SurfacePoint sp = surface(k, i);
+      const double d = sp.distance;
+      const Vector3d& n = sp.normal;
+      const bool inside = sp.over;
       if (d >= 0.0) {
         wall.in_front[k] = 1;
       } else if (!inside) {
         wall.in_front[k] = 0;  // went behind the plane beside the wall
       }
       if (!wall.in_front[k] || !inside) continue;
+      const double wall_speed = wall.moving ? predicted_wall_velocity : wall_motion.dot(n);
       const std::int32_t b = body_of ? body_of[i] : -1;
       if (b >= 0) {
         BodyMotion& motion = system.body_motion[b];
@@ -340,16 +479,26 @@ void apply_rigid_walls(RigidWallSystem& system, const solver::RigidSystem& rigid
         const Vector3d arm = node_position(nodes, i) - motion.centre;
         const Vector3d w = motion.inverse_inertia * motion.angular_momentum;
         const Vector3d u = motion.velocity + w.cross(arm);
-        const double closing = u.dot(n) - predicted_wall_velocity + d * inv_dt;
+        const double closing = u.dot(n) - wall_speed + d * inv_dt;
         // Nodes that could reach the wall this step once the body's other contacts act.
-        const double reach =
-            dt * (u.norm() + std::abs(predicted_wall_velocity) + w.norm() * arm.norm());
+        const double reach = dt * (u.norm() + std::abs(predicted_wall_velocity) +
+                                   wall_motion.norm() + w.norm() * arm.norm());
         if (closing < 0.0 || d < reach) {
           BodyContact c;
           c.node = i;
           c.body = b;
           c.arm = arm;
           c.gap_rate = d * inv_dt;
+          c.wall_speed = wall_speed;
+          c.normal = n;
+          if (wall.shape == WallShape::Plane) {
+            c.tangent_l = wall.edge_l;
+            c.tangent_m = wall.edge_m;
+          } else {
+            const Vector3d axis = std::abs(n.x()) < 0.9 ? Vector3d::UnitX() : Vector3d::UnitY();
+            c.tangent_l = (axis - axis.dot(n) * n).normalized();
+            c.tangent_m = n.cross(c.tangent_l);
+          }
           system.body_contacts.push_back(c);
         }
         continue;
@@ -359,7 +508,7 @@ void apply_rigid_walls(RigidWallSystem& system, const solver::RigidSystem& rigid
       if (held == 7 || !(m > 0.0)) continue;
       const double limit =
           nodes.v.x[i] * n.x() + nodes.v.y[i] * n.y() + nodes.v.z[i] * n.z() + d * inv_dt;
-      if (limit >= predicted_wall_velocity) continue;
+      if (limit >= wall_speed) continue;
       double normal_share = 1.0;  // |P n|^2 with P the projection on the free axes
       if (held) {
         normal_share = 0.0;
@@ -368,12 +517,14 @@ void apply_rigid_walls(RigidWallSystem& system, const solver::RigidSystem& rigid
         }
         if (normal_share < 1e-12) continue;
       }
-      system.candidates.push_back({i, static_cast<std::int32_t>(k), limit, m / normal_share});
+      system.candidates.push_back(
+          {i, static_cast<std::int32_t>(k), limit, m / normal_share, wall_speed, n});
     }
 
     // Deformable nodes. A fixed wall stops each node independently: it ends with normal
-    // velocity -d/dt (on the wall at t^{n+1}). A moving wall of mass M is pushed by all of
-    // them: with the set S of nodes in contact its velocity becomes
+    // velocity -d/dt (on the wall at t^{n+1}); a prescribed wall, with the wall's normal
+    // velocity V.n - d/dt. A moving wall of mass M is pushed by all of them: with the set S
+    // of nodes in contact its velocity becomes
     //   V = (M V_pred + sum_S m_i l_i) / (M + sum_S m_i),   l_i = v_i.n + d_i/dt,
     // and S = {i : l_i < V}; sorting by l_i finds S exactly (adding a node only lowers V).
     double wall_velocity = predicted_wall_velocity;
@@ -395,19 +546,23 @@ void apply_rigid_walls(RigidWallSystem& system, const solver::RigidSystem& rigid
     }
     const bool friction = wall.no_sliding || wall.friction > 0.0;
     const double inv_dt_avg = 1.0 / dt_avg;
+    double normal_sum = 0.0;  // sum of the forces along their contact normals
     for (std::size_t c = 0; c < in_contact; ++c) {
       const NodeCandidate& cand = system.candidates[c];
       const std::int32_t i = cand.node;
+      const Vector3d& n = cand.normal;
       const std::uint8_t held = wall.locked_axes[cand.slot];
       const double m = nodes.mass[i];
-      const double normal_impulse = cand.mass * (wall_velocity - cand.limit);
+      const double target = wall.moving ? wall_velocity : cand.wall_speed;
+      const double normal_impulse = cand.mass * (target - cand.limit);
       Vector3d dv = (normal_impulse / m) * n;
       if (held) {
         for (int a = 0; a < 3; ++a) {
           if (held & (1u << a)) dv[a] = 0.0;
         }
       } else if (friction) {
-        const Vector3d v = Vector3d(nodes.v.x[i], nodes.v.y[i], nodes.v.z[i]) + dv;
+        // Friction acts on the slip relative to the wall.
+        const Vector3d v = Vector3d(nodes.v.x[i], nodes.v.y[i], nodes.v.z[i]) + dv - wall_motion;
         dv += friction_velocity_change(wall, v - v.dot(n) * n, m, normal_impulse);
       }
       nodes.v.x[i] += dv.x();
@@ -424,6 +579,7 @@ void apply_rigid_walls(RigidWallSystem& system, const solver::RigidSystem& rigid
       nodes.f_ext.y[i] += force.y();
       nodes.f_ext.z[i] += force.z();
       wall.force += force;
+      normal_sum += force.dot(n);
       wall.contacts.push_back({i, -1, force});
     }
 
@@ -437,24 +593,30 @@ void apply_rigid_walls(RigidWallSystem& system, const solver::RigidSystem& rigid
       while (last < contacts.size() && contacts[last].body == contacts[first].body) ++last;
       BodyMotion& motion = system.body_motion[contacts[first].body];
       solve_body_contacts(wall, motion, contacts.data() + first, contacts.data() + last,
-                          wall_velocity, wall_inverse_mass);
+                          wall_velocity, wall_inverse_mass, wall_motion);
       for (std::size_t c = first; c < last; ++c) {
         const BodyContact& bc = contacts[c];
         if (bc.normal_impulse == 0.0 && bc.tangent_impulse.squaredNorm() == 0.0) continue;
         const Vector3d force =
-            inv_dt_avg * (bc.normal_impulse * n + bc.tangent_impulse.x() * wall.edge_l +
-                          bc.tangent_impulse.y() * wall.edge_m);
+            inv_dt_avg * (bc.normal_impulse * bc.normal + bc.tangent_impulse.x() * bc.tangent_l +
+                          bc.tangent_impulse.y() * bc.tangent_m);
         nodes.f_ext.x[bc.node] += force.x();
         nodes.f_ext.y[bc.node] += force.y();
         nodes.f_ext.z[bc.node] += force.z();
         wall.force += force;
+        normal_sum += inv_dt_avg * bc.normal_impulse;
         wall.contacts.push_back({bc.node, bc.body, force});
       }
       first = last;
     }
     if (wall.moving) wall.velocity = wall_velocity;
-    wall.normal_force = wall.force.dot(n);
+    wall.normal_force = wall.shape == WallShape::Plane ? wall.force.dot(wall.normal) : normal_sum;
     wall.normal_impulse += wall.normal_force * dt_avg;
+    if (!wall.segment_nodes.empty()) {
+      for (const WallContact& c : wall.contacts) {
+        if (wall.segment_nodes[c.node]) wall.segment_force += c.force;
+      }
+    }
   }
 }
 
@@ -495,13 +657,16 @@ bool wall_within_offset(const RigidWallSystem& system, int number, double offset
                         const std::vector<model::Id>& parts, const solver::State& state) {
   if (number < 1 || number > static_cast<int>(system.walls.size())) return false;
   const RigidWall& wall = system.walls[number - 1];
-  const Vector3d plane = wall.origin + wall.displacement * wall.normal;
+  const Vector3d position = wall_position(wall);
   for (const auto& block : state.hex_blocks) {
     if (std::find(parts.begin(), parts.end(), block.part_id) == parts.end()) continue;
     for (const std::int32_t i : block.conn) {
-      const Vector3d relative = node_position(state.nodes, i) - plane;
-      const double d = relative.dot(wall.normal);
-      if (d >= -system.tolerance && d <= offset && within_extent(wall, relative)) return true;
+      const Vector3d x = node_position(state.nodes, i);
+      // Closed shapes: measured from the side the wall keeps nodes on by default.
+      const bool inside = wall.shape == WallShape::Cylinder && !wall.kept_inside.empty() &&
+                          wall.kept_inside.front() != 0;
+      const SurfacePoint sp = surface_point(wall, position, x, inside);
+      if (sp.distance >= -system.tolerance && sp.distance <= offset && sp.over) return true;
     }
   }
   return false;

@@ -32,6 +32,11 @@ struct WallContact {
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
 };
 
+// The surface a wall keeps nodes away from: a plane (*RIGIDWALL_PLANAR, *RIGIDWALL_GEOMETRIC_FLAT,
+// with the rectangle of _FINITE/FLAT), or the closed shapes of *RIGIDWALL_GEOMETRIC_PRISM
+// (box), _CYLINDER (lateral surface only, axis along `normal`) and _SPHERE.
+enum class WallShape { Plane, Prism, Cylinder, Sphere };
+
 struct RigidWall {
   int number = 0;     // 1-based position in the deck (what *DEFORMABLE_TO_RIGID_AUTOMATIC uses)
   model::Id id = 0;   // the _ID card's ID, else equal to `number`
@@ -51,7 +56,20 @@ struct RigidWall {
   double death = 1e20;
   bool active = true;  // switched by set_wall_active (the RWF flag of part switching)
 
-  // _MOVING: the plane is at origin + displacement * normal and moves along the normal only.
+  WallShape shape = WallShape::Plane;
+  bool geometric = false;  // *RIGIDWALL_GEOMETRIC_*
+  double depth = 0.0;      // prism: LENP, extent behind the face (along -normal)
+  double radius = 0.0;     // cylinder, sphere
+  double length = 0.0;     // cylinder: LENCYL from the tail along the axis (0: infinite)
+
+  // The wall is at origin + displacement * motion_direction (rigid translation). _MOVING: a
+  // mass moved by the nodes along its normal (motion_direction = normal). _MOTION of a
+  // geometric wall: prescribed by `motion`, a velocity (OPT 0) or a displacement (OPT 1)
+  // along motion_direction, as a function of t - BIRTH.
+  Eigen::Vector3d motion_direction = Eigen::Vector3d::UnitZ();
+  bool prescribed = false;
+  bool prescribed_displacement = false;
+  solver::ScaledCurve motion;
   bool moving = false;
   double mass = 0.0;
   double displacement = 0.0;     // s^n
@@ -65,10 +83,19 @@ struct RigidWall {
   std::vector<std::int32_t> nodes;
   std::vector<std::uint8_t> locked_axes;
   std::vector<std::uint8_t> in_front;
+  // Per tracked node: the side of a closed surface it is kept on (1: inside; a cylinder with
+  // _INTERIOR, a sphere the node started inside). Empty for planes and prisms.
+  std::vector<std::uint8_t> kept_inside;
+  // *RIGIDWALL_PLANAR_FORCES SSID: per node (dense index), 1 on a node of the segment set;
+  // segment_force is the wall force on those nodes in the last cycle. Empty without SSID.
+  std::vector<std::uint8_t> segment_nodes;
+  Eigen::Vector3d segment_force = Eigen::Vector3d::Zero();
 
   // Results of the last cycle (force at t^n on the model) and totals since t = 0.
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
-  double normal_force = 0.0;          // force . normal (>= 0: the wall only pushes)
+  // force . normal (>= 0: the wall only pushes); curved walls: the sum of each node's force
+  // along its own contact normal.
+  double normal_force = 0.0;
   double normal_impulse = 0.0;        // sum of normal_force * dt_avg since t = 0
   double work = 0.0;                  // work of the wall forces on the model since t = 0
   std::vector<WallContact> contacts;  // capacity reserved for every tracked node
@@ -91,6 +118,8 @@ struct NodeCandidate {
   std::int32_t slot = 0;  // index into the wall's node list
   double limit = 0.0;     // v.n + d/dt: the largest wall velocity the node does not pass
   double mass = 0.0;      // along the normal (m / |P n|^2 for a node with held axes)
+  double wall_speed = 0.0;  // velocity of the wall along `normal` (prescribed motion)
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // contact normal, towards the node
 };
 
 struct BodyContact {
@@ -98,6 +127,10 @@ struct BodyContact {
   std::int32_t body = 0;
   Eigen::Vector3d arm = Eigen::Vector3d::Zero();       // x_i^n - x_c^n
   double gap_rate = 0.0;                               // d^n / dt
+  double wall_speed = 0.0;                             // prescribed wall velocity . normal
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();   // contact normal, towards the node
+  Eigen::Vector3d tangent_l = Eigen::Vector3d::UnitX();
+  Eigen::Vector3d tangent_m = Eigen::Vector3d::UnitY();
   double normal_inverse_mass = 0.0;                    // n^T K n (+ 1 / wall mass)
   Eigen::Matrix3d response = Eigen::Matrix3d::Zero();  // K: point velocity per impulse
   double tangent_inverse_mass = 0.0;  // largest eigenvalue of T^T K T (friction step)

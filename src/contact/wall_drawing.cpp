@@ -20,8 +20,9 @@ std::vector<output::WallPatch> wall_patches(const RigidWallSystem& walls,
 
   std::vector<output::WallPatch> patches;
   for (const RigidWall& wall : walls.walls) {
+    if (wall.shape != WallShape::Plane) continue;  // prisms, cylinders, spheres: not drawn
     const Eigen::Vector3d n = wall.normal.normalized();
-    const Eigen::Vector3d origin = wall.origin + wall.displacement * n;
+    const Eigen::Vector3d origin = wall.origin + wall.displacement * wall.motion_direction;
     Eigen::Vector3d l = wall.edge_l, m = wall.edge_m;
     if (!wall.finite) {
       // Any in-plane pair: the global axis least aligned with the normal, projected.

@@ -366,6 +366,10 @@ struct PrescribedMotion {
   Id id = 0;
   int dof = 1;  // 1,2,3 translation x,y,z; -1..-3 the same with the curve reversed... see docs
   int vad = 0;  // 0 velocity, 1 acceleration, 2 displacement
+  // DOF 9, 10, 11: rotation about an axis parallel to x, y, z through the point whose two other
+  // coordinates are OFFSET1, OFFSET2 (DOF 9: y, z; 10: z, x; 11: x, y), value in radians.
+  double offset1 = 0.0;
+  double offset2 = 0.0;
   Id lcid = 0;
   Id function = 0;  // IMPETUS *FUNCTION ID used instead of a curve (lcid 0)
   double sf = 1.0;
@@ -491,6 +495,10 @@ struct RigidPrescribedMotion {
   // global x,y,z axes through the centre of mass; 8: rotation about vector vid.
   int dof = 1;
   int vad = 0;  // 0 velocity, 1 acceleration, 2 displacement
+  // DOF 9, 10, 11: rotation about an axis parallel to x, y, z through the point whose two other
+  // coordinates are OFFSET1, OFFSET2 (DOF 9: y, z; 10: z, x; 11: x, y), value in radians.
+  double offset1 = 0.0;
+  double offset2 = 0.0;
   Id lcid = 0;
   Id function = 0;  // IMPETUS *FUNCTION ID used instead of a curve (lcid 0)
   double sf = 1.0;
@@ -545,6 +553,25 @@ struct RigidWall {
   bool moving = false;                // _MOVING
   double mass = 0.0;                  // MASS of the moving wall
   double v0 = 0.0;                    // V0 along the normal
+  // *RIGIDWALL_PLANAR_FORCES: SSID, a segment set whose nodes' share of the wall force is
+  // reported in rwforc.csv (SOFT must be 0; N1..N4 only draw the wall in LS-DYNA's database).
+  Id force_segments = 0;
+  // *RIGIDWALL_GEOMETRIC_FLAT / _PRISM / _CYLINDER / _SPHERE (Planar: *RIGIDWALL_PLANAR). A
+  // FLAT wall uses finite/edge_head/lenl/lenm as _FINITE does; a PRISM adds lenp, the depth
+  // behind the face (along -normal); a CYLINDER has its axis from tail towards head, radius
+  // and length (0: infinite); a SPHERE is centred on the tail.
+  enum class Shape { Planar, Flat, Prism, Cylinder, Sphere };
+  Shape shape = Shape::Planar;
+  double lenp = 0.0;
+  double radius = 0.0;
+  double lencyl = 0.0;
+  bool interior = false;  // _INTERIOR (cylinder): nodes are kept inside
+  // _MOTION of a geometric wall: the wall translates along `motion_direction` (unit) with the
+  // velocity (OPT 0) or displacement (OPT 1) of curve motion_lcid, shifted by BIRTH.
+  bool motion = false;
+  Id motion_lcid = 0;
+  int motion_opt = 0;
+  std::array<double, 3> motion_direction{};
   SourceLocation where;
 };
 

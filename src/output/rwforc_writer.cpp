@@ -19,6 +19,8 @@ void RwforcWriter::write(const std::vector<RwforcRow>& rows) {
     for (const double value : {row.displacement, row.velocity, row.normal_impulse, row.work}) {
       fmt::format_to(std::back_inserter(text), ",{:.17g}", value);
     }
+    for (const double value : row.segment_force)
+      fmt::format_to(std::back_inserter(text), ",{:.17g}", value);
     text.push_back('\n');
   }
   csv_.write_text(std::string_view(text.data(), text.size()));

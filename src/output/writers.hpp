@@ -132,7 +132,7 @@ class RbdoutWriter {
 
 inline constexpr std::string_view kRwforcHeader =
     "time,wall,normal_force,force_x,force_y,force_z,wall_displacement,wall_velocity,"
-    "normal_impulse,work";
+    "normal_impulse,work,segment_force_x,segment_force_y,segment_force_z";
 
 // One row of rwforc.csv: a rigid wall at an output time t^n. The force is the one the wall
 // applied to the model in the cycle at t^n (global axes); displacement and velocity are the
@@ -147,6 +147,8 @@ struct RwforcRow {
   double velocity = 0.0;
   double normal_impulse = 0.0;
   double work = 0.0;
+  // *RIGIDWALL_PLANAR_FORCES SSID: the part of `force` on the segment set's nodes (0 without).
+  std::array<double, 3> segment_force{};
 };
 
 inline constexpr std::string_view kJntforcHeader =

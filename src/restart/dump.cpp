@@ -787,6 +787,11 @@ void write_boundary(const Group& g, const solver::Boundary& boundary, const mode
   write_packed(pg, "birth", prescribed, 1, [](auto& p) { return &p.birth; });
   write_packed(pg, "death", prescribed, 1, [](auto& p) { return &p.death; });
   write_time_functions(pg, "value", values, model);
+  // DOF 9..11 (rotation about an axis): the axis and its centre; absent in older dumps.
+  std::vector<std::int32_t> rotation;
+  for (const auto& p : prescribed) rotation.push_back(p.rotation);
+  write_vector(pg, "rotation", rotation);
+  write_packed(pg, "centre", prescribed, 2, [](auto& p) { return p.centre.data(); });
 
   const Group fg = g.create_group("nodal_forces");
   fg.set("count", static_cast<std::int64_t>(boundary.nodal_forces.size()));
@@ -848,6 +853,14 @@ void read_boundary(const Group& g, solver::Boundary& boundary, const model::Mode
   read_packed(pg, "birth", boundary.prescribed, 1, [](auto& p) { return &p.birth; });
   read_packed(pg, "death", boundary.prescribed, 1, [](auto& p) { return &p.death; });
   read_time_functions(pg, "value", values, model);
+  if (pg.has("rotation")) {
+    const auto rotation = read_exact<std::int32_t>(pg, "rotation", np);
+    for (std::size_t i = 0; i < np; ++i) {
+      if (rotation[i] < -1 || rotation[i] > 2) pg.fail("rotation", "holds an axis outside -1..2");
+      boundary.prescribed[i].rotation = rotation[i];
+    }
+    read_packed(pg, "centre", boundary.prescribed, 2, [](auto& p) { return p.centre.data(); });
+  }
 
   const Group fg = g.group("nodal_forces");
   const std::size_t nf = count_of(fg, "count");

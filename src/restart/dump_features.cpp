@@ -160,6 +160,12 @@ void write_walls(const contact::RigidWallSystem& walls, const Group& g) {
   g.write("numbers", span_of(numbers));
   g.write("in_front", span_of(in_front));
   g.write("in_front_count", span_of(in_front_count));
+  // *RIGIDWALL_PLANAR_FORCES: the segment set's force of the last cycle (x y z per wall).
+  std::vector<double> segment_forces;
+  for (const auto& w : walls.walls) {
+    for (int k = 0; k < 3; ++k) segment_forces.push_back(w.segment_force[k]);
+  }
+  g.write("segment_forces", span_of(segment_forces));
 }
 
 void read_walls(contact::RigidWallSystem& walls, const Group& g) {
@@ -187,6 +193,13 @@ void read_walls(contact::RigidWallSystem& walls, const Group& g) {
     std::copy(in_front.begin() + static_cast<long>(at),
               in_front.begin() + static_cast<long>(at + w.in_front.size()), w.in_front.begin());
     at += w.in_front.size();
+  }
+  if (g.has("segment_forces")) {  // absent in dumps written before it existed
+    const auto forces = g.read_doubles("segment_forces");
+    expect_count(g, "segment_forces", forces.size(), 3 * walls.walls.size());
+    for (std::size_t k = 0; k < walls.walls.size(); ++k) {
+      walls.walls[k].segment_force = {forces[3 * k], forces[3 * k + 1], forces[3 * k + 2]};
+    }
   }
 }
 

@@ -225,7 +225,13 @@ Boundary resolve_boundary(const model::Model& model, const NodeIndex& node_index
     }
   }
   for (const auto& pm : model.prescribed_motions) {
-    const int axis = translation_axis(pm.dof, pm.where);
+    const bool rotation = pm.dof >= 9 && pm.dof <= 11;
+    const int axis = rotation ? pm.dof - 9 : translation_axis(pm.dof, pm.where);
+    if (rotation && pm.vad == 1) {
+      throw InputError(context_of(pm.where, "VAD"),
+                       "VAD=1 (angular acceleration) is not supported with DOF 9, 10, 11; use "
+                       "0 (angular velocity) or 2 (angle)");
+    }
     if (pm.vad < 0 || pm.vad > 2) {
       throw InputError(context_of(pm.where, "VAD"),
                        fmt::format("VAD={} is not supported (0 velocity, 1 acceleration, "
@@ -244,14 +250,29 @@ Boundary resolve_boundary(const model::Model& model, const NodeIndex& node_index
                                      "*BOUNDARY_PRESCRIBED_MOTION_RIGID",
                                      state.nodes.id[i]));
       }
+      const double death = pm.death <= 0.0 ? 1e28 : pm.death;
+      if (rotation) {
+        // The two translations normal to the rotation axis follow the circle; the one along
+        // the axis stays free (LS-DYNA: radial motion is not permitted for DOF 9..11 > 0).
+        for (const int k : {(axis + 1) % 3, (axis + 2) % 3}) {
+          if (b.fixed[i] & (1u << k)) {
+            throw InputError(context_of(pm.where, "DOF"),
+                             fmt::format("node {} turns about an axis (DOF {}) but its "
+                                         "translation {} is fixed by an SPC",
+                                         state.nodes.id[i], pm.dof, "xyz"[k]));
+          }
+          PrescribedDof p{i, k, pm.vad, axis, {pm.offset1, pm.offset2}, value, pm.birth, death};
+          b.prescribed.push_back(p);
+        }
+        continue;
+      }
       if (b.fixed[i] & (1u << axis)) {
         throw InputError(context_of(pm.where, "DOF"),
                          fmt::format("node {} has a prescribed motion in a DOF that is also "
                                      "fixed by an SPC",
                                      state.nodes.id[i]));
       }
-      b.prescribed.push_back(
-          PrescribedDof{i, axis, pm.vad, value, pm.birth, pm.death <= 0.0 ? 1e28 : pm.death});
+      b.prescribed.push_back(PrescribedDof{i, axis, pm.vad, -1, {}, value, pm.birth, death});
     }
   }
   for (const auto& load : model.nodal_loads) {
@@ -392,6 +413,32 @@ void constrain_accelerations(const Boundary& boundary, double t_n, State& state)
   }
 }
 
+namespace {
+
+// Coordinate `p.axis` of the point where a node turning about an axis (DOF 9..11) must be at
+// t^n + dt: its reference position x0 turned about the axis by the angle theta(t^n + dt), so
+// that it stays on its circle exactly (radius from x0). VAD 2 gives theta directly; VAD 0 the
+// angular velocity, integrated from the node's present angle with the mid-step value (exact
+// for a linear omega(t)), so that no state other than the positions is needed.
+double rotated_position(const PrescribedDof& p, const double* const x[3], const double* const x0[3],
+                        double t_n, double dt) {
+  const int a = (p.rotation + 1) % 3, b = (p.rotation + 2) % 3;
+  const std::int32_t i = p.node;
+  const double qa = x0[a][i] - p.centre[0], qb = x0[b][i] - p.centre[1];
+  double theta = 0.0;
+  if (p.vad == 2) {
+    theta = p.value(t_n + dt);
+  } else {
+    const double ra = x[a][i] - p.centre[0], rb = x[b][i] - p.centre[1];
+    const double now = std::atan2(qa * rb - qb * ra, qa * ra + qb * rb);  // angle of x^n
+    theta = now + dt * p.value(t_n + 0.5 * dt);
+  }
+  const double c = std::cos(theta), s = std::sin(theta);
+  return p.axis == a ? p.centre[0] + c * qa - s * qb : p.centre[1] + s * qa + c * qb;
+}
+
+}  // namespace
+
 void constrain_velocities(const Boundary& boundary, double t_n, double dt, State& state) {
   NodalState& nodes = state.nodes;
   double* v[3] = {nodes.v.x.data(), nodes.v.y.data(), nodes.v.z.data()};
@@ -406,6 +453,12 @@ void constrain_velocities(const Boundary& boundary, double t_n, double dt, State
   const double t_mid = t_n + 0.5 * dt;
   const double t_end = t_n + dt;
   for (const auto& p : boundary.prescribed) {
+    if (p.rotation >= 0) {
+      if (p.vad == 0 ? p.active(t_mid) : p.active(t_end)) {
+        v[p.axis][p.node] = (rotated_position(p, x, x0, t_n, dt) - x[p.axis][p.node]) / dt;
+      }
+      continue;
+    }
     if (p.vad == 0 && p.active(t_mid)) {
       v[p.axis][p.node] = p.value(t_mid);
     } else if (p.vad == 2 && p.active(t_end)) {

@@ -47,6 +47,12 @@ struct PrescribedDof {
   std::int32_t node = 0;
   int axis = 0;  // 0,1,2
   int vad = 0;   // 0 velocity, 1 acceleration, 2 displacement
+  // DOF 9/10/11 of *BOUNDARY_PRESCRIBED_MOTION: -1 for a translation; else the axis (0 x, 1 y,
+  // 2 z) the node turns about, through the point whose in-plane coordinates (axes rotation+1,
+  // rotation+2 mod 3) are `centre`. `axis` is then one of the two in-plane axes (each node
+  // has two entries) and `value` is the angle (VAD 2) or angular velocity (VAD 0).
+  int rotation = -1;
+  std::array<double, 2> centre{};
   ScaledCurve value;
   double birth = 0.0;
   double death = 1e28;

@@ -1092,6 +1092,7 @@ void Simulation::write_output_if_due(bool force) {
       row.wall = wall.id;
       row.normal_force = wall.normal_force;
       for (int k = 0; k < 3; ++k) row.force[k] = wall.force[k];
+      for (int k = 0; k < 3; ++k) row.segment_force[k] = wall.segment_force[k];
       row.displacement = wall.displacement;
       row.velocity = 0.5 * (wall.velocity_before + wall.velocity);
       row.normal_impulse = wall.normal_impulse;

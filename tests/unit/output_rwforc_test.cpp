@@ -27,6 +27,7 @@ TEST(OutputRwforc, HeaderRowsAndBitExactValues) {
   a.velocity = 2.0 / 3.0;
   a.normal_impulse = 1e-17;
   a.work = -123.456;
+  a.segment_force = {1.0 / 9.0, -2.5, 0.0};
   RwforcRow b = a;
   b.wall = 2;
   b.work = 7.0;
@@ -40,16 +41,26 @@ TEST(OutputRwforc, HeaderRowsAndBitExactValues) {
   ASSERT_EQ(lines.size(), 3u);
   EXPECT_EQ(lines[0],
             "time,wall,normal_force,force_x,force_y,force_z,wall_displacement,wall_velocity,"
-            "normal_impulse,work");
+            "normal_impulse,work,segment_force_x,segment_force_y,segment_force_z");
   std::vector<std::string> fields;
   std::stringstream ss(lines[1]);
   for (std::string f; std::getline(ss, f, ',');) fields.push_back(f);
-  ASSERT_EQ(fields.size(), 10u);
+  ASSERT_EQ(fields.size(), 13u);
   EXPECT_EQ(fields[1], "12");
-  const double expected[] = {a.time,           0.0,        a.normal_force, a.force[0],
-                             a.force[1],       a.force[2], a.displacement, a.velocity,
-                             a.normal_impulse, a.work};
-  for (int k = 0; k < 10; ++k) {
+  const double expected[] = {a.time,
+                             0.0,
+                             a.normal_force,
+                             a.force[0],
+                             a.force[1],
+                             a.force[2],
+                             a.displacement,
+                             a.velocity,
+                             a.normal_impulse,
+                             a.work,
+                             a.segment_force[0],
+                             a.segment_force[1],
+                             a.segment_force[2]};
+  for (int k = 0; k < 13; ++k) {
     if (k == 1) continue;
     const double parsed = std::strtod(fields[k].c_str(), nullptr);
     EXPECT_EQ(std::bit_cast<std::uint64_t>(parsed), std::bit_cast<std::uint64_t>(expected[k]))

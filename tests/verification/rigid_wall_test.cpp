@@ -196,7 +196,7 @@ TEST(RigidWall, ElasticBarReboundsFromFixedWallWithMomentumTwoMV0) {
   const auto rows = read_csv(dir / "rwforc.csv", header);
   EXPECT_EQ(header,
             "time,wall,normal_force,force_x,force_y,force_z,wall_displacement,wall_velocity,"
-            "normal_impulse,work");
+            "normal_impulse,work,segment_force_x,segment_force_y,segment_force_z");
   ASSERT_GT(rows.size(), 100u);
   double integral = 0.0;
   for (std::size_t r = 0; r < rows.size(); ++r) {

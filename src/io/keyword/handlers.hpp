@@ -113,6 +113,7 @@ void sensor_control(const Block&, ReaderContext&);
 void finish_sensors(ReaderContext& context, const std::unordered_set<model::Id>& nodes);
 // handlers_walls.cpp
 void rigidwall_planar(const Block&, ReaderContext&);
+void rigidwall_geometric(const Block&, ReaderContext&);
 void define_box(const Block&, ReaderContext&);
 // After reading: the node sets and boxes the rigid walls name must exist.
 void check_rigid_walls(const model::Model& model);

@@ -98,12 +98,27 @@ void boundary_prescribed_motion(const Block& block, ReaderContext& context) {
                        "motion along a vector (DOF 4 with VID) is not supported; "
                        "use DOF 1, 2 or 3");
     }
-    m.dof = translational_dof(card, "DOF", dof, "");
+    const bool rotation = std::abs(dof) >= 9 && std::abs(dof) <= 11;
+    if (rotation && dof < 0) {
+      throw card.error("DOF", fmt::format("DOF {} (rotation about an axis with the radial motion "
+                                          "free) is not supported; DOF {} (radial motion held) "
+                                          "is",
+                                          dof, -dof));
+    }
+    m.dof = rotation ? dof
+                     : translational_dof(card, "DOF", dof,
+                                         "; 9, 10, 11 for a rotation about an axis parallel to "
+                                         "x, y, z");
     m.vad = card.flag(2, "VAD", 0);
     if (m.vad < 0 || m.vad > 2) {
       throw card.error("VAD", fmt::format("value {} is not supported (supported: 0 velocity, "
                                           "1 acceleration, 2 displacement)",
                                           m.vad));
+    }
+    if (rotation && m.vad == 1) {
+      throw card.error("VAD",
+                       "VAD 1 (angular acceleration) is not supported with DOF 9, 10, "
+                       "11; use 0 (angular velocity, rad/time) or 2 (angle, rad)");
     }
     m.lcid = card.id(3, "LCID");
     if (m.lcid <= 0) throw card.error("LCID", "a load curve ID is required");
@@ -120,6 +135,20 @@ void boundary_prescribed_motion(const Block& block, ReaderContext& context) {
                        fmt::format("death time {} is not after birth time {}", m.death, m.birth));
     }
     m.where = card.location();
+    if (rotation) {
+      // The card that locates the axis follows each motion card with |DOF| 9..11.
+      const Card axis = cursor.next(n + 1, kEightByTen, "OFFSET1 OFFSET2 LRB NODE1 NODE2");
+      m.offset1 = axis.real(0, "OFFSET1", 0.0);
+      m.offset2 = axis.real(1, "OFFSET2", 0.0);
+      static const char* const kRelative[] = {"LRB", "NODE1", "NODE2"};
+      for (std::size_t k = 0; k < 3; ++k) {
+        if (axis.id(2 + k, kRelative[k]) != 0) {
+          throw axis.error(kRelative[k],
+                           "belongs to VAD 4 (relative displacement of rigid "
+                           "bodies), which is not supported; leave it blank");
+        }
+      }
+    }
     context.model.prescribed_motions.push_back(m);
     any = true;
   }

@@ -1,8 +1,10 @@
-// Rigid walls (*RIGIDWALL_PLANAR and its _ID, _FINITE, _MOVING options) and *DEFINE_BOX.
-// Card layouts follow the LS-DYNA keyword manual (as transcribed in ansys/pydyna): an optional
-// ID card, card 1 NSID NSIDEX BOXID OFFSET BIRTH DEATH RWKSF, card 2 XT YT ZT XH YH ZH FRIC WVEL,
-// the _FINITE card XHEV YHEV ZHEV LENL LENM and the _MOVING card MASS V0, in that order whatever
-// the order of the option words. The solver side is src/contact/rigid_wall.hpp.
+// Rigid walls (*RIGIDWALL_PLANAR with _ID, _FINITE, _MOVING, _FORCES; *RIGIDWALL_GEOMETRIC_FLAT,
+// _PRISM, _CYLINDER, _SPHERE with _ID, _MOTION, _DISPLAY, _INTERIOR) and *DEFINE_BOX. Card layouts
+// follow the LS-DYNA keyword manual (as transcribed in ansys/pydyna). Planar: an optional ID card,
+// card 1 NSID NSIDEX BOXID OFFSET BIRTH DEATH RWKSF, card 2 XT YT ZT XH YH ZH FRIC WVEL, the
+// _FINITE card XHEV YHEV ZHEV LENL LENM, the _MOVING card MASS V0 and the _FORCES card SOFT SSID
+// N1 N2 N3 N4, in that order whatever the order of the option words. The solver side is
+// src/contact/rigid_wall.hpp.
 #include <fmt/format.h>
 
 #include <cmath>
@@ -142,6 +144,154 @@ void rigidwall_planar(const Block& block, ReaderContext& context) {
     }
     wall.v0 = c4.real(1, "V0", 0.0);
   }
+  if (block.has_option("FORCES")) {  // the last card, after _FINITE's and _MOVING's
+    const Card cf = cursor.next(n++, kEightByTen, "SOFT SSID N1 N2 N3 N4");
+    const int soft = cf.flag(0, "SOFT", 0);
+    if (soft != 0) {
+      throw cf.error("SOFT", fmt::format("SOFT {} (force spike reduction over several cycles) is "
+                                         "not supported: the wall stops nodes in one cycle; "
+                                         "leave SOFT blank or 0",
+                                         soft));
+    }
+    wall.force_segments = non_negative_id(cf, 1, "SSID");
+    // N1..N4 only place the force vector for LS-DYNA's display.
+    static const char* const kDisplay[] = {"N1", "N2", "N3", "N4"};
+    for (std::size_t k = 0; k < 4; ++k) non_negative_id(cf, 2 + k, kDisplay[k]);
+  }
+  context.model.rigid_walls.push_back(std::move(wall));
+  warn_unread_lines(block, cursor, context);
+}
+
+void rigidwall_geometric(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  model::RigidWall wall;
+  using Shape = model::RigidWall::Shape;
+  const std::string_view base = block.base;
+  wall.shape = base.ends_with("_PRISM")      ? Shape::Prism
+               : base.ends_with("_CYLINDER") ? Shape::Cylinder
+               : base.ends_with("_SPHERE")   ? Shape::Sphere
+                                             : Shape::Flat;
+  wall.number = static_cast<int>(context.model.rigid_walls.size()) + 1;
+  wall.motion = block.has_option("MOTION");
+  wall.interior = block.has_option("INTERIOR");
+  int n = 1;
+  if (block.has_option("ID")) {
+    const Card id_card = cursor.next(n++, Layout{10, 70}, "ID TITLE");
+    wall.id = non_negative_id(id_card, 0, "ID");
+    wall.title = std::string(id_card.text(1));
+    if (wall.id != 0) {
+      for (const auto& other : context.model.rigid_walls) {
+        if (other.id == wall.id) {
+          throw id_card.error("ID",
+                              fmt::format("rigid wall {} is already defined at {}:{} ({})", wall.id,
+                                          other.where.file, other.where.line, other.where.keyword));
+        }
+      }
+    }
+  }
+  const Card c1 = cursor.next(n++, kEightByTen, "NSID NSIDEX BOXID BIRTH DEATH");
+  wall.where = c1.location();
+  wall.nsid = non_negative_id(c1, 0, "NSID");
+  wall.nsidex = non_negative_id(c1, 1, "NSIDEX");
+  wall.boxid = non_negative_id(c1, 2, "BOXID");
+  wall.birth = non_negative(c1, 3, "BIRTH", 0.0);
+  wall.death = c1.real(4, "DEATH", 1e20);
+  if (wall.death == 0.0) wall.death = 1e20;
+  if (wall.death <= wall.birth) {
+    throw c1.error("DEATH",
+                   fmt::format("DEATH {} must be later than BIRTH {}", wall.death, wall.birth));
+  }
+
+  static const char* const kTail[] = {"XT", "YT", "ZT"};
+  static const char* const kHead[] = {"XH", "YH", "ZH"};
+  const Card c2 = cursor.next(n++, kEightByTen, "XT YT ZT XH YH ZH FRIC");
+  wall.tail = read_point(c2, 0, kTail);
+  wall.head = read_point(c2, 3, kHead);
+  const auto normal = unit(sub(wall.head, wall.tail));
+  if (!normal && wall.shape != Shape::Sphere) {
+    throw c2.error("XH", wall.shape == Shape::Cylinder
+                             ? "the head XH YH ZH must differ from the tail XT YT ZT: together "
+                               "they give the cylinder's axis"
+                             : "the head XH YH ZH must differ from the tail XT YT ZT: together "
+                               "they give the wall's outward normal");
+  }
+  wall.fric = c2.real(6, "FRIC", 0.0);
+  if (!(wall.fric >= 0.0 && wall.fric <= 1.0)) {
+    throw c2.error("FRIC", fmt::format("value {} is not supported: 0 frictionless, 0 < FRIC < 1 "
+                                       "Coulomb coefficient, 1 no sliding",
+                                       wall.fric));
+  }
+
+  if (wall.shape == Shape::Flat || wall.shape == Shape::Prism) {
+    static const char* const kEdge[] = {"XHEV", "YHEV", "ZHEV"};
+    const bool prism = wall.shape == Shape::Prism;
+    const Card c3 = cursor.next(
+        n++, kEightByTen, prism ? "XHEV YHEV ZHEV LENL LENM LENP" : "XHEV YHEV ZHEV LENL LENM");
+    wall.finite = true;
+    wall.edge_head = read_point(c3, 0, kEdge);
+    const Vec3 edge = sub(wall.edge_head, wall.tail);
+    const double along_normal =
+        edge[0] * (*normal)[0] + edge[1] * (*normal)[1] + edge[2] * (*normal)[2];
+    const Vec3 in_plane{edge[0] - along_normal * (*normal)[0],
+                        edge[1] - along_normal * (*normal)[1],
+                        edge[2] - along_normal * (*normal)[2]};
+    if (!(length(in_plane) > 1e-9 * length(edge))) {
+      throw c3.error("XHEV",
+                     "the edge vector from the tail XT YT ZT to XHEV YHEV ZHEV must be nonzero "
+                     "and not along the wall normal");
+    }
+    wall.lenl = non_negative(c3, 3, "LENL", 0.0);
+    wall.lenm = non_negative(c3, 4, "LENM", 0.0);
+    if (prism) {
+      wall.lenp = c3.real(5, "LENP", 0.0);
+      if (!(wall.lenp > 0.0)) {
+        throw c3.error("LENP", fmt::format("the depth of the prism behind its face must be "
+                                           "positive (got {})",
+                                           wall.lenp));
+      }
+    }
+  } else if (wall.shape == Shape::Cylinder) {
+    const Card c3 = cursor.next(n++, kEightByTen, "RADCYL LENCYL NSEGS");
+    wall.radius = c3.real(0, "RADCYL", 0.0);
+    if (!(wall.radius > 0.0)) {
+      throw c3.error("RADCYL", fmt::format("the radius must be positive (got {})", wall.radius));
+    }
+    wall.lencyl = non_negative(c3, 1, "LENCYL", 0.0);
+    const int nsegs = c3.flag(2, "NSEGS", 0);
+    if (nsegs != 0) {
+      throw c3.error("NSEGS", fmt::format("NSEGS {} (force output per subsection of the "
+                                          "cylinder) is not supported; leave NSEGS blank or 0",
+                                          nsegs));
+    }
+  } else {
+    const Card c3 = cursor.next(n++, kEightByTen, "RADSPH");
+    wall.radius = c3.real(0, "RADSPH", 0.0);
+    if (!(wall.radius > 0.0)) {
+      throw c3.error("RADSPH", fmt::format("the radius must be positive (got {})", wall.radius));
+    }
+  }
+
+  if (wall.motion) {
+    const Card c4 = cursor.next(n++, kEightByTen, "LCID OPT VX VY VZ");
+    wall.motion_lcid = c4.id(0, "LCID");
+    if (wall.motion_lcid <= 0) throw c4.error("LCID", "a load curve ID is required");
+    wall.motion_opt = c4.flag(1, "OPT", 0);
+    if (wall.motion_opt != 0 && wall.motion_opt != 1) {
+      throw c4.error("OPT", fmt::format("value {} is not supported (0 velocity, 1 displacement)",
+                                        wall.motion_opt));
+    }
+    static const char* const kDirection[] = {"VX", "VY", "VZ"};
+    const Vec3 direction = read_point(c4, 2, kDirection);
+    const auto dir = unit(direction);
+    if (!dir) throw c4.error("VX", "the direction VX VY VZ of the motion must be nonzero");
+    wall.motion_direction = *dir;
+  }
+  if (block.has_option("DISPLAY")) {
+    cursor.next(n++, kEightByTen, "PID RO E PR");
+    context.warn(block.location(),
+                 "_DISPLAY: the display part (PID RO E PR) of a geometric rigid "
+                 "wall has no effect here (the wall is not drawn as a part)");
+  }
   context.model.rigid_walls.push_back(std::move(wall));
   warn_unread_lines(block, cursor, context);
 }
@@ -193,6 +343,14 @@ void check_rigid_walls(const model::Model& model) {
     if (wall.boxid != 0 && !model.boxes.count(wall.boxid)) {
       throw located_error(wall.where, "BOXID",
                           fmt::format("box {} is not defined (*DEFINE_BOX)", wall.boxid));
+    }
+    if (wall.force_segments != 0 && !model.segment_sets.count(wall.force_segments)) {
+      throw located_error(wall.where, "SSID",
+                          fmt::format("segment set {} is not defined", wall.force_segments));
+    }
+    if (wall.motion && !model.curves.count(wall.motion_lcid)) {
+      throw located_error(wall.where, "LCID",
+                          fmt::format("load curve {} is not defined", wall.motion_lcid));
     }
   }
 }
