@@ -6,7 +6,9 @@ cube arrives with all other nodes moving at -10 m/s), so a compressive wave runs
 Usage: make_cube_deck.py N [ELFORM] [IHQ] [CYCLES] [MATERIAL] > cube.k
 The run ends after CYCLES cycles (default 200) so timings are comparable between sizes.
 MATERIAL: elastic (default, *MAT_ELASTIC) or mat003 (*MAT_PLASTIC_KINEMATIC, SIGY 200 MPa,
-ETAN 2 GPa, BETA 1: the impact stress rho c v = 460 MPa yields the elements near the plane).
+ETAN 2 GPa, BETA 1: the impact stress rho c v = 460 MPa yields the elements near the plane),
+mr (*MAT_MOONEY-RIVLIN_RUBBER, A 0.4 MPa, B 0.1 MPa, PR 0.495) or ogden (*MAT_OGDEN_RUBBER,
+three terms mu 0.63, 0.0012, -0.01 MPa, alpha 1.3, 5, -2, PR 0.495); rubber density 1100.
 """
 import sys
 
@@ -33,8 +35,14 @@ if material == "elastic":
 elif material == "mat003":
     w("*MAT_PLASTIC_KINEMATIC\n%10d%10.4g%10.4g%10.4g%10.4g%10.4g%10.4g\n"
       % (1, 7850.0, 210e9, 0.3, 200e6, 2e9, 1.0))
+elif material == "mr":
+    w("*MAT_MOONEY-RIVLIN_RUBBER\n%10d%10.4g%10.4g%10.4g%10.4g\n%10d\n"
+      % (1, 1100.0, 0.495, 0.4e6, 0.1e6, 0))
+elif material == "ogden":
+    w("*MAT_OGDEN_RUBBER\n%10d%10.4g%10.4g%10d\n%10.4g%10.4g%10.4g\n%10.4g%10.4g%10.4g\n"
+      % (1, 1100.0, 0.495, 0, 0.63e6, 0.0012e6, -0.01e6, 1.3, 5.0, -2.0))
 else:
-    sys.exit("MATERIAL must be elastic or mat003")
+    sys.exit("MATERIAL must be elastic, mat003, mr or ogden")
 w("*NODE\n")
 for k in range(n + 1):
     for j in range(n + 1):

@@ -369,6 +369,15 @@ void corotational_hourglass(const HexBlock& block, double dt, Lanes state[4][3],
   h.work = wsum * dt;
 }
 
+// The constants material M's update takes (material::ParametersOf).
+template <class M>
+inline const auto& update_parameters(const HexBlock& block) {
+  if constexpr (material::takes_plastic_parameters<M>())
+    return block.plastic;
+  else
+    return block.hyperelastic;
+}
+
 // History of material M for a batch: the fields' components gathered lane by lane into
 // h[0 .. history_size<M>()) in kHistory order (point `point` of `points` per element), and
 // written back for the lanes that hold real elements.
@@ -501,7 +510,7 @@ void elform1_batch(HexBlock& block, std::size_t first, int count, const NodalVie
   for (int c = 0; c < 6; ++c) sig[c] = load_lanes(block.stress.data() + c, off);
   Lanes hist[history_slots<M>()];
   load_history<M>(block, b, hist);
-  M::update(block.material, block.plastic, d, w, dt, sig, hist);
+  M::update(block.material, update_parameters<M>(block), d, w, dt, sig, hist);
 
   // Characteristic length L_e = V / A_max at n+1 (tetrahedra: 3 V / A_max): the critical
   // step L_e / c and the length of the bulk viscosity.
@@ -694,7 +703,7 @@ void elform2_element(HexBlock& block, std::size_t e, const NodalView& nv, double
           block.history[f].values.data() + static_cast<std::size_t>(nc) * (8 * e + gp);
       for (int c = 0; c < nc; ++c) h[slot++] = in[c];
     }
-    M::update(block.material, block.plastic, d, w, dt, stress + 6 * gp, h);
+    M::update(block.material, update_parameters<M>(block), d, w, dt, stress + 6 * gp, h);
     slot = 0;
     for (std::size_t f = 0; f < M::kHistory.size(); ++f) {
       const int nc = M::kHistory[f].components;

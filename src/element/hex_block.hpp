@@ -8,6 +8,7 @@
 #include "element/element_ownership.hpp"
 #include "material/elastic.hpp"
 #include "material/history.hpp"
+#include "material/hyperelastic.hpp"
 #include "material/plastic_parameters.hpp"
 #include "model/model.hpp"
 
@@ -69,6 +70,7 @@ struct HexBlock {
   material::ElasticConstants material;
   int material_index = 0;
   material::PlasticParameters plastic;
+  material::HyperelasticParameters hyperelastic;  // *MAT_027, *MAT_077_O
   // Elements of a *MAT_RIGID part: they give mass and appear in the output, but have no kernel
   // and no force slots in the assembly (the body moves their nodes).
   bool rigid = false;

@@ -337,7 +337,9 @@ inline void plane_stress_update(const ShellBlock& block, const BlockConstants& k
       trial[4] = 0.0;
       trial[5] = 0.0;
       for (int c = 0; c < material::history_size<M>(); ++c) ht[c] = h0[c];
-      M::update(m, block.plastic, dd, w, dt, trial, ht);
+      // Materials with other constants (rubber) do not serve shells (compute_shell_forces).
+      if constexpr (material::takes_plastic_parameters<M>())
+        M::update(m, block.plastic, dd, w, dt, trial, ht);
       return trial[2];
     };
     const double stiff = (m.lambda + 2.0 * m.shear) * dt;

@@ -10,7 +10,8 @@
 //   kHistory    its history fields (name, components, tensor or not), in the order of `h`;
 //   update<T>(elastic, plastic, d[6], w[3], dt, s[6], h)   one step at a batch of points, T a
 //               double or a GCC vector of doubles (one point per lane); h holds the history
-//               components of the fields in kHistory order.
+//               components of the fields in kHistory order. A material whose constants are not
+//               PlasticParameters names their type as M::Parameters (see ParametersOf).
 #pragma once
 
 #include <cstddef>
@@ -18,6 +19,8 @@
 #include <type_traits>
 
 #include "material/elastic_material.hpp"
+#include "material/mooney_rivlin.hpp"
+#include "material/ogden.hpp"
 #include "material/piecewise_linear_plasticity.hpp"
 #include "material/plastic_kinematic.hpp"
 
@@ -28,7 +31,27 @@ struct MaterialList {};
 
 // THE registration line.
 using SolidMaterials =
-    MaterialList<ElasticMaterial, PlasticKinematicMaterial, PiecewiseLinearPlasticityMaterial>;
+    MaterialList<ElasticMaterial, PlasticKinematicMaterial, PiecewiseLinearPlasticityMaterial,
+                 MooneyRivlinMaterial, OgdenMaterial>;
+
+// The constants a material's update takes: M::Parameters where the material names one (the
+// rubbers: HyperelasticParameters), PlasticParameters otherwise. The kernels pass the block's
+// member of that type (hex_block.cpp).
+template <class M>
+struct ParametersOf {
+  using type = PlasticParameters;
+};
+template <class M>
+requires requires {
+  typename M::Parameters;
+}
+struct ParametersOf<M> {
+  using type = typename M::Parameters;
+};
+template <class M>
+constexpr bool takes_plastic_parameters() {
+  return std::is_same_v<typename ParametersOf<M>::type, PlasticParameters>;
+}
 
 template <class M>
 constexpr int history_size() {

@@ -160,6 +160,8 @@ enum class MaterialKind {
   Rigid,
   PlasticKinematic,
   PiecewiseLinearPlasticity,
+  MooneyRivlinRubber,  // *MAT_027
+  OgdenRubber,         // *MAT_077_O
   // Discrete-element materials (*ELEMENT_DISCRETE parts only, docs/elements.md): force laws,
   // not stress laws; they carry K, DC or LCD below and no density.
   SpringElastic,           // *MAT_SPRING_ELASTIC (S01): F = K (elongation)
@@ -191,6 +193,15 @@ struct PlasticCard {
   SourceLocation card3;  // EPS card (024)
 };
 
+// The rubber constants of *MAT_MOONEY-RIVLIN_RUBBER (027) and *MAT_OGDEN_RUBBER (077_O) as read
+// (E of the Material is set to the equivalent small-strain Young's modulus 2 G (1 + PR)).
+struct RubberCard {
+  double a = 0.0, b = 0.0;  // 027
+  int terms = 0;            // 077_O: number of nonzero (MU, ALPHA) pairs
+  std::array<double, 8> mu{};
+  std::array<double, 8> alpha{};
+};
+
 struct Material {
   Id id = 0;
   MaterialKind kind = MaterialKind::Elastic;
@@ -215,6 +226,7 @@ struct Material {
   std::array<double, 3> output_a{};
   std::array<double, 3> output_v{};
   PlasticCard plastic;  // PlasticKinematic and PiecewiseLinearPlasticity
+  RubberCard rubber;    // MooneyRivlinRubber and OgdenRubber
   // Discrete materials: K (S01, force per elongation), DC (S02, force per elongation rate),
   // LCD (S04, force vs elongation curve).
   double spring_k = 0.0;

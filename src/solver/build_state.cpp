@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "element/kernels.hpp"
+#include "material/hyperelastic_setup.hpp"
 #include "material/plastic_setup.hpp"
 #include "material/registry.hpp"
 #include "mesh/p_order.hpp"
@@ -360,6 +361,9 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
       if (mat.kind == model::MaterialKind::PlasticKinematic ||
           mat.kind == model::MaterialKind::PiecewiseLinearPlasticity)
         block.plastic = material::make_plastic_parameters(model, mat);
+      if (mat.kind == model::MaterialKind::MooneyRivlinRubber ||
+          mat.kind == model::MaterialKind::OgdenRubber)
+        block.hyperelastic = material::make_hyperelastic_parameters(mat);
     }
     block.element_id.reserve(element_indices.size());
     block.conn.reserve(element_indices.size() * 8);

@@ -72,6 +72,21 @@ inline std::string plastic(double end_time) {
   return s;
 }
 
+// The deformable deck with rubber: part 1 (ELFORM 1, IHQ 6) *MAT_MOONEY-RIVLIN_RUBBER, part 2
+// (ELFORM 2) a three-term *MAT_OGDEN_RUBBER, both about as stiff as steel in shear so that the
+// deck's loads keep the motion moderate; the history is b - I at every stress point.
+inline std::string rubber(double end_time) {
+  std::string s = deformable(end_time);
+  auto replace = [&s](const std::string& from, const std::string& to) {
+    s.replace(s.find(from), from.size(), to);
+  };
+  replace("*PART\nselective reduced\n2,2,1,0,2\n", "*PART\nselective reduced\n2,2,2,0,2\n");
+  replace("*MAT_ELASTIC\n1,7.85e-9,210000.0,0.3\n",
+          "*MAT_MOONEY-RIVLIN_RUBBER\n1,7.85e-9,0.45,30000.0,5000.0\n0,0,0,0\n"
+          "*MAT_OGDEN_RUBBER\n2,7.85e-9,0.45,0\n60000.0,2000.0,-1000.0\n2.0,4.0,-2.0\n");
+  return s;
+}
+
 // A spinning 3 x 2 x 2 block: x < 1 is a rigid part, the rest is deformable (ELFORM 1, viscous
 // hourglass) and shares the interface nodes with it; the far face is a nodal rigid body. The
 // rigid part gets a moment from a curve; *RIGID_BODY_UPDATE selects the node update (&type).

@@ -218,6 +218,8 @@ const Case kCases[] = {
     {"rigid_curvilinear", restart_decks::spinning_rigid(4e-5, 2), "", {}, 6e-6, 2},
     {"plastic", restart_decks::plastic(4e-5), "", {}, 6e-6, 1},
     {"plastic", restart_decks::plastic(4e-5), "", {}, 6e-6, 2},
+    {"rubber", restart_decks::rubber(4e-5), "", {}, 6e-6, 1},
+    {"rubber", restart_decks::rubber(4e-5), "", {}, 6e-6, 2},
     {"quadratic", restart_decks::quadratic(4e-5), "", {}, 6e-6, 1},
     {"quadratic", restart_decks::quadratic(4e-5), "", {}, 6e-6, 2},
     // The *RIGID_BODY_UPDATE example: prescribed rotation (accumulated travel), both updates.

@@ -23,6 +23,8 @@ void mat_elastic(const Block&, ReaderContext&);
 void mat_rigid(const Block&, ReaderContext&);
 void mat_plastic_kinematic(const Block&, ReaderContext&);
 void mat_piecewise_linear_plasticity(const Block&, ReaderContext&);
+void mat_mooney_rivlin_rubber(const Block&, ReaderContext&);
+void mat_ogden_rubber(const Block&, ReaderContext&);
 void hourglass(const Block&, ReaderContext&);
 void set_node_list(const Block&, ReaderContext&);
 void set_part_list(const Block&, ReaderContext&);

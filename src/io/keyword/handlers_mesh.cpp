@@ -5,6 +5,7 @@
 
 #include "io/keyword/handlers.hpp"
 #include "io/keyword/number.hpp"
+#include "material/hyperelastic_setup.hpp"
 
 namespace rf::io::handlers {
 
@@ -717,6 +718,141 @@ void mat_piecewise_linear_plasticity(const Block& block, ReaderContext& context)
       p.es.push_back(c4 ? c4->real(i, kEs[i], 0.0) : 0.0);
     }
   }
+  add_material(context, card, std::move(m));
+  warn_unread_lines(block, cursor, context);
+}
+
+namespace {
+
+// The rubber cards start MID RO PR (no E): E is set to the equivalent small-strain Young's
+// modulus 2 G (1 + PR), which the wave speed (time step), the hourglass and contact stiffness
+// use like any material's E.
+model::Material rubber_head(const Block& block, const Card& card, model::MaterialKind kind) {
+  model::Material m;
+  m.id = positive_id(card, 0, "MID", "material");
+  m.kind = kind;
+  m.keyword = block.keyword;
+  m.rho = card.real(1, "RO", 0.0);
+  m.pr = card.real(2, "PR", 0.0);
+  m.where = card.location();
+  if (!(m.rho > 0.0)) throw card.error("RO", fmt::format("density {} must be positive", m.rho));
+  return m;
+}
+
+void check_rubber_poisson(const Card& card, double pr) {
+  if (!(pr >= 0.0 && pr < 0.5))
+    throw card.error("PR", fmt::format("Poisson's ratio {} must lie in [0, 0.5) (values of 0.49 "
+                                       "and above describe rubber)",
+                                       pr));
+}
+
+void set_equivalent_young(model::Material& m) {
+  m.e = 2.0 * material::rubber_shear_modulus(m.rubber, m.kind) * (1.0 + m.pr);
+}
+
+}  // namespace
+
+// *MAT_MOONEY-RIVLIN_RUBBER (027). Card 1: MID RO PR A B REF; card 2: SGL SW ST LCID (the fit of
+// A and B to test data, not supported).
+void mat_mooney_rivlin_rubber(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  read_title(block, cursor);
+  const int n = block.has_option("TITLE") ? 2 : 1;
+  const Card card = cursor.next(n, kEightByTen, "MID RO PR A B REF");
+  model::Material m = rubber_head(block, card, model::MaterialKind::MooneyRivlinRubber);
+  check_rubber_poisson(card, m.pr);
+  m.rubber.a = card.real(3, "A", 0.0);
+  m.rubber.b = card.real(4, "B", 0.0);
+  if (card.real(5, "REF", 0.0) != 0.0)
+    throw card.error("REF",
+                     "the reference geometry of *INITIAL_FOAM_REFERENCE_GEOMETRY is not "
+                     "supported (leave REF blank or 0)");
+  bool fit = m.rubber.a == 0.0 && m.rubber.b == 0.0;
+  if (const auto c2 = cursor.next_optional(n + 1, kEightByTen)) {
+    if (c2->id(3, "LCID") != 0)
+      throw c2->error("LCID",
+                      "fitting A and B to test data (SGL, SW, ST, LCID) is not supported: "
+                      "give A and B on card 1 and leave LCID blank");
+    fit = fit && (c2->real(0, "SGL", 0.0) != 0.0 || c2->real(1, "SW", 0.0) != 0.0 ||
+                  c2->real(2, "ST", 0.0) != 0.0);
+  }
+  if (m.rubber.a == 0.0 && m.rubber.b == 0.0)
+    throw card.error("A", fit ? "A = B = 0 asks for a fit to test data, which is not supported: "
+                                "give A and B"
+                              : "A and B are both zero: the material has no stiffness");
+  if (!(m.rubber.a + m.rubber.b > 0.0))
+    throw card.error("B", fmt::format("A + B = {} must be positive (the shear modulus is "
+                                      "2 (A + B))",
+                                      m.rubber.a + m.rubber.b));
+  set_equivalent_young(m);
+  add_material(context, card, std::move(m));
+  warn_unread_lines(block, cursor, context);
+}
+
+// *MAT_OGDEN_RUBBER (077_O). Card 1: MID RO PR N NV G SIGF REF; with N = 0 cards 2 and 3: MU1-8,
+// ALPHA1-8; then optional viscoelastic cards GI BETAI VFLAG. Fitting (N > 0), PR < 0 (the
+// hysteresis table card), frictional damping (G, SIGF), viscoelastic terms and REF are refused.
+void mat_ogden_rubber(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  read_title(block, cursor);
+  const int n = block.has_option("TITLE") ? 2 : 1;
+  const Card card = cursor.next(n, kEightByTen, "MID RO PR N NV G SIGF REF");
+  model::Material m = rubber_head(block, card, model::MaterialKind::OgdenRubber);
+  if (m.pr < 0.0)
+    throw card.error("PR", fmt::format("PR {} < 0 asks for the hysteresis table card (TBHYS), "
+                                       "which is not supported",
+                                       m.pr));
+  check_rubber_poisson(card, m.pr);
+  const std::int64_t order = card.integer(3, "N", 0);
+  if (order != 0)
+    throw card.error("N", fmt::format("N = {} asks for a fit of the constants to test data, "
+                                      "which is not supported: give MU and ALPHA with N = 0",
+                                      order));
+  if (card.real(5, "G", 0.0) != 0.0)
+    throw card.error("G", "frictional damping (G, SIGF) is not supported (leave G blank or 0)");
+  if (card.real(6, "SIGF", 0.0) != 0.0)
+    throw card.error("SIGF",
+                     "frictional damping (G, SIGF) is not supported (leave SIGF blank or "
+                     "0)");
+  if (card.real(7, "REF", 0.0) != 0.0)
+    throw card.error("REF",
+                     "the reference geometry of *INITIAL_FOAM_REFERENCE_GEOMETRY is not "
+                     "supported (leave REF blank or 0)");
+  const Card mu_card = cursor.next(n + 1, kEightByTen, "MU1 MU2 MU3 MU4 MU5 MU6 MU7 MU8");
+  const Card alpha_card =
+      cursor.next(n + 2, kEightByTen, "ALPHA1 ALPHA2 ALPHA3 ALPHA4 ALPHA5 ALPHA6 ALPHA7 ALPHA8");
+  static const char* const kMu[] = {"MU1", "MU2", "MU3", "MU4", "MU5", "MU6", "MU7", "MU8"};
+  static const char* const kAlpha[] = {"ALPHA1", "ALPHA2", "ALPHA3", "ALPHA4",
+                                       "ALPHA5", "ALPHA6", "ALPHA7", "ALPHA8"};
+  model::RubberCard& r = m.rubber;
+  for (std::size_t i = 0; i < 8; ++i) {
+    const double mu = mu_card.real(i, kMu[i], 0.0);
+    const double alpha = alpha_card.real(i, kAlpha[i], 0.0);
+    if (mu == 0.0) continue;  // unused pair
+    if (alpha == 0.0)
+      throw alpha_card.error(kAlpha[i], fmt::format("{} is nonzero but {} is zero: the term "
+                                                    "mu / alpha (lambda^alpha - 1) needs alpha "
+                                                    "!= 0",
+                                                    kMu[i], kAlpha[i]));
+    r.mu[r.terms] = mu;
+    r.alpha[r.terms] = alpha;
+    ++r.terms;
+  }
+  if (r.terms == 0) throw mu_card.error("MU1", "all MU are zero: the material has no stiffness");
+  const double g = material::rubber_shear_modulus(r, m.kind);
+  if (!(g > 0.0))
+    throw mu_card.error("MU1", fmt::format("the shear modulus sum(MU ALPHA) / 2 = {} must be "
+                                           "positive",
+                                           g));
+  // Viscoelastic (Prony) cards: accepted only when they add nothing.
+  int k = n + 3;
+  while (const auto visco = cursor.next_optional(k++, kEightByTen)) {
+    if (visco->real(0, "GI", 0.0) != 0.0)
+      throw visco->error("GI",
+                         "viscoelastic (Prony series) terms are not supported (leave the "
+                         "GI, BETAI cards out)");
+  }
+  set_equivalent_young(m);
   add_material(context, card, std::move(m));
   warn_unread_lines(block, cursor, context);
 }
