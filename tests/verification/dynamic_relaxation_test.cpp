@@ -145,8 +145,8 @@ TEST(DynamicRelaxation, UnsupportedOptionsNameTheField) {
   // Initial velocities before the relaxation (PHASE 1) are refused when the run relaxes.
   try {
     solver::Simulation sim(
-        read(cantilever_deck(1, "*INITIAL_VELOCITY_GENERATION\n1,2,0,0,0,1\n0,0,0,0,0,0,1\n",
-                             0.01)),
+        read(
+            cantilever_deck(1, "*INITIAL_VELOCITY_GENERATION\n1,2,0,0,0,1\n0,0,0,0,0,0,1\n", 0.01)),
         {});
     ADD_FAILURE() << "no error for PHASE 1";
   } catch (const InputError& e) {

@@ -37,6 +37,23 @@ model::Id non_negative_id(const Card& card, std::size_t i, const char* name) {
   return id;
 }
 
+// The `_ID` card of a rigid wall (planar or geometric): ID and title; an ID used twice is an
+// error naming the first definition.
+void read_wall_id_card(CardCursor& cursor, int number, const ReaderContext& context,
+                       model::RigidWall& wall) {
+  const Card id_card = cursor.next(number, Layout{10, 70}, "ID TITLE");
+  wall.id = non_negative_id(id_card, 0, "ID");
+  wall.title = std::string(id_card.text(1));
+  if (wall.id == 0) return;
+  for (const auto& other : context.model.rigid_walls) {
+    if (other.id == wall.id) {
+      throw id_card.error("ID",
+                          fmt::format("rigid wall {} is already defined at {}:{} ({})", wall.id,
+                                      other.where.file, other.where.line, other.where.keyword));
+    }
+  }
+}
+
 }  // namespace
 
 void rigidwall_planar(const Block& block, ReaderContext& context) {
@@ -46,20 +63,7 @@ void rigidwall_planar(const Block& block, ReaderContext& context) {
   wall.finite = block.has_option("FINITE");
   wall.moving = block.has_option("MOVING");
   int n = 1;
-  if (block.has_option("ID")) {
-    const Card id_card = cursor.next(n++, Layout{10, 70}, "ID TITLE");
-    wall.id = non_negative_id(id_card, 0, "ID");
-    wall.title = std::string(id_card.text(1));
-    if (wall.id != 0) {
-      for (const auto& other : context.model.rigid_walls) {
-        if (other.id == wall.id) {
-          throw id_card.error("ID",
-                              fmt::format("rigid wall {} is already defined at {}:{} ({})", wall.id,
-                                          other.where.file, other.where.line, other.where.keyword));
-        }
-      }
-    }
-  }
+  if (block.has_option("ID")) read_wall_id_card(cursor, n++, context, wall);
 
   const Card c1 = cursor.next(n++, kEightByTen, "NSID NSIDEX BOXID OFFSET BIRTH DEATH RWKSF");
   wall.where = c1.location();
@@ -175,20 +179,7 @@ void rigidwall_geometric(const Block& block, ReaderContext& context) {
   wall.motion = block.has_option("MOTION");
   wall.interior = block.has_option("INTERIOR");
   int n = 1;
-  if (block.has_option("ID")) {
-    const Card id_card = cursor.next(n++, Layout{10, 70}, "ID TITLE");
-    wall.id = non_negative_id(id_card, 0, "ID");
-    wall.title = std::string(id_card.text(1));
-    if (wall.id != 0) {
-      for (const auto& other : context.model.rigid_walls) {
-        if (other.id == wall.id) {
-          throw id_card.error("ID",
-                              fmt::format("rigid wall {} is already defined at {}:{} ({})", wall.id,
-                                          other.where.file, other.where.line, other.where.keyword));
-        }
-      }
-    }
-  }
+  if (block.has_option("ID")) read_wall_id_card(cursor, n++, context, wall);
   const Card c1 = cursor.next(n++, kEightByTen, "NSID NSIDEX BOXID BIRTH DEATH");
   wall.where = c1.location();
   wall.nsid = non_negative_id(c1, 0, "NSID");
