@@ -28,6 +28,14 @@ void RunLog::model_summary(const model::Model& model, const solver::Simulation& 
   if (file_ == nullptr) return;
   write("\n== model (as `rigidflex check` prints it) ==\n");
   print_model_summary(model, sim, file_);
+  // The phase ran when the simulation was constructed: what it did (docs/theory.md).
+  if (const auto& relaxation = sim.dynamic_relaxation(); relaxation.cycles > 0) {
+    fmt::print(file_,
+               "dynamic relaxation {} after {} cycles, pseudo-time {:.6g}: distortional kinetic "
+               "energy {:.3g} of its peak; the transient starts from the relaxed state\n",
+               relaxation.converged ? "converged" : "stopped before converging", relaxation.cycles,
+               relaxation.pseudo_time, relaxation.kinetic_energy_ratio);
+  }
   std::fflush(file_);
 }
 

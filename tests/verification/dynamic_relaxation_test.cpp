@@ -12,7 +12,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 
+#include "app/run_log.hpp"
 #include "deck_builder.hpp"
 #include "model/error.hpp"
 #include "shell_builder.hpp"
@@ -93,6 +97,26 @@ TEST(DynamicRelaxation, PreloadReachesStaticDeflectionAndStoresHalfTheLoadWork) 
   EXPECT_LE(-lowest / d0, 1.0 + 1e-3);
   EXPECT_GE(-lowest / d0, 0.9);
   EXPECT_NEAR(sim.energy().ratio(), 1.0, 2e-3);
+}
+
+TEST(DynamicRelaxation, RunLogSaysWhatThePhaseDid) {
+  const model::Model model = read(cantilever_deck(1, kControl, 0.01));
+  solver::Simulation sim(model, {});
+  const auto path = std::filesystem::temp_directory_path() / "rigidflex_dr_d3hsp.txt";
+  {
+    app::RunLog log(path, false);
+    log.model_summary(model, sim);
+  }
+  std::ifstream in(path);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::filesystem::remove(path);
+  EXPECT_NE(text.find("dynamic relaxation before the transient: DRTOL 1e-06, DRFCTR 0.998"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find(fmt::format("dynamic relaxation converged after {} cycles",
+                                  sim.dynamic_relaxation().cycles)),
+            std::string::npos)
+      << text;
 }
 
 TEST(DynamicRelaxation, PreloadKeptInTheTransientStartsInEquilibrium) {
