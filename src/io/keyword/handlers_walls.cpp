@@ -37,6 +37,24 @@ model::Id non_negative_id(const Card& card, std::size_t i, const char* name) {
   return id;
 }
 
+// XHEV YHEV ZHEV LENL LENM of a finite (or prism) wall. The l edge must have a part in the
+// wall's plane: m = n x l is then defined.
+void read_finite_edge(const Card& card, const Vec3& normal, model::RigidWall& wall) {
+  static const char* const kEdge[] = {"XHEV", "YHEV", "ZHEV"};
+  wall.edge_head = read_point(card, 0, kEdge);
+  const Vec3 edge = sub(wall.edge_head, wall.tail);
+  const double along_normal = edge[0] * normal[0] + edge[1] * normal[1] + edge[2] * normal[2];
+  const Vec3 in_plane{edge[0] - along_normal * normal[0], edge[1] - along_normal * normal[1],
+                      edge[2] - along_normal * normal[2]};
+  if (!(length(in_plane) > 1e-9 * length(edge))) {
+    throw card.error("XHEV",
+                     "the edge vector from the tail XT YT ZT to XHEV YHEV ZHEV must be nonzero "
+                     "and not along the wall normal");
+  }
+  wall.lenl = non_negative(card, 3, "LENL", 0.0);
+  wall.lenm = non_negative(card, 4, "LENM", 0.0);
+}
+
 // The `_ID` card of a rigid wall (planar or geometric): ID and title; an ID used twice is an
 // error naming the first definition.
 void read_wall_id_card(CardCursor& cursor, int number, const ReaderContext& context,
@@ -121,23 +139,8 @@ void rigidwall_planar(const Block& block, ReaderContext& context) {
   }
 
   if (wall.finite) {
-    static const char* const kEdge[] = {"XHEV", "YHEV", "ZHEV"};
     const Card c3 = cursor.next(n++, kEightByTen, "XHEV YHEV ZHEV LENL LENM");
-    wall.edge_head = read_point(c3, 0, kEdge);
-    const Vec3 edge = sub(wall.edge_head, wall.tail);
-    // The l edge must have a part in the wall's plane: m = n x l is then defined.
-    const double along_normal =
-        edge[0] * (*normal)[0] + edge[1] * (*normal)[1] + edge[2] * (*normal)[2];
-    const Vec3 in_plane{edge[0] - along_normal * (*normal)[0],
-                        edge[1] - along_normal * (*normal)[1],
-                        edge[2] - along_normal * (*normal)[2]};
-    if (!(length(in_plane) > 1e-9 * length(edge))) {
-      throw c3.error("XHEV",
-                     "the edge vector from the tail XT YT ZT to XHEV YHEV ZHEV must be nonzero "
-                     "and not along the wall normal");
-    }
-    wall.lenl = non_negative(c3, 3, "LENL", 0.0);
-    wall.lenm = non_negative(c3, 4, "LENM", 0.0);
+    read_finite_edge(c3, *normal, wall);
   }
   if (wall.moving) {
     const Card c4 = cursor.next(n++, kEightByTen, "MASS V0");
@@ -214,25 +217,11 @@ void rigidwall_geometric(const Block& block, ReaderContext& context) {
   }
 
   if (wall.shape == Shape::Flat || wall.shape == Shape::Prism) {
-    static const char* const kEdge[] = {"XHEV", "YHEV", "ZHEV"};
     const bool prism = wall.shape == Shape::Prism;
     const Card c3 = cursor.next(
         n++, kEightByTen, prism ? "XHEV YHEV ZHEV LENL LENM LENP" : "XHEV YHEV ZHEV LENL LENM");
     wall.finite = true;
-    wall.edge_head = read_point(c3, 0, kEdge);
-    const Vec3 edge = sub(wall.edge_head, wall.tail);
-    const double along_normal =
-        edge[0] * (*normal)[0] + edge[1] * (*normal)[1] + edge[2] * (*normal)[2];
-    const Vec3 in_plane{edge[0] - along_normal * (*normal)[0],
-                        edge[1] - along_normal * (*normal)[1],
-                        edge[2] - along_normal * (*normal)[2]};
-    if (!(length(in_plane) > 1e-9 * length(edge))) {
-      throw c3.error("XHEV",
-                     "the edge vector from the tail XT YT ZT to XHEV YHEV ZHEV must be nonzero "
-                     "and not along the wall normal");
-    }
-    wall.lenl = non_negative(c3, 3, "LENL", 0.0);
-    wall.lenm = non_negative(c3, 4, "LENM", 0.0);
+    read_finite_edge(c3, *normal, wall);
     if (prism) {
       wall.lenp = c3.real(5, "LENP", 0.0);
       if (!(wall.lenp > 0.0)) {
