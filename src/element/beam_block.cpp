@@ -278,18 +278,19 @@ inline void uniaxial_update(const Uniaxial& m, double de, double dt, double& sig
   const material::PlasticParameters& p = *m.plastic;
   const double xi = sigma - *back;
   const double magnitude = std::fabs(xi);
-  const double k = dt > 0.0 ? material::j2::rate_factor(p, std::fabs(de) / dt) : 1.0;
+  // Yield stress at the step's strain rate (rate factor or rate table: yield_at).
+  const double rate = dt > 0.0 ? std::fabs(de) / dt : 0.0;
   double slope = 0.0;
-  const double yield = k * material::j2::static_yield(p, *eps_p, &slope);
+  const double yield = material::j2::yield_at(p, *eps_p, rate, &slope);
   if (magnitude <= yield) return;
   const double stiff = m.young + p.kinematic_modulus;
-  // Newton on g(dl) = |xi| - stiff dl - k sigma_y(eps_p + dl), decreasing in dl for a
+  // Newton on g(dl) = |xi| - stiff dl - sigma_y(eps_p + dl, rate), decreasing in dl for a
   // hardening curve; exact after one iteration for a linear law (piecewise linear: a few).
-  double dl = (magnitude - yield) / (stiff + k * slope);
+  double dl = (magnitude - yield) / (stiff + slope);
   for (int it = 0; it < 30; ++it) {
     double h = 0.0;
-    const double g = magnitude - stiff * dl - k * material::j2::static_yield(p, *eps_p + dl, &h);
-    const double dg = stiff + k * h;
+    const double g = magnitude - stiff * dl - material::j2::yield_at(p, *eps_p + dl, rate, &h);
+    const double dg = stiff + h;
     if (!(dg > 0.0)) break;
     const double step = g / dg;
     dl = std::max(dl + step, 0.0);

@@ -88,10 +88,31 @@ inline double static_yield(const PlasticParameters& p, double eps, double* slope
   return extrapolated(p.strain, p.stress, eps, slope);
 }
 
-// Multiplicative rate factor (VP 0, and VP 1 unless additive) at strain rate `rate`.
+// Yield stress of a rate table (RateTable) at eps_p and strain rate `rate`, and its slope in
+// eps_p at that rate.
+inline double table_yield(const RateTable& t, double eps, double rate, double* slope) {
+  const std::size_t n = t.rates.size();
+  double x = rate;
+  if (t.logarithmic) x = rate > 0.0 ? std::log(rate) : -HUGE_VAL;
+  if (n == 1 || !(x > t.rates[0])) return extrapolated(t.strain[0], t.stress[0], eps, slope);
+  if (x >= t.rates[n - 1]) return extrapolated(t.strain[n - 1], t.stress[n - 1], eps, slope);
+  const std::size_t i = static_cast<std::size_t>(
+                            std::upper_bound(t.rates.begin(), t.rates.end(), x) - t.rates.begin()) -
+                        1;
+  const double w = (x - t.rates[i]) / (t.rates[i + 1] - t.rates[i]);
+  double h0 = 0.0, h1 = 0.0;
+  const double s0 = extrapolated(t.strain[i], t.stress[i], eps, &h0);
+  const double s1 = extrapolated(t.strain[i + 1], t.stress[i + 1], eps, &h1);
+  *slope = (1.0 - w) * h0 + w * h1;
+  return (1.0 - w) * s0 + w * s1;
+}
+
+// Multiplicative rate factor (VP 0, and VP 1 unless additive) at strain rate `rate`; 1 for a
+// rate table, whose curves carry the rate effect themselves (yield_at).
 inline double rate_factor(const PlasticParameters& p, double rate) {
   switch (p.rate_model) {
     case RateModel::kNone:
+    case RateModel::kTable:
       return 1.0;
     case RateModel::kCowperSymonds:
       return rate > 0.0 ? 1.0 + std::pow(rate / p.rate_c, 1.0 / p.rate_p) : 1.0;
@@ -101,43 +122,31 @@ inline double rate_factor(const PlasticParameters& p, double rate) {
   return 1.0;
 }
 
+// Yield stress at eps_p and strain rate `rate` with the rate effect of VP 0 (rate factor or
+// table), and its slope in eps_p at that rate.
+inline double yield_at(const PlasticParameters& p, double eps, double rate, double* slope) {
+  if (p.rate_model == RateModel::kTable) return table_yield(p.table, eps, rate, slope);
+  const double k = rate_factor(p, rate);
+  const double s = static_yield(p, eps, slope);
+  *slope *= k;
+  return k * s;
+}
+
 // Yield stress at eps_p and plastic strain rate `rate` in the viscoplastic form (VP 1).
 inline double viscoplastic_yield(const PlasticParameters& p, double eps, double rate) {
   double slope = 0.0;
+  if (p.rate_model == RateModel::kTable) return table_yield(p.table, eps, rate, &slope);
   const double s = static_yield(p, eps, &slope);
   if (p.additive_overstress)
     return s + (rate > 0.0 ? p.overstress_scale * std::pow(rate / p.rate_c, 1.0 / p.rate_p) : 0.0);
   return s * rate_factor(p, rate);
 }
 
-// Plastic increment dl >= 0 for one point with relative effective trial stress J, accumulated
-// eps_p, shear modulus G, step dt and (VP 0) rate factor k. Scalar; used where the closed form
-// does not apply.
-inline double plastic_increment(const PlasticParameters& p, double shear, double J, double eps,
-                                double dt, double k) {
-  const double stiff = 3.0 * shear + p.kinematic_modulus;
-  if (p.vp != 1) {
-    // g(dl) = J - stiff dl - k sigma_s(eps + dl) is piecewise linear and decreasing (checked
-    // non-decreasing curves): walk the segments from eps.
-    double slope = 0.0;
-    double e = eps, dl = 0.0;
-    double g = J - k * static_yield(p, e, &slope);
-    if (!(g > 0.0)) return 0.0;
-    for (;;) {
-      const double step = g / (stiff + k * slope);
-      // End of the segment that holds e (the last segment extends to infinity).
-      const auto it = std::upper_bound(p.strain.begin(), p.strain.end(), e);
-      if (p.linear || it == p.strain.end() || e + step <= *it) return dl + step;
-      const double to_end = *it - e;
-      g -= (stiff + k * slope) * to_end;
-      dl += to_end;
-      e = *it;
-      static_yield(p, e, &slope);  // slope of the next segment (upper_bound picks it)
-    }
-  }
-  // Viscoplastic: g(dl) = J - stiff dl - sigma_y(eps + dl, dl / dt), decreasing in dl with
-  // g(0) > 0 and g(J / stiff) < 0. Illinois regula falsi on that bracket.
-  auto g = [&](double dl) { return J - stiff * dl - viscoplastic_yield(p, eps + dl, dl / dt); };
+// Root of g(dl) = J - stiff dl - yield(dl) on [0, J / stiff] for a yield stress that does not
+// decrease with dl, given g(0) > 0: Illinois regula falsi to 1e-13 J.
+template <class Yield>
+inline double decreasing_root(double J, double stiff, const Yield& yield) {
+  auto g = [&](double dl) { return J - stiff * dl - yield(dl); };
   double a = 0.0, b = J / stiff;
   double ga = g(a), gb = g(b);
   if (!(ga > 0.0)) return 0.0;
@@ -160,6 +169,45 @@ inline double plastic_increment(const PlasticParameters& p, double shear, double
     }
   }
   return c;
+}
+
+// Plastic increment dl >= 0 for one point with relative effective trial stress J, accumulated
+// eps_p, shear modulus G, step dt, (VP 0) rate factor k and strain rate `rate` (a rate table's
+// argument). Scalar; used where the closed form does not apply.
+inline double plastic_increment(const PlasticParameters& p, double shear, double J, double eps,
+                                double dt, double k, double rate) {
+  const double stiff = 3.0 * shear + p.kinematic_modulus;
+  if (p.vp != 1 && p.rate_model == RateModel::kTable) {
+    // The curve interpolated at this step's strain rate: piecewise linear in dl with the
+    // breakpoints of both neighbouring curves, solved as a monotone root.
+    return decreasing_root(J, stiff, [&](double dl) {
+      double slope = 0.0;
+      return table_yield(p.table, eps + dl, rate, &slope);
+    });
+  }
+  if (p.vp != 1) {
+    // g(dl) = J - stiff dl - k sigma_s(eps + dl) is piecewise linear and decreasing (checked
+    // non-decreasing curves): walk the segments from eps.
+    double slope = 0.0;
+    double e = eps, dl = 0.0;
+    double g = J - k * static_yield(p, e, &slope);
+    if (!(g > 0.0)) return 0.0;
+    for (;;) {
+      const double step = g / (stiff + k * slope);
+      // End of the segment that holds e (the last segment extends to infinity).
+      const auto it = std::upper_bound(p.strain.begin(), p.strain.end(), e);
+      if (p.linear || it == p.strain.end() || e + step <= *it) return dl + step;
+      const double to_end = *it - e;
+      g -= (stiff + k * slope) * to_end;
+      dl += to_end;
+      e = *it;
+      static_yield(p, e, &slope);  // slope of the next segment (upper_bound picks it)
+    }
+  }
+  // Viscoplastic: g(dl) = J - stiff dl - sigma_y(eps + dl, dl / dt), decreasing in dl with
+  // g(0) > 0 and g(J / stiff) < 0.
+  return decreasing_root(J, stiff,
+                         [&](double dl) { return viscoplastic_yield(p, eps + dl, dl / dt); });
 }
 
 }  // namespace j2
@@ -185,11 +233,9 @@ inline void j2_update(const ElasticConstants& m, const PlasticParameters& p, con
   constexpr int kLanes = lane_count<T>();
   for (int l = 0; l < kLanes; ++l) set_lane(J, l, std::sqrt(1.5 * get_lane(xx, l)));
 
-  // Rate factor of VP 0 / -1 from the strain rate of the step.
-  T k;
-  if (p.rate_model == RateModel::kNone || p.vp == 1) {
-    k = T{} + 1.0;
-  } else {
+  // Rate factor of VP 0 / -1 from the strain rate of the step (a rate table takes the rate).
+  T k = T{} + 1.0, rate = T{};
+  if (p.rate_model != RateModel::kNone && p.vp != 1) {
     T dd;
     if (p.vp == -1) {
       const T tr3 = (d[0] + d[1] + d[2]) * (1.0 / 3.0);
@@ -199,8 +245,11 @@ inline void j2_update(const ElasticConstants& m, const PlasticParameters& p, con
       dd =
           d[0] * d[0] + d[1] * d[1] + d[2] * d[2] + 2.0 * (d[3] * d[3] + d[4] * d[4] + d[5] * d[5]);
     }
-    for (int l = 0; l < kLanes; ++l)
-      set_lane(k, l, j2::rate_factor(p, std::sqrt(2.0 / 3.0 * get_lane(dd, l))));
+    for (int l = 0; l < kLanes; ++l) {
+      const double r = std::sqrt(2.0 / 3.0 * get_lane(dd, l));
+      set_lane(rate, l, r);
+      set_lane(k, l, j2::rate_factor(p, r));
+    }
   }
 
   const double shear = m.shear;
@@ -211,9 +260,9 @@ inline void j2_update(const ElasticConstants& m, const PlasticParameters& p, con
     dl = pos / (3.0 * shear + p.kinematic_modulus + k * p.isotropic_modulus);
   } else {
     for (int l = 0; l < kLanes; ++l)
-      set_lane(
-          dl, l,
-          j2::plastic_increment(p, shear, get_lane(J, l), get_lane(eps, l), dt, get_lane(k, l)));
+      set_lane(dl, l,
+               j2::plastic_increment(p, shear, get_lane(J, l), get_lane(eps, l), dt, get_lane(k, l),
+                                     get_lane(rate, l)));
   }
   // Radial correction along xi / J (lanes with dl == 0 are unchanged).
   const T safe_j = J > 0.0 ? J : T{} + 1.0;

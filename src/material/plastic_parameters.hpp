@@ -11,6 +11,19 @@ enum class RateModel {
   kNone,
   kCowperSymonds,  // factor 1 + (rate / C)^(1/P)
   kScaleCurve,     // *MAT_024 LCSR: factor = curve(rate)
+  kTable,          // *MAT_024 LCSS table: one hardening curve per strain rate (RateTable)
+};
+
+// *MAT_024 LCSS naming a *DEFINE_TABLE: hardening curves sigma_k(eps_p) at strain rates r_k.
+// Between two rates the yield stress is interpolated linearly (in ln r when the table's first
+// value is negative: its values are then natural logarithms of the rate); outside the range the
+// first or last curve holds (LS-DYNA's manual, *MAT_024 LCSS). Each curve is extrapolated in
+// eps_p with its end segments' slopes, like a single LCSS curve.
+struct RateTable {
+  std::vector<double> rates;  // increasing; ln(rate) if logarithmic
+  bool logarithmic = false;
+  std::vector<std::vector<double>> strain;  // per rate: the curve's plastic strains
+  std::vector<std::vector<double>> stress;  // and yield stresses
 };
 
 struct PlasticParameters {
@@ -31,6 +44,7 @@ struct PlasticParameters {
   double rate_p = 0.0;
   std::vector<double> rate_curve_x;  // LCSR: strain rate -> yield scale factor (held at ends)
   std::vector<double> rate_curve_y;
+  RateTable table;  // kTable only (strain/stress above then hold its first curve)
   // 0: scale the yield stress with the total effective strain rate sqrt(2/3 D:D); -1 (*MAT_024):
   // the same with the deviatoric rate sqrt(2/3 D':D'). 1: viscoplastic, the rate is the
   // effective plastic strain rate of the step (solved with the return).

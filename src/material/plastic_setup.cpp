@@ -29,10 +29,12 @@ const model::Curve& find_curve(const model::Model& model, model::Id id,
                                const char* what) {
   const auto it = model.curves.find(id);
   if (it == model.curves.end())
-    throw InputError(context_of(where, field),
-                     fmt::format("{} {} is not a *DEFINE_CURVE of this deck ({}); tables of curves "
-                                 "by strain rate (*DEFINE_TABLE) are not supported",
-                                 field, id, what));
+    throw InputError(
+        context_of(where, field),
+        fmt::format("{} {} is not a *DEFINE_CURVE of this deck ({}){}", field, id, what,
+                    model.tables.count(id) ? "; it is a *DEFINE_TABLE, which only "
+                                             "LCSS accepts"
+                                           : ""));
   return it->second;
 }
 
@@ -66,6 +68,43 @@ void check_hardening(const std::vector<double>& x, const std::vector<double>& y,
   }
 }
 
+// LCSS naming a *DEFINE_TABLE: one hardening curve per strain rate (RateTable).
+void read_rate_table(const model::Model& model, const model::Table& t,
+                     const model::SourceLocation& where, PlasticParameters& p) {
+  const std::string source = fmt::format("table {}", t.id);
+  if (t.curves.size() != t.values.size())
+    throw InputError(
+        context_of(t.where, "TBID"),
+        fmt::format("{} has {} values but {} curves", source, t.values.size(), t.curves.size()));
+  RateTable& r = p.table;
+  for (std::size_t i = 0; i < t.values.size(); ++i) {
+    // Scaled like a curve's abscissa: (value + OFFA) SFA.
+    r.rates.push_back((t.values[i] + t.offa) * t.sfa);
+    const auto it = model.curves.find(t.curves[i]);
+    if (it == model.curves.end())
+      throw InputError(context_of(t.where, "LCID"),
+                       fmt::format("{}: curve {} (value {}) is not a *DEFINE_CURVE of this deck",
+                                   source, t.curves[i], t.values[i]));
+    if (it->second.function)
+      throw InputError(context_of(it->second.where, "LCID"),
+                       fmt::format("{}: curve {} is a *DEFINE_CURVE_FUNCTION; a hardening curve "
+                                   "needs points",
+                                   source, t.curves[i]));
+    std::vector<double> x, y;
+    curve_points(it->second, x, y);
+    check_hardening(x, y, where, "LCSS", fmt::format("{}, curve {}", source, t.curves[i]));
+    r.strain.push_back(std::move(x));
+    r.stress.push_back(std::move(y));
+  }
+  for (std::size_t i = 1; i < r.rates.size(); ++i)
+    if (!(r.rates[i] > r.rates[i - 1]))
+      throw InputError(context_of(t.where, "SFA"),
+                       fmt::format("{}: the scaled strain rates must increase ({} after {})",
+                                   source, r.rates[i], r.rates[i - 1]));
+  // LS-DYNA: a negative first value means every value is the natural logarithm of the rate.
+  r.logarithmic = r.rates.front() < 0.0;
+}
+
 void set_linear(PlasticParameters& p, double sigy, double iso, double kin) {
   p.linear = true;
   p.sigy = sigy;
@@ -96,7 +135,14 @@ PlasticParameters make_plastic_parameters(const model::Model& model, const model
   // *MAT_024: LCSS curve, else the EPS/ES table, else SIGY/ETAN.
   bool table = false;
   for (double s : c.es) table |= s != 0.0;
-  if (c.lcss > 0) {
+  const bool lcss_table = c.lcss > 0 && model.tables.count(c.lcss) > 0;
+  if (lcss_table) {
+    read_rate_table(model, model.tables.at(c.lcss), c.card2, p);
+    // The first curve also serves as the static law (nothing evaluates it with a table).
+    p.strain = p.table.strain.front();
+    p.stress = p.table.stress.front();
+    p.linear = false;
+  } else if (c.lcss > 0) {
     const model::Curve& curve =
         find_curve(model, c.lcss, c.card2, "LCSS", "stress against effective plastic strain");
     curve_points(curve, p.strain, p.stress);
@@ -125,12 +171,21 @@ PlasticParameters make_plastic_parameters(const model::Model& model, const model
     set_linear(p, c.sigy, mat.e * c.etan / (mat.e - c.etan), 0.0);
   }
   // A two-point law from zero strain is a straight line: keep the vectorised closed form.
-  if (!p.linear && p.strain.size() == 2 && p.strain[0] == 0.0) {
+  if (!lcss_table && !p.linear && p.strain.size() == 2 && p.strain[0] == 0.0) {
     const double s0 = p.stress[0];
     set_linear(p, s0, (p.stress[1] - s0) / p.strain[1], 0.0);
   }
 
-  if (c.lcsr > 0) {
+  if (lcss_table) {
+    // LS-DYNA ignores C, P and LCSR when LCSS is a table; say so rather than drop them silently
+    // by refusing a card that gives both.
+    if (c.lcsr > 0 || c.c > 0.0 || c.p > 0.0)
+      throw InputError(context_of(c.card2, c.lcsr > 0 ? "LCSR" : (c.c > 0.0 ? "C" : "P")),
+                       fmt::format("LCSS {} is a *DEFINE_TABLE of curves by strain rate, which "
+                                   "already holds the rate effect; C, P and LCSR must be blank",
+                                   c.lcss));
+    p.rate_model = RateModel::kTable;
+  } else if (c.lcsr > 0) {
     const model::Curve& curve =
         find_curve(model, c.lcsr, c.card2, "LCSR", "yield scale factor against strain rate");
     curve_points(curve, p.rate_curve_x, p.rate_curve_y);

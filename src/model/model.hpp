@@ -293,6 +293,18 @@ struct Curve {
   SourceLocation where;
 };
 
+// *DEFINE_TABLE (and _2D): curves indexed by a value, e.g. hardening curves by strain rate for
+// *MAT_024 LCSS. values[i] (raw, before SFA/OFFA) belongs to curves[i]. A plain *DEFINE_TABLE
+// takes the *DEFINE_CURVE keywords that follow it, in order; _2D names them (LCID column).
+struct Table {
+  Id id = 0;
+  double sfa = 1.0;
+  double offa = 0.0;
+  std::vector<double> values;
+  std::vector<Id> curves;
+  SourceLocation where;
+};
+
 // IMPETUS *FUNCTION: an expression of time t, parameters already substituted. `evaluator` is
 // compiled when the deck is read (model/function.hpp), so a bad expression is an input error
 // located at its card.
@@ -925,6 +937,7 @@ struct Model {
   std::map<Id, Material> materials;
   std::map<Id, Hourglass> hourglass;
   std::map<Id, Curve> curves;
+  std::map<Id, Table> tables;  // *DEFINE_TABLE; IDs distinct from the curves'
   std::map<Id, NodeSet> node_sets;
   std::map<Id, PartSet> part_sets;
   std::map<Id, SegmentSet> segment_sets;

@@ -72,9 +72,40 @@ std::vector<Case> cases() {
        {"FAIL", "element deletion", "not supported"}},
       {"fail_negative", deck(k024 + "1,7800,2e11,0.3,2e8,0,-1\n"), {"FAIL", "user"}},
       {"no_hardening", deck(k024 + "1,7800,2e11,0.3,0,0\n"), {"SIGY", "LCSS"}},
-      {"lcss_missing_or_table",
+      {"lcss_missing",
        deck(k024 + "1,7800,2e11,0.3,0,0\n0,0,5,0,0\n"),
-       {"plastic.k:", "LCSS", "*DEFINE_TABLE", "not supported"}},
+       {"plastic.k:", "LCSS", "5 is not a *DEFINE_CURVE"}},
+      {"lcsr_names_a_table",
+       deck(k024 + "1,7800,2e11,0.3,2e8,0\n0,0,0,7,0\n",
+            "*DEFINE_TABLE\n7\n10\n*DEFINE_CURVE\n71\n0,2e8\n1,3e8\n"),
+       {"LCSR", "*DEFINE_TABLE, which only LCSS accepts"}},
+      {"table_with_c_and_p",
+       deck(k024 + "1,7800,2e11,0.3,0,0\n40,5,7,0,0\n",
+            "*DEFINE_TABLE\n7\n10\n*DEFINE_CURVE\n71\n0,2e8\n1,3e8\n"),
+       {"field C", "*DEFINE_TABLE", "must be blank"}},
+      {"table_curve_softening",
+       deck(k024 + "1,7800,2e11,0.3,0,0\n0,0,7,0,0\n",
+            "*DEFINE_TABLE\n7\n10\n100\n*DEFINE_CURVE\n71\n0,2e8\n1,3e8\n"
+            "*DEFINE_CURVE\n72\n0,3e8\n1,2e8\n"),
+       {"LCSS", "table 7, curve 72", "decreases"}},
+      {"table_values_not_increasing",
+       deck(k024 + "1,7800,2e11,0.3,0,0\n0,0,7,0,0\n", "*DEFINE_TABLE\n7\n10\n10\n"),
+       {"plastic.k:", "*DEFINE_TABLE", "VALUE", "increase"}},
+      {"table_curves_do_not_follow",
+       deck(k024 + "1,7800,2e11,0.3,0,0\n0,0,7,0,0\n",
+            "*DEFINE_TABLE\n7\n10\n100\n*DEFINE_CURVE\n71\n0,2e8\n1,3e8\n*DEFINE_CURVE_"
+            "FUNCTION\n72\nmax(time,1)\n"),
+       {"plastic.k:", "TBID", "table 7 still needs 1 *DEFINE_CURVE", "*DEFINE_CURVE_FUNCTION"}},
+      {"table_at_end_of_deck",
+       deck(k024 + "1,7800,2e11,0.3,0,0\n0,0,7,0,0\n", "*DEFINE_TABLE\n7\n10\n"),
+       {"TBID", "still needs 1", "the deck ends"}},
+      {"table_2d_missing_curve",
+       deck(k024 + "1,7800,2e11,0.3,0,0\n0,0,7,0,0\n", "*DEFINE_TABLE_2D\n7\n10,71\n"),
+       {"LCID", "curve 71", "not a *DEFINE_CURVE"}},
+      {"table_shares_a_curve_id",
+       deck(k024 + "1,7800,2e11,0.3,0,0\n0,0,7,0,0\n",
+            "*DEFINE_CURVE\n7\n0,2e8\n1,3e8\n*DEFINE_TABLE_2D\n7\n10,7\n"),
+       {"TBID", "may not share IDs"}},
       {"curve_decreasing",
        deck(k024 + "1,7800,2e11,0.3,0,0\n0,0,5,0,0\n",
             "*DEFINE_CURVE\n5\n0,2e8\n0.1,3e8\n0.2,2.5e8\n"),
@@ -109,6 +140,14 @@ TEST(PlasticInput, ValidCardsBuild) {
                           "*DEFINE_CURVE\n5\n0,2e8\n0.1,3e8\n1,4e8\n")),
             "");
   EXPECT_EQ(error_of(deck(k024 + "1,7800,2e11,0.3,0,0\n0,0,0,0,0\n0,0.1,0.3\n2e8,3e8,3.5e8\n")),
+            "");
+  // LCSS as a table: curves following a plain table, or named by _2D.
+  EXPECT_EQ(error_of(deck(k024 + "1,7800,2e11,0.3,0,0\n0,0,7,0,0\n",
+                          "*DEFINE_TABLE_TITLE\nrates\n7\n-2.3\n4.6\n*DEFINE_CURVE\n71\n0,"
+                          "2e8\n1,3e8\n*DEFINE_CURVE_TITLE\nfast\n72\n0,3e8\n1,4e8\n")),
+            "");
+  EXPECT_EQ(error_of(deck(k024 + "1,7800,2e11,0.3,0,0\n0,0,7,0,0\n",
+                          "*DEFINE_CURVE\n71\n0,2e8\n1,3e8\n*DEFINE_TABLE_2D\n7\n10,71\n")),
             "");
   // LS-DYNA's FAIL default 10^20 means no failure.
   EXPECT_EQ(error_of(deck(k024 + "1,7800,2e11,0.3,2e8,0,1e21\n")), "");

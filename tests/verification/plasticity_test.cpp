@@ -387,6 +387,68 @@ TEST(PiecewiseLinearPlasticity, RateScaleCurve) {
   EXPECT_LT(worst, 3e-3);
 }
 
+// LCSS as a *DEFINE_TABLE of hardening curves by strain rate: the slow curve is the 8-point law
+// above, the fast one 1.5 times it (SFO 1.5e6). At a constant strain rate the flow stress is the
+// law times the factor the manual's interpolation gives: linear in the rate between the table's
+// values, linear in ln(rate) when the first value is negative (values are then ln(rate)), the end
+// curve beyond the range; VP 1 takes the plastic strain rate (close to the imposed rate here, and
+// beyond the range either way).
+struct RateTableCase {
+  std::string name;
+  std::string table;  // the *DEFINE_TABLE keyword(s) with ID 7 and its curves
+  int vp;
+  double factor;  // expected multiple of the slow law at the imposed rate
+};
+
+class RateTable : public ::testing::TestWithParam<RateTableCase> {};
+
+TEST_P(RateTable, FlowStressIsTheCurveInterpolatedAtTheStrainRate) {
+  const auto& c = GetParam();
+  const double rate = 20.0, end = 0.02;
+  const std::string material =
+      fmt::format("*MAT_024\n1,{},{},{},0,0\n0,0,7,0,{}\n", kRho, kE, kNu, c.vp) + c.table;
+  double worst = 0.0;
+  int samples = 0;
+  run_samples(prescribed_deck(material, isochoric_curves(ramped_rate(rate, 0.0004), end), end),
+              [&](const Sample& s) {
+                const double eps_kin = kinematic_plastic_strain(s);
+                if (eps_kin < 0.05) return;
+                ++samples;
+                const double expected = c.factor * table_law(eps_kin);
+                worst = std::max(worst, std::abs(s.stress - expected) / expected);
+              });
+  std::printf("%s: factor %.5f, worst relative error %.2e over %d samples\n", c.name.c_str(),
+              c.factor, worst, samples);
+  ASSERT_GT(samples, 50);
+  EXPECT_LT(worst, 3e-3);
+}
+
+std::string slow_and_fast_curves() {
+  std::string fast = table_curve(72);
+  fast.replace(fast.find("1.0,1e6"), 7, "1.0,1.5e6");
+  return table_curve(71) + fast;
+}
+
+std::vector<RateTableCase> rate_table_cases() {
+  const double w_log = (std::log(20.0) + 1.0) / (std::log(100.0) + 1.0);
+  return {
+      {"linear_values", "*DEFINE_TABLE\n7\n10\n40\n" + slow_and_fast_curves(), 0,
+       2.0 / 3.0 + 1.5 / 3.0},
+      {"named_curves_2d", slow_and_fast_curves() + "*DEFINE_TABLE_2D\n7\n10,71\n40,72\n", 0,
+       2.0 / 3.0 + 1.5 / 3.0},
+      {"log_values",
+       fmt::format("*DEFINE_TABLE\n7\n-1\n{:.17g}\n", std::log(100.0)) + slow_and_fast_curves(), 0,
+       (1.0 - w_log) + 1.5 * w_log},
+      {"scaled_values_below_range",  // SFA 10: values 50 and 100
+       "*DEFINE_TABLE\n7,10\n5\n10\n" + slow_and_fast_curves(), 0, 1.0},
+      {"above_range", "*DEFINE_TABLE\n7\n1\n5\n" + slow_and_fast_curves(), 0, 1.5},
+      {"viscoplastic_above_range", "*DEFINE_TABLE\n7\n1\n5\n" + slow_and_fast_curves(), 1, 1.5},
+  };
+}
+
+INSTANTIATE_TEST_SUITE_P(Plasticity, RateTable, ::testing::ValuesIn(rate_table_cases()),
+                         [](const auto& info) { return info.param.name; });
+
 // A bar of *MAT_PLASTIC_KINEMATIC hits a rigid wall at 100 m/s: most of the kinetic energy
 // becomes plastic work. The internal energy is the work of the internal forces, so the total
 // stays the initial kinetic energy (energy ratio 1) while the plastic strain grows large.

@@ -4,6 +4,7 @@
 #include <array>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -91,6 +92,14 @@ struct ReaderContext {
     model::SourceLocation where;
   };
   std::vector<Component> components;
+  // A plain *DEFINE_TABLE whose curves are still to come: the next `remaining` keywords must be
+  // *DEFINE_CURVE (LS-DYNA reads them as the table's curves, in order).
+  struct PendingTable {
+    model::Id id = 0;
+    std::size_t remaining = 0;
+    model::SourceLocation where;
+  };
+  std::optional<PendingTable> pending_table;
   std::vector<Merge> merges;
   std::vector<Motion> motions;
   double impetus_ascii_dt = 0.0;  // *OUTPUT dt_ascii

@@ -43,6 +43,7 @@ void boundary_spc(const Block&, ReaderContext&);
 void boundary_prescribed_motion(const Block&, ReaderContext&);
 void define_curve(const Block&, ReaderContext&);
 void define_curve_function(const Block&, ReaderContext&);
+void define_table(const Block&, ReaderContext&);
 void initial_velocity(const Block&, ReaderContext&);
 void initial_velocity_node(const Block&, ReaderContext&);
 void initial_velocity_generation(const Block&, ReaderContext&);

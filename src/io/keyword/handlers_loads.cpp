@@ -220,7 +220,72 @@ void define_curve(const Block& block, ReaderContext& context) {
     throw head.error("LCID", fmt::format("curve {} is already defined at {}:{}", c.id,
                                          it->second.where.file, it->second.where.line));
   }
+  if (const auto it = context.model.tables.find(c.id); it != context.model.tables.end()) {
+    throw head.error("LCID", fmt::format("{} is the ID of the *DEFINE_TABLE at {}:{}; tables and "
+                                         "curves may not share IDs",
+                                         c.id, it->second.where.file, it->second.where.line));
+  }
+  // A plain *DEFINE_TABLE takes the curves that follow it, in order.
+  if (auto& pending = context.pending_table) {
+    context.model.tables.at(pending->id).curves.push_back(c.id);
+    if (--pending->remaining == 0) pending.reset();
+  }
   context.model.curves.emplace(c.id, std::move(c));
+}
+
+// *DEFINE_TABLE: TBID SFA OFFA, then one VALUE per card (20 columns); the table's curves are the
+// *DEFINE_CURVE keywords that follow, one per value in the same order (the reader checks that
+// nothing else comes between). *DEFINE_TABLE_2D: VALUE LCID cards naming the curves.
+void define_table(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  int n = 1;
+  if (block.has_option("TITLE")) {
+    cursor.next_text(1, "title");
+    n = 2;
+  }
+  const bool named = block.has_option("2D");
+  const Card head = cursor.next(n, kEightByTen, "TBID SFA OFFA");
+  model::Table t;
+  t.id = head.id(0, "TBID");
+  if (t.id <= 0) throw head.error("TBID", "a positive table ID is required");
+  t.sfa = head.real(1, "SFA", 1.0);
+  if (t.sfa == 0.0) t.sfa = 1.0;  // as *DEFINE_CURVE: 0 means the default 1
+  t.offa = head.real(2, "OFFA", 0.0);
+  t.where = head.location();
+  static const Layout kValue{20, 20};
+  while (true) {
+    cursor.skip_blank_lines();
+    if (cursor.at_end()) break;
+    const Card card = cursor.next(++n, kValue, named ? "VALUE LCID" : "VALUE");
+    const double value = card.real(0, "VALUE", 0.0);
+    if (!t.values.empty() && !(value > t.values.back())) {
+      throw card.error("VALUE", fmt::format("value {} does not increase from the previous one {}; "
+                                            "a table's values must increase strictly",
+                                            value, t.values.back()));
+    }
+    if (named) {
+      const model::Id lcid = card.id(1, "LCID");
+      if (lcid <= 0) throw card.error("LCID", "a *DEFINE_TABLE_2D card needs the curve ID LCID");
+      t.curves.push_back(lcid);
+    } else if (!card.blank(1)) {
+      throw card.error("LCID",
+                       "a plain *DEFINE_TABLE takes the *DEFINE_CURVE keywords that follow "
+                       "it; name curves with *DEFINE_TABLE_2D");
+    }
+    t.values.push_back(value);
+  }
+  if (t.values.empty()) throw head.error("TBID", "the table has no VALUE cards");
+  if (const auto it = context.model.tables.find(t.id); it != context.model.tables.end()) {
+    throw head.error("TBID", fmt::format("table {} is already defined at {}:{}", t.id,
+                                         it->second.where.file, it->second.where.line));
+  }
+  if (const auto it = context.model.curves.find(t.id); it != context.model.curves.end()) {
+    throw head.error("TBID", fmt::format("{} is the ID of the *DEFINE_CURVE at {}:{}; tables and "
+                                         "curves may not share IDs",
+                                         t.id, it->second.where.file, it->second.where.line));
+  }
+  if (!named) context.pending_table = ReaderContext::PendingTable{t.id, t.values.size(), t.where};
+  context.model.tables.emplace(t.id, std::move(t));
 }
 
 // *DEFINE_CURVE_FUNCTION: the card of *DEFINE_CURVE, then an expression of TIME (muparser with

@@ -61,6 +61,7 @@ const std::vector<KeywordEntry>& table() {
       {"*BOUNDARY_PRESCRIBED_MOTION_SET", boundary_prescribed_motion, {"ID"}},
       {"*DEFINE_CURVE", define_curve, {"TITLE"}},
       {"*DEFINE_CURVE_FUNCTION", define_curve_function, {"TITLE"}},
+      {"*DEFINE_TABLE", define_table, {"TITLE", "2D"}},
       {"*DEFINE_COORDINATE_SYSTEM", define_coordinate_system, {"TITLE"}},
       {"*DEFINE_COORDINATE_VECTOR", define_coordinate_vector, {"TITLE"}},
       {"*DEFINE_COORDINATE_NODES", define_coordinate_nodes, {"TITLE"}},

@@ -67,6 +67,7 @@ class DeckReader {
   }
 
   void finish() {
+    if (context_.pending_table) report_unfinished_table("the deck ends");
     try {
       finish_model(context_);
     } catch (const InputErrorList&) {
@@ -171,6 +172,11 @@ class DeckReader {
   }
 
   void dispatch(const Block& block_in) {
+    if (context_.pending_table && block_in.keyword != "*DEFINE_CURVE" &&
+        block_in.keyword != "*DEFINE_CURVE_TITLE") {
+      report_unfinished_table(
+          fmt::format("{} at {}:{} comes first", block_in.keyword, block_in.file, block_in.line));
+    }
     std::vector<std::string> options;
     const KeywordEntry* entry = find_keyword(block_in.keyword, options);
     // A registered keyword with an option it does not take is a different keyword
@@ -196,6 +202,18 @@ class DeckReader {
       // The rest of the deck is still read, so that every problem is reported in one pass.
       context_.report(kCardErrors, e);
     }
+  }
+
+  // A plain *DEFINE_TABLE must be followed by one *DEFINE_CURVE per value.
+  void report_unfinished_table(const std::string& what_came) {
+    const auto& pending = *context_.pending_table;
+    context_.report(kCardErrors,
+                    located_error(pending.where, "TBID",
+                                  fmt::format("table {} still needs {} *DEFINE_CURVE keyword(s) "
+                                              "right after it (one per VALUE, in order), but {}; "
+                                              "or name the curves with *DEFINE_TABLE_2D",
+                                              pending.id, pending.remaining, what_came)));
+    context_.pending_table.reset();
   }
 
   // A keyword the reader does not read: output-only ones are warnings, anything else changes
