@@ -3,8 +3,9 @@
 its other nodes moving out of plane at 1 m/s, so the plate bends from the first cycle.
 
 Usage: make_shell_plate_deck.py N [NIP] [IHQ] [CYCLES] [MATERIAL] [PRESSURE] > plate.k
-MATERIAL: elastic (default) or mat024 (*MAT_PIECEWISE_LINEAR_PLASTICITY, SIGY 200 MPa,
-ETAN 1 GPa). PRESSURE (Pa, optional): a constant follower pressure on every shell through
+MATERIAL: elastic (default), mat024 (*MAT_PIECEWISE_LINEAR_PLASTICITY, SIGY 200 MPa,
+ETAN 1 GPa) or mat036 (*MAT_3-PARAMETER_BARLAT, the same linear hardening, M 6, R00 1.8,
+R45 1.4, R90 2.1, AOPT 2 with the rolling direction at 30 degrees to x). PRESSURE (Pa, optional): a constant follower pressure on every shell through
 *LOAD_SEGMENT_SET (one segment per shell; the pressure-load benchmark and MPI test). The run ends after CYCLES cycles (default 200): compare ns per element-cycle
 (`rigidflex run` prints the wall time; d3hsp.txt has the phase times) with the hexahedron cube
 of make_cube_deck.py.
@@ -37,8 +38,15 @@ if material == "elastic":
 elif material == "mat024":
     w("*MAT_PIECEWISE_LINEAR_PLASTICITY\n%10d%10.4g%10.4g%10.4g%10.4g%10.4g\n"
       % (1, 7850.0, 210e9, 0.3, 200e6, 1e9))
+elif material == "mat036":
+    w("*MAT_3-PARAMETER_BARLAT\n%10d%10.4g%10.4g%10.4g%10d%10.4g%10.4g%10d\n"
+      % (1, 7850.0, 210e9, 0.3, 1, 1e9, 200e6, 0))
+    w("%10.4g%10.4g%10.4g%10.4g\n" % (6.0, 1.8, 1.4, 2.1))
+    w("%10d\n" % 2)
+    w("%10.4g%10.4g%10.4g%10.4g%10.4g%10.4g\n" % (0, 0, 0, 0.8660254, 0.5, 0))
+    w("%10.4g\n" % 0)
 else:
-    sys.exit("MATERIAL must be elastic or mat024")
+    sys.exit("MATERIAL must be elastic, mat024 or mat036")
 w("*NODE\n")
 for j in range(n + 1):
     for i in range(n + 1):

@@ -836,7 +836,10 @@ KernelResult compute_hex_forces(HexBlock& block, const NodalView& nodes, double 
     Partial local;
     // One instantiation per (hourglass form, material): chosen here once per block.
     material::with_material(block.material_index, [&]<class M>(std::type_identity<M>) {
-      if (elform2) {
+      // Shell-only materials never reach here (build_state checks the families).
+      if constexpr (!material::serves_family<M>(material::kHex8)) {
+        return;
+      } else if (elform2) {
 #pragma omp for schedule(static)
         for (std::int64_t i = 0; i < items; ++i)
           elform2_element<M>(block, static_cast<std::size_t>(block.owned.element(i)), nodes, dt,

@@ -470,7 +470,14 @@ void shell_batch(ShellBlock& block, const BlockConstants& k, std::size_t first, 
         const double* in = block.history[fi].values.data() + static_cast<std::size_t>(nc) * point;
         for (int cc = 0; cc < nc; ++cc) h[slot++] = in[cc];
       }
-      plane_stress_update<M>(block, k, d, dt, sp, h);
+      if constexpr (material::plane_stress_only<M>()) {
+        // Plane-stress laws (Barlat 1989) in the material frame, at the element's axes angle.
+        const double* ax = &block.material_axes[2 * elem[0]];
+        if (!M::plane_stress_update(block.material, block.barlat, ax[0], ax[1], d, dt, sp, h))
+          part.record_failure(static_cast<std::int64_t>(elem[0]), 0.0);
+      } else {
+        plane_stress_update<M>(block, k, d, dt, sp, h);
+      }
       slot = 0;
       for (std::size_t fi = 0; fi < M::kHistory.size(); ++fi) {
         const int nc = M::kHistory[fi].components;
@@ -707,6 +714,39 @@ const material::HistoryArray* find_history(const ShellBlock& block, std::string_
   return nullptr;
 }
 
+namespace {
+
+// Angle psi from the element's e1 (side 1-2) to the rolling direction of an anisotropic
+// material (material/barlat.hpp, BarlatAxes), stored as (cos psi, sin psi).
+void set_material_axes(ShellBlock& block, const Frame<double>& f, std::size_t e) {
+  const material::BarlatParameters& p = block.barlat;
+  double psi = p.beta;
+  if (p.axes != material::BarlatAxes::kElement) {
+    const auto& v = p.vector;
+    double w[3] = {v[0], v[1], v[2]};                // AOPT 2: A, projected below
+    if (p.axes == material::BarlatAxes::kVectorV) {  // AOPT 3: V x normal
+      const double* n3 = f.e[2];
+      w[0] = v[1] * n3[2] - v[2] * n3[1];
+      w[1] = v[2] * n3[0] - v[0] * n3[2];
+      w[2] = v[0] * n3[1] - v[1] * n3[0];
+    }
+    const double x = w[0] * f.e[0][0] + w[1] * f.e[0][1] + w[2] * f.e[0][2];
+    const double y = w[0] * f.e[1][0] + w[1] * f.e[1][1] + w[2] * f.e[1][2];
+    const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (!(std::hypot(x, y) > 1e-6 * len))
+      throw SolverError(fmt::format(
+          "shell element {} of part {}: the material axes vector ({:.6g}, {:.6g}, {:.6g}) of "
+          "AOPT {} gives no direction in the element's plane (it is along the shell normal)",
+          block.element_id[e], block.part_id, v[0], v[1], v[2],
+          p.axes == material::BarlatAxes::kVectorA ? 2 : 3));
+    psi += std::atan2(y, x);
+  }
+  block.material_axes[2 * e] = std::cos(psi);
+  block.material_axes[2 * e + 1] = std::sin(psi);
+}
+
+}  // namespace
+
 void initialize_shell_block(ShellBlock& block, const NodalView& nodes) {
   const std::size_t n = block.size();
   if (block.conn.size() != 4 * n || block.rotation_conn.size() != 4 * n ||
@@ -741,6 +781,10 @@ void initialize_shell_block(ShellBlock& block, const NodalView& nodes) {
   block.area.assign(n, 0.0);
   block.element_thickness.assign(n, 0.0);
   block.triangle.assign(n, 0);
+  const bool anisotropic =
+      !block.rigid &&
+      block.material_index == material::material_index(model::MaterialKind::ThreeParameterBarlat);
+  block.material_axes.assign(anisotropic ? 2 * n : 0, 0.0);
   for (std::size_t e = 0; e < n; ++e) {
     const std::int32_t* c = &block.conn[4 * e];
     block.triangle[e] = c[2] == c[3] ? 1 : 0;
@@ -771,6 +815,7 @@ void initialize_shell_block(ShellBlock& block, const NodalView& nodes) {
           block.element_id[e], block.part_id, f.area));
     block.area0[e] = f.area;
     block.area[e] = f.area;
+    if (anisotropic) set_material_axes(block, f, e);
   }
 }
 

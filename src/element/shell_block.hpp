@@ -16,6 +16,7 @@
 
 #include "element/element_ownership.hpp"
 #include "element/hex_block.hpp"  // NodalView, HourglassSettings, KernelResult
+#include "material/barlat.hpp"
 #include "material/elastic.hpp"
 #include "material/history.hpp"
 #include "material/plastic_parameters.hpp"
@@ -47,6 +48,7 @@ struct ShellBlock {
   material::ElasticConstants material;
   int material_index = 0;  // index in material::SolidMaterials (registry.hpp)
   material::PlasticParameters plastic;
+  material::BarlatParameters barlat;  // *MAT_036 (material/barlat.hpp)
   bool rigid = false;
   // The elements this process computes (element_ownership.hpp; all of them in one process).
   ElementOwnership owned;
@@ -85,6 +87,11 @@ struct ShellBlock {
   // initialisation (no thickness update: ISTUPD 0).
   std::vector<double> element_thickness;
   std::vector<double> area;   // current area
+  // Anisotropic materials (*MAT_036): cosine and sine of the angle from the element's side 1-2
+  // (co-rotational e1) to the material's rolling direction, 2 per element, fixed at
+  // initialisation from the reference geometry and AOPT (the axes turn with the element).
+  // Empty for isotropic materials.
+  std::vector<double> material_axes;
   // Element forces and moments of the last evaluation, kShellSlot per element.
   std::vector<double> force;
 

@@ -219,4 +219,94 @@ PlasticParameters make_plastic_parameters(const model::Model& model, const model
   return p;
 }
 
+BarlatParameters make_barlat_parameters(const model::Model& model, const model::Material& mat) {
+  const model::BarlatCard& b = mat.barlat;
+  BarlatParameters p;
+  p.m = b.m;
+  if (b.pb > 0.0) {
+    p.a = b.r00;
+    p.c = b.r45;
+    p.h = b.r90;
+    p.p = b.pb;
+  } else {
+    // Barlat and Lian 1989: a, c, h from the R values in the rolling and transverse directions.
+    const double r0 = b.r00 / (1.0 + b.r00), r90 = b.r90 / (1.0 + b.r90);
+    p.c = 2.0 * std::sqrt(r0 * r90);
+    p.a = 2.0 - p.c;
+    p.h = std::sqrt(r0 / r90);
+    // p: R45 grows monotonically with p; bisection on log p over [1e-3, 1e3].
+    double lo = std::log(1e-3), hi = std::log(1e3);
+    auto r45 = [&](double log_p) {
+      BarlatParameters q = p;
+      q.p = std::exp(log_p);
+      return barlat::r45_of(q);
+    };
+    const double r_lo = r45(lo), r_hi = r45(hi);
+    if (!(b.r45 > r_lo && b.r45 < r_hi))
+      throw InputError(context_of(b.card2, "R45"),
+                       fmt::format("no coefficient p of the Barlat 1989 yield function gives R45 "
+                                   "= {} with R00 = {}, R90 = {}, M = {} (reachable: {:.4g} to "
+                                   "{:.4g})",
+                                   b.r45, b.r00, b.r90, b.m, r_lo, r_hi));
+    for (int it = 0; it < 200 && hi - lo > 1e-15; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (r45(mid) < b.r45 ? lo : hi) = mid;
+    }
+    p.p = std::exp(0.5 * (lo + hi));
+  }
+  switch (b.hr) {
+    case 1:
+      p.hardening = BarlatHardening::kLinear;
+      p.sigy = b.p2;
+      p.modulus = mat.e * b.p1 / (mat.e - b.p1);
+      break;
+    case 2: {
+      // sigma_y = k (e0 + eps_p)^n. E0 > 0: e0 = E0; else SPI: 0 -> the elastic line meets the
+      // power law, E e0 = k e0^n, e0 = (E / k)^(1 / (n - 1)); SPI <= 0.02 -> e0 = SPI; SPI > 0.02
+      // -> SPI is the initial yield stress, e0 = (SPI / k)^(1 / n) (LS-DYNA manual, *MAT_036).
+      p.hardening = BarlatHardening::kPower;
+      p.k = b.p1;
+      p.n = b.p2;
+      if (b.e0 > 0.0)
+        p.e0 = b.e0;
+      else if (b.spi == 0.0)
+        p.e0 = std::pow(mat.e / p.k, 1.0 / (p.n - 1.0));
+      else if (b.spi <= 0.02)
+        p.e0 = b.spi;
+      else
+        p.e0 = std::pow(b.spi / p.k, 1.0 / p.n);
+      if (!(p.e0 > 0.0) || !std::isfinite(p.e0))
+        throw InputError(
+            context_of(b.card2, "E0"),
+            fmt::format("the power law's strain offset e0 = {} is not positive", p.e0));
+      break;
+    }
+    default: {
+      p.hardening = BarlatHardening::kCurve;
+      const model::Curve& curve = find_curve(model, b.lcid, b.card2, "LCID",
+                                             "yield stress against effective plastic strain");
+      curve_points(curve, p.strain, p.stress);
+      check_hardening(p.strain, p.stress, b.card2, "LCID", fmt::format("curve {}", b.lcid));
+      break;
+    }
+  }
+  const double deg = std::acos(-1.0) / 180.0;
+  switch (b.aopt) {
+    case 2:
+      p.axes = BarlatAxes::kVectorA;
+      p.vector = b.a;
+      break;
+    case 3:
+      p.axes = BarlatAxes::kVectorV;
+      p.vector = b.v;
+      p.beta = b.beta * deg;
+      break;
+    default:
+      p.axes = BarlatAxes::kElement;
+      p.beta = b.beta * deg;
+      break;
+  }
+  return p;
+}
+
 }  // namespace rf::material

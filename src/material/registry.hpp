@@ -18,6 +18,7 @@
 #include <span>
 #include <type_traits>
 
+#include "material/barlat.hpp"
 #include "material/elastic_material.hpp"
 #include "material/mooney_rivlin.hpp"
 #include "material/ogden.hpp"
@@ -32,7 +33,7 @@ struct MaterialList {};
 // THE registration line.
 using SolidMaterials =
     MaterialList<ElasticMaterial, PlasticKinematicMaterial, PiecewiseLinearPlasticityMaterial,
-                 MooneyRivlinMaterial, OgdenMaterial>;
+                 MooneyRivlinMaterial, OgdenMaterial, BarlatMaterial>;
 
 // The constants a material's update takes: M::Parameters where the material names one (the
 // rubbers: HyperelasticParameters), PlasticParameters otherwise. The kernels pass the block's
@@ -51,6 +52,22 @@ struct ParametersOf<M> {
 template <class M>
 constexpr bool takes_plastic_parameters() {
   return std::is_same_v<typename ParametersOf<M>::type, PlasticParameters>;
+}
+
+// Whether M serves `family` (compile time: kernels instantiate only the materials they run).
+template <class M>
+constexpr bool serves_family(ElementFamily family) {
+  return (M::kFamilies & family) != 0;
+}
+
+// Plane-stress-only materials (M::kPlaneStressOnly, e.g. Barlat 1989) give shells
+// M::plane_stress_update instead of a 3D update (shell_block.cpp).
+template <class M>
+constexpr bool plane_stress_only() {
+  if constexpr (requires { M::kPlaneStressOnly; })
+    return M::kPlaneStressOnly;
+  else
+    return false;
 }
 
 template <class M>

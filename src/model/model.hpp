@@ -160,8 +160,9 @@ enum class MaterialKind {
   Rigid,
   PlasticKinematic,
   PiecewiseLinearPlasticity,
-  MooneyRivlinRubber,  // *MAT_027
-  OgdenRubber,         // *MAT_077_O
+  MooneyRivlinRubber,    // *MAT_027
+  OgdenRubber,           // *MAT_077_O
+  ThreeParameterBarlat,  // *MAT_036 (shells only)
   // Discrete-element materials (*ELEMENT_DISCRETE parts only, docs/elements.md): force laws,
   // not stress laws; they carry K, DC or LCD below and no density.
   SpringElastic,           // *MAT_SPRING_ELASTIC (S01): F = K (elongation)
@@ -202,6 +203,26 @@ struct RubberCard {
   std::array<double, 8> alpha{};
 };
 
+// *MAT_3-PARAMETER_BARLAT (036) as read (curves resolved when the solver state is built,
+// material/plastic_setup.cpp).
+struct BarlatCard {
+  int hr = 1;                              // hardening rule: 1 linear, 2 power law, 3 curve
+  double p1 = 0.0, p2 = 0.0;               // HR 1: ETAN, SIGY; HR 2: k, n
+  double m = 0.0;                          // yield function exponent M
+  double r00 = 0.0, r45 = 0.0, r90 = 0.0;  // or AB, CB, HB with PB > 0
+  double pb = 0.0;                         // > 0: a, c, h, p given directly
+  Id lcid = 0;                             // HR 3
+  double e0 = 0.0, spi = 0.0;              // HR 2
+  int aopt = 0;                            // 0, 2, 3
+  std::array<double, 3> a{};               // AOPT 2
+  std::array<double, 3> v{};               // AOPT 3
+  double beta = 0.0;                       // degrees, AOPT 0 and 3
+  SourceLocation card2;                    // M R00 R45 R90 LCID E0 SPI
+  SourceLocation card3;                    // AOPT ...
+  SourceLocation card4;                    // A1 A2 A3
+  SourceLocation card5;                    // V1 V2 V3 BETA
+};
+
 struct Material {
   Id id = 0;
   MaterialKind kind = MaterialKind::Elastic;
@@ -227,6 +248,7 @@ struct Material {
   std::array<double, 3> output_v{};
   PlasticCard plastic;  // PlasticKinematic and PiecewiseLinearPlasticity
   RubberCard rubber;    // MooneyRivlinRubber and OgdenRubber
+  BarlatCard barlat;    // ThreeParameterBarlat
   // Discrete materials: K (S01, force per elongation), DC (S02, force per elongation rate),
   // LCD (S04, force vs elongation curve).
   double spring_k = 0.0;

@@ -244,6 +244,8 @@ ResolvedMaterial resolve_material(const model::Model& model, const model::Part& 
   if (mat.kind == model::MaterialKind::PlasticKinematic ||
       mat.kind == model::MaterialKind::PiecewiseLinearPlasticity)
     out.plastic = material::make_plastic_parameters(model, mat);
+  if (mat.kind == model::MaterialKind::ThreeParameterBarlat)
+    out.barlat = material::make_barlat_parameters(model, mat);
   return out;
 }
 
@@ -350,6 +352,13 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
     if (!block.rigid) {
       // The registry says which element families the material runs on (material/registry.hpp).
       const auto family = block.order > 1 ? material::kLagrangeHex : material::kHex8;
+      if (!material::serves(material_index, material::kHex8) &&
+          material::serves(material_index, material::kShell)) {
+        throw InputError(context_of(part.where, "MID"),
+                         fmt::format("part {} uses {} (material {}) on solid elements: this "
+                                     "material is a plane-stress law for shells only",
+                                     pid, mat.keyword, mat.id));
+      }
       if (!material::serves(material_index, family)) {
         throw InputError(context_of(part.where, "MID"),
                          fmt::format("part {} uses {} (material {}) on order {} elements, which "

@@ -32,6 +32,7 @@ struct ResolvedMaterial {
   int index = -1;  // in material::SolidMaterials; -1 for *MAT_RIGID
   material::ElasticConstants elastic;
   material::PlasticParameters plastic;
+  material::BarlatParameters barlat;  // *MAT_036
 };
 ResolvedMaterial resolve_material(const model::Model& model, const model::Part& part,
                                   unsigned family, const char* family_name);

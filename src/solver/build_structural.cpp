@@ -80,6 +80,7 @@ void build_shell_blocks(const model::Model& model, const NodeIndex& node_index, 
     block.material = material.elastic;
     block.material_index = std::max(material.index, 0);
     block.plastic = material.plastic;
+    block.barlat = material.barlat;
     if (!block.rigid) {
       block.hourglass = resolve_hourglass(model, part);
       if (block.hourglass.ihq > 5) {

@@ -1289,7 +1289,7 @@ void Simulation::compute_structural_forces() {
     record_kernel_result(r, block.element_id, [&](model::Id element) {
       return fmt::format(
           "{} element {} of part {} has a degenerate shape (non-positive area or "
-          "length) or a non-finite force",
+          "length), a non-finite force or (*MAT_036) a plastic return that did not converge",
           kind, element, block.part_id);
     });
   };

@@ -25,6 +25,7 @@ void mat_plastic_kinematic(const Block&, ReaderContext&);
 void mat_piecewise_linear_plasticity(const Block&, ReaderContext&);
 void mat_mooney_rivlin_rubber(const Block&, ReaderContext&);
 void mat_ogden_rubber(const Block&, ReaderContext&);
+void mat_three_parameter_barlat(const Block&, ReaderContext&);
 void hourglass(const Block&, ReaderContext&);
 void set_node_list(const Block&, ReaderContext&);
 void set_part_list(const Block&, ReaderContext&);

@@ -722,6 +722,152 @@ void mat_piecewise_linear_plasticity(const Block& block, ReaderContext& context)
   warn_unread_lines(block, cursor, context);
 }
 
+// *MAT_3-PARAMETER_BARLAT (036), shells only. Card 1: MID RO E PR HR P1 P2 ITER; card 2: M R00
+// R45 R90 LCID E0 SPI P3; card 3: AOPT C P VLCID (blank) PB NLP HTB; card 4: XP YP ZP A1 A2 A3
+// HTC HTD; card 5: V1 V2 V3 D1 D2 D3 BETA HTFLAG; card 6 (optional): USRFAIL LCBI LCSH. Values
+// that would change the physics and are not implemented are errors naming the field.
+void mat_three_parameter_barlat(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  read_title(block, cursor);
+  const int n = block.has_option("TITLE") ? 2 : 1;
+  const Card card = cursor.next(n, kEightByTen, "MID RO E PR HR P1 P2 ITER");
+  model::Material m = material_head(block, card, model::MaterialKind::ThreeParameterBarlat);
+  model::BarlatCard& b = m.barlat;
+  const double hr = card.real(4, "HR", 1.0);
+  if (hr != 1.0 && hr != 2.0 && hr != 3.0)
+    throw card.error("HR", fmt::format("hardening rule HR {} is not supported (1 linear, 2 power "
+                                       "law, 3 curve LCID)",
+                                       hr));
+  b.hr = static_cast<int>(hr);
+  b.p1 = card.real(5, "P1", 0.0);
+  b.p2 = card.real(6, "P2", 0.0);
+  const double iter = card.real(7, "ITER", 0.0);
+  if (iter != 0.0 && iter != 1.0)
+    throw card.error("ITER", fmt::format("ITER {} is not 0 (fully iterative) or 1", iter));
+  if (iter == 1.0)
+    context.warn(card.location(),
+                 "ITER 1 (three fixed iterations) is treated as 0: the return is always solved "
+                 "to convergence");
+  if (b.hr == 1) {
+    if (!(b.p2 > 0.0))
+      throw card.error("P2", fmt::format("HR 1 takes the yield stress in P2, which must be "
+                                         "positive (got {})",
+                                         b.p2));
+    if (!(b.p1 >= 0.0 && b.p1 < m.e))
+      throw card.error("P1", fmt::format("HR 1 takes the tangent modulus in P1, which must lie "
+                                         "in [0, E) with E = {} (got {})",
+                                         m.e, b.p1));
+  } else if (b.hr == 2) {
+    if (!(b.p1 > 0.0))
+      throw card.error("P1", fmt::format("HR 2 takes the strength coefficient k in P1, which "
+                                         "must be positive (got {})",
+                                         b.p1));
+    if (!(b.p2 > 0.0 && b.p2 < 1.0))
+      throw card.error("P2", fmt::format("HR 2 takes the hardening exponent n in P2, which must "
+                                         "lie in (0, 1) (got {})",
+                                         b.p2));
+  }
+
+  const Card c2 = cursor.next(n + 1, kEightByTen, "M R00 R45 R90 LCID E0 SPI P3");
+  b.card2 = c2.location();
+  b.m = c2.real(0, "M", 0.0);
+  b.r00 = c2.real(1, "R00", 0.0);
+  b.r45 = c2.real(2, "R45", 0.0);
+  b.r90 = c2.real(3, "R90", 0.0);
+  b.lcid = c2.id(4, "LCID");
+  b.e0 = c2.real(5, "E0", 0.0);
+  b.spi = c2.real(6, "SPI", 0.0);
+  if (b.m < 0.0)
+    throw c2.error("M", fmt::format("M = {} < 0 asks for the Chaboche-Rousselier kinematic "
+                                    "hardening card, which is not supported",
+                                    b.m));
+  if (!(b.m >= 1.0))
+    throw c2.error("M", fmt::format("the exponent M of the yield function must be at least 1 "
+                                    "(6 for BCC, 8 for FCC metals; got {})",
+                                    b.m));
+  if (b.hr == 3 && b.lcid <= 0)
+    throw c2.error("LCID",
+                   "HR 3 needs the hardening curve LCID (yield stress against effective "
+                   "plastic strain)");
+  if (b.hr == 2 && (b.e0 < 0.0 || b.spi < 0.0))
+    throw c2.error(b.e0 < 0.0 ? "E0" : "SPI", "E0 and SPI must not be negative");
+
+  const Card c3 = cursor.next(n + 2, kEightByTen, "AOPT C P VLCID UNUSED PB NLP HTB");
+  b.card3 = c3.location();
+  const double aopt = c3.real(0, "AOPT", 0.0);
+  if (aopt != 0.0 && aopt != 2.0 && aopt != 3.0)
+    throw c3.error("AOPT", fmt::format("material axes option AOPT {} is not supported (0 element "
+                                       "side 1-2, 2 vector A, 3 V x normal)",
+                                       aopt));
+  b.aopt = static_cast<int>(aopt);
+  if (c3.real(1, "C", 0.0) != 0.0 || c3.real(2, "P", 0.0) != 0.0)
+    throw c3.error(c3.real(1, "C", 0.0) != 0.0 ? "C" : "P",
+                   "Cowper-Symonds rate effects (C, P) are not supported for *MAT_036 (leave "
+                   "them blank or 0)");
+  if (c3.id(3, "VLCID") != 0)
+    throw c3.error("VLCID", "the volume correction curve VLCID is not supported (leave it blank)");
+  b.pb = c3.real(5, "PB", 0.0);
+  if (b.pb < 0.0) throw c3.error("PB", fmt::format("PB {} must not be negative", b.pb));
+  if (c3.id(6, "NLP") != 0)
+    context.warn(c3.location(), "NLP (forming limit curve for output) is ignored");
+  if (c3.real(7, "HTB", 0.0) != 0.0)
+    throw c3.error("HTB", "heat treatment (HTB, HTC, HTD, HTFLAG) is not supported");
+
+  if (b.pb > 0.0) {
+    // The alternative: AB, CB, HB in the R fields and p = PB.
+    if (!(b.r00 > 0.0 && b.r00 < 2.0))
+      throw c2.error("R00", fmt::format("with PB > 0 this field is the coefficient a of the "
+                                        "yield function, which must lie in (0, 2) (got {})",
+                                        b.r00));
+    if (!(b.r45 > 0.0))
+      throw c2.error("R45", fmt::format("with PB > 0 this field is the coefficient c, which must "
+                                        "be positive (got {})",
+                                        b.r45));
+    if (!(b.r90 > 0.0))
+      throw c2.error("R90", fmt::format("with PB > 0 this field is the coefficient h, which must "
+                                        "be positive (got {})",
+                                        b.r90));
+  } else {
+    static const char* const kR[] = {"R00", "R45", "R90"};
+    const double r[] = {b.r00, b.r45, b.r90};
+    for (int i = 0; i < 3; ++i)
+      if (!(r[i] > 0.0))
+        throw c2.error(kR[i], fmt::format("the Lankford coefficient {} must be positive (got {}); "
+                                          "to give the yield function's a, c, h directly set "
+                                          "PB > 0 on card 3",
+                                          kR[i], r[i]));
+  }
+
+  b.card4 = b.card5 = b.card3;
+  if (const auto c4 = cursor.next_optional(n + 3, kEightByTen)) {
+    b.card4 = c4->location();
+    b.a = {c4->real(3, "A1", 0.0), c4->real(4, "A2", 0.0), c4->real(5, "A3", 0.0)};
+    if (c4->id(6, "HTC") != 0 || c4->id(7, "HTD") != 0)
+      throw c4->error(c4->id(6, "HTC") != 0 ? "HTC" : "HTD",
+                      "heat treatment (HTB, HTC, HTD, HTFLAG) is not supported");
+  }
+  if (const auto c5 = cursor.next_optional(n + 4, kEightByTen)) {
+    b.card5 = c5->location();
+    b.v = {c5->real(0, "V1", 0.0), c5->real(1, "V2", 0.0), c5->real(2, "V3", 0.0)};
+    b.beta = c5->real(6, "BETA", 0.0);
+    if (c5->real(7, "HTFLAG", 0.0) != 0.0)
+      throw c5->error("HTFLAG", "heat treatment (HTB, HTC, HTD, HTFLAG) is not supported");
+  }
+  const auto norm = [](const std::array<double, 3>& x) {
+    return std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+  };
+  if (b.aopt == 2 && !(norm(b.a) > 0.0))
+    throw located_error(b.card4, "A1", "AOPT 2 needs a nonzero vector A (A1 A2 A3 on card 4)");
+  if (b.aopt == 3 && !(norm(b.v) > 0.0))
+    throw located_error(b.card5, "V1", "AOPT 3 needs a nonzero vector V (V1 V2 V3 on card 5)");
+  if (const auto c6 = cursor.next_optional(n + 5, kEightByTen)) {
+    if (c6->real(0, "USRFAIL", 0.0) != 0.0)
+      throw c6->error("USRFAIL", "user failure subroutines (USRFAIL) are not supported");
+  }
+  add_material(context, card, std::move(m));
+  warn_unread_lines(block, cursor, context);
+}
+
 namespace {
 
 // The rubber cards start MID RO PR (no E): E is set to the equivalent small-strain Young's

@@ -38,6 +38,8 @@ const std::vector<KeywordEntry>& table() {
       {"*MAT_027", mat_mooney_rivlin_rubber, {"TITLE"}},
       {"*MAT_OGDEN_RUBBER", mat_ogden_rubber, {"TITLE"}},
       {"*MAT_077_O", mat_ogden_rubber, {"TITLE"}},
+      {"*MAT_3-PARAMETER_BARLAT", mat_three_parameter_barlat, {"TITLE"}},
+      {"*MAT_036", mat_three_parameter_barlat, {"TITLE"}},
       {"*HOURGLASS", hourglass, {"TITLE"}},
       {"*SET_NODE", set_node_list, {"TITLE"}},
       {"*SET_NODE_LIST", set_node_list, {"TITLE"}},
