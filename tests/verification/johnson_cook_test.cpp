@@ -461,8 +461,9 @@ TEST(JohnsonCookTaylor, CopperBarOnRigidWallConservesEnergy) {
   // The material's internal energy (EOS energy equation) is the kernel's stress work.
   EXPECT_NEAR(r.material_energy, r.internal, 0.02 * kinetic0);
   EXPECT_LT(r.hourglass, 0.05 * kinetic0);
-  // Shortening and mushrooming in the range of the experiments (final length 0.6-0.7 L0,
-  // foot diameter 1.6-1.9 D0, see docs/verification.md for the references and mesh study).
+  // Plausibility bounds only (a bar that neither rebounds elastically nor flattens); the
+  // comparison with a published result is the steel bar below, the mesh study in
+  // docs/verification.md.
   EXPECT_GT(r.final_length, 0.55 * 25.4e-3);
   EXPECT_LT(r.final_length, 0.75 * 25.4e-3);
   EXPECT_GT(r.foot_diameter, 1.4 * 7.62e-3);
@@ -483,11 +484,27 @@ std::string steel_card() {
 }
 const TaylorMesh kSteelCoarse{2, 2, 20, 3.2e-3, 32.4e-3};
 
+// Tolerances from the mesh study (DISABLED_MeshConvergence, docs/verification.md): this 240-element
+// mesh gives L_f +2.9 % and D_f -5.1 % off Abaqus; 1920 and 6480 elements converge to
+// L_f 27.19 mm (+2.4 %) and D_f 11.24 mm (+0.2 %). The bounds hold the coarse mesh to its
+// measured error plus a margin. DISABLED_Sensitivity on this mesh: without heating D_f is
+// -11.8 % (caught); without the rate term L_f +1.2 %, D_f -2.2 % (not caught here: the rate
+// term is verified by the one-element tests above).
 TEST(JohnsonCookTaylor, SteelBarMatchesTheAbaqusReference) {
   const TaylorResult r = run_taylor(kSteelCoarse, 287.0, 80e-6, steel_card(), 0);
   EXPECT_NEAR(r.energy_ratio, 1.0, 1e-2);
-  EXPECT_NEAR(r.final_length, 26.55e-3, 0.01 * 26.55e-3);
-  EXPECT_NEAR(r.foot_diameter, 11.22e-3, 0.03 * 11.22e-3);
+  EXPECT_NEAR(r.final_length, 26.55e-3, 0.035 * 26.55e-3);
+  EXPECT_NEAR(r.foot_diameter, 11.22e-3, 0.06 * 11.22e-3);
+}
+
+// What the coarse steel bar's L_f and D_f do when a term of the law is dropped (the tolerances
+// above must not admit these).
+TEST(JohnsonCookTaylor, DISABLED_Sensitivity) {
+  std::string isothermal = steel_card(), rate_free = steel_card();
+  isothermal.replace(isothermal.find("511.1111111111111"), 17, "0");
+  rate_free.replace(rate_free.find("0.0089"), 6, "0");
+  run_taylor(kSteelCoarse, 287.0, 80e-6, isothermal, 0);
+  run_taylor(kSteelCoarse, 287.0, 80e-6, rate_free, 0);
 }
 
 TEST(JohnsonCookTaylor, DISABLED_MeshConvergence) {
