@@ -100,5 +100,19 @@ TEST(JohnsonCookInput, ValidCardsBuild) {
   EXPECT_EQ(error_of(deck(kJc + "1,8960,4.6e10,1.2e11,0.3\n" + kCard2, "", 0)), "");
 }
 
+// PC blank with the default SPALL 2: the material would spall at the first tension: warned.
+TEST(JohnsonCookInput, ZeroPressureCutoffIsWarned) {
+  auto warned = [](const std::string& text) {
+    const model::Model model = io::read_deck_text(text, "jc.k");
+    for (const auto& w : model.warnings)
+      if (w.message.find("PC is 0") != std::string::npos) return true;
+    return false;
+  };
+  EXPECT_TRUE(warned(deck(kJc + kCard1 + kCard2, kEos)));
+  EXPECT_TRUE(warned(deck(kJc + kCard1 + kCard2 + "383,0,3\n", kEos)));
+  EXPECT_FALSE(warned(deck(kJc + kCard1 + kCard2 + "383,0,1\n", kEos)));
+  EXPECT_FALSE(warned(deck(kJc + kCard1 + kCard2 + "383,-1e9\n", kEos)));
+}
+
 }  // namespace
 }  // namespace rf::test

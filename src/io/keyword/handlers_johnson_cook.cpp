@@ -105,7 +105,9 @@ void mat_johnson_cook(const Block& block, ReaderContext& context) {
                                       jc.m));
   }
 
+  model::SourceLocation spall_where = m.where;
   if (const auto c3 = cursor.next_optional(n + 2, kEightByTen)) {
+    spall_where = c3->location();
     jc.cp = c3->real(0, "CP", 0.0);
     jc.pc = c3->real(1, "PC", 0.0);
     const double spall = c3->real(2, "SPALL", 0.0);
@@ -119,6 +121,7 @@ void mat_johnson_cook(const Block& block, ReaderContext& context) {
     if (spall != 0.0 && spall != 1.0 && spall != 2.0 && spall != 3.0)
       throw c3->error("SPALL", fmt::format("SPALL {} is not 0, 1, 2 or 3", spall));
     jc.spall = spall == 0.0 ? 2 : static_cast<int>(spall);
+
     // IT 0 asks LS-DYNA for a linearised (one-iteration) return; the return here is always
     // solved to round-off, which is IT 1's answer.
     if (it != 0.0 && it != 1.0) throw c3->error("IT", fmt::format("IT {} is not 0 or 1", it));
@@ -130,6 +133,12 @@ void mat_johnson_cook(const Block& block, ReaderContext& context) {
                                            "supported yet (leave D1..D5 blank)",
                                            kD[k]));
   }
+  if (jc.pc == 0.0 && jc.spall != 1)
+    context.warn(spall_where,
+                 fmt::format("PC is 0 with SPALL {}: a point spalls (loses its deviatoric stress "
+                             "and all tension) at the first tensile {}; give PC < 0 for a "
+                             "material that carries tension",
+                             jc.spall, jc.spall == 2 ? "principal stress" : "pressure"));
   if (const auto c4 = cursor.next_optional(n + 3, kEightByTen)) {
     if (c4->real(0, "D5", 0.0) != 0.0)
       throw c4->error("D5",
