@@ -8,7 +8,9 @@ The run ends after CYCLES cycles (default 200) so timings are comparable between
 MATERIAL: elastic (default, *MAT_ELASTIC) or mat003 (*MAT_PLASTIC_KINEMATIC, SIGY 200 MPa,
 ETAN 2 GPa, BETA 1: the impact stress rho c v = 460 MPa yields the elements near the plane),
 mr (*MAT_MOONEY-RIVLIN_RUBBER, A 0.4 MPa, B 0.1 MPa, PR 0.495) or ogden (*MAT_OGDEN_RUBBER,
-three terms mu 0.63, 0.0012, -0.01 MPa, alpha 1.3, 5, -2, PR 0.495); rubber density 1100.
+three terms mu 0.63, 0.0012, -0.01 MPa, alpha 1.3, 5, -2, PR 0.495); rubber density 1100;
+jc (*MAT_JOHNSON_COOK with *EOS_LINEAR_POLYNOMIAL: G and K of the elastic steel, A 200 MPa,
+B 400 MPa, N 0.3, C 0.02, M 1, TM 1800 K, TR 293 K, CP 450, PC -1e20, SPALL 1).
 """
 import sys
 
@@ -28,7 +30,7 @@ w("*CONTROL_TERMINATION\n%10.4g%10d\n" % (1.0, cycles))
 w("*CONTROL_HOURGLASS\n%10d%10.4g\n" % (ihq, 0.1))
 w("*DATABASE_GLSTAT\n%10.4g\n" % 1.0)
 w("*DATABASE_BINARY_D3PLOT\n%10.4g\n" % 1.0)
-w("*PART\ncube\n%10d%10d%10d\n" % (1, 1, 1))
+w("*PART\ncube\n%10d%10d%10d%10d\n" % (1, 1, 1, 1 if material == "jc" else 0))
 w("*SECTION_SOLID\n%10d%10d\n" % (1, elform))
 if material == "elastic":
     w("*MAT_ELASTIC\n%10d%10.4g%10.4g%10.4g\n" % (1, 7850.0, 210e9, 0.3))
@@ -41,8 +43,15 @@ elif material == "mr":
 elif material == "ogden":
     w("*MAT_OGDEN_RUBBER\n%10d%10.4g%10.4g%10d\n%10.4g%10.4g%10.4g\n%10.4g%10.4g%10.4g\n"
       % (1, 1100.0, 0.495, 0, 0.63e6, 0.0012e6, -0.01e6, 1.3, 5.0, -2.0))
+elif material == "jc":
+    g, k = 210e9 / 2.6, 210e9 / 1.2
+    w("*MAT_JOHNSON_COOK\n%10d%10.4g%10.4g\n" % (1, 7850.0, g))
+    w("%10.4g%10.4g%10.4g%10.4g%10.4g%10.4g%10.4g%10.4g\n"
+      % (200e6, 400e6, 0.3, 0.02, 1.0, 1800.0, 293.0, 1.0))
+    w("%10.4g%10.4g%10.4g\n" % (450.0, -1e20, 1.0))
+    w("*EOS_LINEAR_POLYNOMIAL\n%10d%10.4g%10.4g\n" % (1, 0.0, k))
 else:
-    sys.exit("MATERIAL must be elastic, mat003, mr or ogden")
+    sys.exit("MATERIAL must be elastic, mat003, mr, ogden or jc")
 w("*NODE\n")
 for k in range(n + 1):
     for j in range(n + 1):

@@ -372,8 +372,11 @@ void corotational_hourglass(const HexBlock& block, double dt, Lanes state[4][3],
 // The constants material M's update takes (material::ParametersOf).
 template <class M>
 inline const auto& update_parameters(const HexBlock& block) {
-  if constexpr (material::takes_plastic_parameters<M>())
+  using P = typename material::ParametersOf<M>::type;
+  if constexpr (std::is_same_v<P, material::PlasticParameters>)
     return block.plastic;
+  else if constexpr (std::is_same_v<P, material::JohnsonCookParameters>)
+    return block.johnson_cook;
   else
     return block.hyperelastic;
 }
@@ -776,6 +779,21 @@ void allocate_history(HexBlock& block) {
   for (const material::HistoryField& f : material::history_fields(block.material_index))
     block.history.push_back(
         {f, std::vector<double>(points * static_cast<std::size_t>(f.components), 0.0)});
+  // A material may start its history away from zero (M::initial_history: a temperature, a
+  // relative volume of 1).
+  material::with_material(block.material_index, [&]<class M>(std::type_identity<M>) {
+    if constexpr (requires { M::initial_history(update_parameters<M>(block), nullptr); }) {
+      double h[material::history_size<M>()];
+      M::initial_history(update_parameters<M>(block), h);
+      int slot = 0;
+      for (auto& array : block.history) {
+        const int nc = array.field.components;
+        for (std::size_t k = 0; k < points; ++k)
+          for (int c = 0; c < nc; ++c) array.values[k * nc + c] = h[slot + c];
+        slot += nc;
+      }
+    }
+  });
 }
 
 int distinct_node_count(const std::int32_t* c) {

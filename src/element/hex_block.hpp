@@ -9,6 +9,7 @@
 #include "material/elastic.hpp"
 #include "material/history.hpp"
 #include "material/hyperelastic.hpp"
+#include "material/johnson_cook.hpp"
 #include "material/plastic_parameters.hpp"
 #include "model/model.hpp"
 
@@ -71,6 +72,7 @@ struct HexBlock {
   int material_index = 0;
   material::PlasticParameters plastic;
   material::HyperelasticParameters hyperelastic;  // *MAT_027, *MAT_077_O
+  material::JohnsonCookParameters johnson_cook;   // *MAT_015 (+ *EOS_)
   // Elements of a *MAT_RIGID part: they give mass and appear in the output, but have no kernel
   // and no force slots in the assembly (the body moves their nodes).
   bool rigid = false;

@@ -20,6 +20,7 @@
 
 #include "material/barlat.hpp"
 #include "material/elastic_material.hpp"
+#include "material/johnson_cook.hpp"
 #include "material/mooney_rivlin.hpp"
 #include "material/ogden.hpp"
 #include "material/piecewise_linear_plasticity.hpp"
@@ -33,7 +34,7 @@ struct MaterialList {};
 // THE registration line.
 using SolidMaterials =
     MaterialList<ElasticMaterial, PlasticKinematicMaterial, PiecewiseLinearPlasticityMaterial,
-                 MooneyRivlinMaterial, OgdenMaterial, BarlatMaterial>;
+                 MooneyRivlinMaterial, OgdenMaterial, BarlatMaterial, JohnsonCookMaterial>;
 
 // The constants a material's update takes: M::Parameters where the material names one (the
 // rubbers: HyperelasticParameters), PlasticParameters otherwise. The kernels pass the block's

@@ -163,6 +163,7 @@ enum class MaterialKind {
   MooneyRivlinRubber,    // *MAT_027
   OgdenRubber,           // *MAT_077_O
   ThreeParameterBarlat,  // *MAT_036 (shells only)
+  JohnsonCook,           // *MAT_015 (solids; pressure from *EOS_ on the part, or K from E, PR)
   // Discrete-element materials (*ELEMENT_DISCRETE parts only, docs/elements.md): force laws,
   // not stress laws; they carry K, DC or LCD below and no density.
   SpringElastic,           // *MAT_SPRING_ELASTIC (S01): F = K (elongation)
@@ -223,6 +224,17 @@ struct BarlatCard {
   SourceLocation card5;                    // V1 V2 V3 BETA
 };
 
+// The fields of *MAT_JOHNSON_COOK (015) as read (G is the Material's shear modulus; E and PR of
+// the Material are those of the card, 0 when blank).
+struct JohnsonCookCard {
+  double g = 0.0;
+  int vp = 0;
+  double a = 0.0, b = 0.0, n = 0.0, c = 0.0, m = 0.0;
+  double tm = 0.0, tr = 0.0, epso = 0.0;
+  double cp = 0.0, pc = 0.0;
+  int spall = 2;  // 1 pressure cutoff, 2 principal stress spall, 3 hydrostatic spall
+};
+
 struct Material {
   Id id = 0;
   MaterialKind kind = MaterialKind::Elastic;
@@ -249,6 +261,7 @@ struct Material {
   PlasticCard plastic;  // PlasticKinematic and PiecewiseLinearPlasticity
   RubberCard rubber;    // MooneyRivlinRubber and OgdenRubber
   BarlatCard barlat;    // ThreeParameterBarlat
+  JohnsonCookCard johnson_cook;  // JohnsonCook
   // Discrete materials: K (S01, force per elongation), DC (S02, force per elongation rate),
   // LCD (S04, force vs elongation curve).
   double spring_k = 0.0;
@@ -932,6 +945,17 @@ struct ImplicitControl {
   SourceLocation where;  // the *CONTROL_IMPLICIT_EIGENVALUE card
 };
 
+// *EOS_LINEAR_POLYNOMIAL (001): p = C0 + C1 mu + C2 mu^2 + C3 mu^3 + (C4 + C5 mu + C6 mu^2) E,
+// mu = rho / rho0 - 1, E internal energy per unit reference volume (E0 initially); the C2 and C6
+// terms vanish in tension (mu < 0).
+struct EquationOfState {
+  Id id = 0;
+  std::string keyword;
+  std::array<double, 7> c{};  // C0 .. C6
+  double e0 = 0.0;
+  SourceLocation where;
+};
+
 struct Warning {
   SourceLocation where;
   std::string message;
@@ -957,6 +981,7 @@ struct Model {
   std::map<Id, SectionDiscrete> discrete_sections;
   ShellControl shell_control;
   std::map<Id, Material> materials;
+  std::map<Id, EquationOfState> equations_of_state;  // *EOS_, by EOSID
   std::map<Id, Hourglass> hourglass;
   std::map<Id, Curve> curves;
   std::map<Id, Table> tables;  // *DEFINE_TABLE; IDs distinct from the curves'

@@ -11,6 +11,7 @@
 
 #include "element/kernels.hpp"
 #include "material/hyperelastic_setup.hpp"
+#include "material/johnson_cook_setup.hpp"
 #include "material/plastic_setup.hpp"
 #include "material/registry.hpp"
 #include "mesh/p_order.hpp"
@@ -282,6 +283,17 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
                                  "has {} beam elements): use BTYPE 0",
                                  bulk.btype, model.beams.size()));
   }
+  // An equation of state belongs to a *MAT_JOHNSON_COOK part (the only material that takes one).
+  for (const auto& [pid, part] : model.parts) {
+    if (part.eosid == 0) continue;
+    const auto mat_it = model.materials.find(part.mid);
+    if (mat_it != model.materials.end() && mat_it->second.kind != model::MaterialKind::JohnsonCook)
+      throw InputError(context_of(part.where, "EOSID"),
+                       fmt::format("part {} gives equation of state {} but its material {} is a "
+                                   "{}, which takes no equation of state (only "
+                                   "*MAT_JOHNSON_COOK does here; leave EOSID blank)",
+                                   pid, part.eosid, part.mid, mat_it->second.keyword));
+  }
   State state;
   NodalState& nodes = state.nodes;
   const std::size_t model_nodes = model.nodes.size();
@@ -373,6 +385,9 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
       if (mat.kind == model::MaterialKind::MooneyRivlinRubber ||
           mat.kind == model::MaterialKind::OgdenRubber)
         block.hyperelastic = material::make_hyperelastic_parameters(mat);
+      if (mat.kind == model::MaterialKind::JohnsonCook)
+        block.johnson_cook =
+            material::make_johnson_cook_parameters(model, part, mat, block.material);
     }
     block.element_id.reserve(element_indices.size());
     block.conn.reserve(element_indices.size() * 8);

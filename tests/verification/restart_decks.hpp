@@ -87,6 +87,23 @@ inline std::string rubber(double end_time) {
   return s;
 }
 
+// The deformable deck with *MAT_JOHNSON_COOK and *EOS_LINEAR_POLYNOMIAL in both parts (part 2
+// VP 1): plastic strain, temperature, EOS energy, relative volume and the spall flag are
+// history that the dump must carry.
+inline std::string johnson_cook(double end_time) {
+  std::string s = deformable(end_time);
+  auto replace = [&s](const std::string& from, const std::string& to) {
+    s.replace(s.find(from), from.size(), to);
+  };
+  replace("*PART\nstiffness hourglass\n1,1,1,0,1\n", "*PART\nstiffness hourglass\n1,1,1,1,1\n");
+  replace("*PART\nselective reduced\n2,2,1,0,2\n", "*PART\nselective reduced\n2,2,2,1,2\n");
+  replace("*MAT_ELASTIC\n1,7.85e-9,210000.0,0.3\n",
+          "*MAT_JOHNSON_COOK\n1,7.85e-9,80769.0\n100,200,0.3,0.02,1,1800,293,1\n4.5e8,-1e20,1\n"
+          "*MAT_JOHNSON_COOK\n2,7.85e-9,80769.0,0,0,0,1\n100,200,0.3,0.02,1,1800,293,1\n"
+          "4.5e8,-1e20,1\n*EOS_LINEAR_POLYNOMIAL\n1,0,175000.0,350000.0\n");
+  return s;
+}
+
 // A spinning 3 x 2 x 2 block: x < 1 is a rigid part, the rest is deformable (ELFORM 1, viscous
 // hourglass) and shares the interface nodes with it; the far face is a nodal rigid body. The
 // rigid part gets a moment from a curve; *RIGID_BODY_UPDATE selects the node update (&type).

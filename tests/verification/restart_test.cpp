@@ -220,6 +220,8 @@ const Case kCases[] = {
     {"plastic", restart_decks::plastic(4e-5), "", {}, 6e-6, 2},
     {"rubber", restart_decks::rubber(4e-5), "", {}, 6e-6, 1},
     {"rubber", restart_decks::rubber(4e-5), "", {}, 6e-6, 2},
+    {"johnson_cook", restart_decks::johnson_cook(4e-5), "", {}, 6e-6, 1},
+    {"johnson_cook", restart_decks::johnson_cook(4e-5), "", {}, 6e-6, 2},
     {"quadratic", restart_decks::quadratic(4e-5), "", {}, 6e-6, 1},
     {"quadratic", restart_decks::quadratic(4e-5), "", {}, 6e-6, 2},
     // The *RIGID_BODY_UPDATE example: prescribed rotation (accumulated travel), both updates.

@@ -26,6 +26,9 @@ void mat_piecewise_linear_plasticity(const Block&, ReaderContext&);
 void mat_mooney_rivlin_rubber(const Block&, ReaderContext&);
 void mat_ogden_rubber(const Block&, ReaderContext&);
 void mat_three_parameter_barlat(const Block&, ReaderContext&);
+// handlers_johnson_cook.cpp
+void mat_johnson_cook(const Block&, ReaderContext&);
+void eos_linear_polynomial(const Block&, ReaderContext&);
 void hourglass(const Block&, ReaderContext&);
 void set_node_list(const Block&, ReaderContext&);
 void set_part_list(const Block&, ReaderContext&);

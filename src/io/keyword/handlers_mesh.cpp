@@ -332,9 +332,7 @@ void part(const Block& block, ReaderContext& context) {
     p.eosid = card.id(3, "EOSID");
     p.hgid = card.id(4, "HGID");
     p.where = card.location();
-    if (p.eosid != 0) {
-      throw card.error("EOSID", "equations of state are not supported (leave EOSID blank)");
-    }
+    if (p.eosid < 0) throw card.error("EOSID", "equation of state ID must not be negative");
     card_number += 2;
     if (block.has_option("INERTIA")) {
       int cards = 0;
