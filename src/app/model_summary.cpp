@@ -149,7 +149,7 @@ void print_model_summary(const model::Model& model, const solver::Simulation& si
     fmt::print(out,
                "  {} {}{}: {} nodes, mass {:.6g}{}, centre ({:.6g}, {:.6g}, {:.6g}), principal "
                "inertias {:.6g}, {:.6g}, {:.6g}, {} update{}{}\n",
-               body.nodal ? "nodal rigid body" : "rigid body", body.id,
+               body.weld ? "spot weld" : (body.nodal ? "nodal rigid body" : "rigid body"), body.id,
                parts.empty() ? "" : fmt::format(" (parts {})", parts), body.nodes.size(), s.mass,
                body.inertia_from_card ? " (inertia card)" : "", s.centre.x(), s.centre.y(),
                s.centre.z(), s.principal_inertia[0], s.principal_inertia[1], s.principal_inertia[2],

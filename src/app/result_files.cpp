@@ -20,7 +20,7 @@ const std::vector<std::regex>& patterns(ResultKind kind) {
     std::vector<std::regex> p;
     for (
         const char* re :
-        {R"((glstat|nodout|rbdout|modal|switch|sensor|rwforc|rcforc|matsum|elout|elout_shell|spcforc|secforc|jntforc)\.csv)",
+        {R"((glstat|nodout|rbdout|modal|switch|sensor|rwforc|rcforc|matsum|elout|elout_shell|spcforc|secforc|jntforc|swforc)\.csv)",
          R"(run\.json)", R"(d3hsp\.txt)", R"((d3plot|frames|walls)\.pvd)",
          R"((d3plot|frames|walls)_\d{4,}\.vtu)", R"(d3plot(\d{2,})?)",
          R"(d3dump_\d{4,}\.h5(\.partial)?)", R"(plot_[a-z0-9_]+\.png)"}) {

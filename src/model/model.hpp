@@ -524,6 +524,31 @@ struct NodalRigidBody {
   SourceLocation where;
 };
 
+// *CONSTRAINED_SPOTWELD (_ID, _FILTERED_FORCE without filtering): a massless rigid link between
+// two non-coincident nodes (a two-node nodal rigid body), failing by
+// (|fn| / SN)^N + (|fs| / SS)^M >= 1 (a term with SN or SS = 0 is off) or at time TF.
+struct SpotWeld {
+  Id id = 0;  // WID of _ID, else the card's ordinal among the spot welds
+  Id n1 = 0;
+  Id n2 = 0;
+  double sn = 0.0;
+  double ss = 0.0;
+  double n = 1.0;  // exponents (0 on the card means 1)
+  double m = 1.0;
+  double tf = 1e20;
+  SourceLocation where;
+};
+
+// *CONSTRAINED_NODE_SET (_ID): the nodes of a set share their velocity in the DOF of `dof`
+// (1 x, 2 y, 3 z, 4 xy, 5 yz, 6 zx, 7 xyz) until time TF.
+struct NodeSetConstraint {
+  Id id = 0;  // CNSID of _ID, else the card's ordinal
+  Id nsid = 0;
+  int dof = 7;
+  double tf = 1e20;
+  SourceLocation where;
+};
+
 // *BOUNDARY_PRESCRIBED_MOTION_RIGID: motion of a rigid body (rigid part or nodal rigid body).
 // *PART_MODES: a rigid part that deforms in the modes of a mode database, superimposed on its
 // rigid motion (docs/flexible_bodies.md).
@@ -925,6 +950,7 @@ struct OutputControl {
   double secforc_dt = 0.0;                   // *DATABASE_SECFORC DT; 0: about 1000 rows per run
   bool jntforc = false;                      // *DATABASE_JNTFORC present (jntforc.csv)
   double jntforc_dt = 0.0;                   // 0: about 1000 rows per run
+  double swforc_dt = 0.0;                    // *DATABASE_SWFORC DT (0: about 1000 rows per run)
 };
 
 // *CONTROL_IMPLICIT_GENERAL and *CONTROL_IMPLICIT_EIGENVALUE (docs/eigen.md): with IMFLAG 1 and
@@ -1026,6 +1052,8 @@ struct Model {
   std::vector<PartMassAddition> part_mass_additions;     // *ELEMENT_MASS_PART
   std::vector<MassDamping> mass_damping;                 // *DAMPING_GLOBAL, *DAMPING_PART_MASS
   std::vector<Joint> joints;                             // *CONSTRAINED_JOINT_..., deck order
+  std::vector<SpotWeld> spot_welds;                      // *CONSTRAINED_SPOTWELD, deck order
+  std::vector<NodeSetConstraint> node_set_constraints;   // *CONSTRAINED_NODE_SET, deck order
 
   Termination termination;
   TimestepControl timestep;

@@ -95,6 +95,7 @@ struct CsvContinuation {
   std::int64_t secforc = -1;   // secforc.csv
   std::int64_t elout_shell = -1;  // elout_shell.csv
   std::int64_t jntforc = -1;      // jntforc.csv
+  std::int64_t swforc = -1;       // swforc.csv
 };
 
 // Column headers, exactly as written (docs/output.md).
@@ -154,6 +155,12 @@ struct RwforcRow {
 inline constexpr std::string_view kJntforcHeader =
     "time,joint,force_x,force_y,force_z,force_resultant,moment_x,moment_y,moment_z,"
     "moment_resultant";
+
+// swforc.csv: per spot weld and output time, the force it carries (normal: tension > 0 along
+// N1 -> N2; shear: magnitude), its status (0 active, 1 failed, 2 deleted by NCSF, 3 merged into
+// a rigid body by switching) and when it failed (-1: it has not).
+inline constexpr std::string_view kSwforcHeader =
+    "time,weld,normal_force,shear_force,status,failure_time";
 
 // One row of jntforc.csv: a joint at an output time t^n. The force and moment the joint exerts
 // on its body B (the nodes N2, N4, N6), global axes, from the last evaluation of the penalty

@@ -294,6 +294,9 @@ void visit_body_integers(Visit&& visit) {
       "nodal", [](const Body& b) { return std::int64_t{b.nodal}; },
       [](Body& b, std::int64_t v) { b.nodal = v != 0; });
   visit(
+      "weld", [](const Body& b) { return std::int64_t{b.weld}; },
+      [](Body& b, std::int64_t v) { b.weld = v != 0; });
+  visit(
       "inertia_from_card", [](const Body& b) { return std::int64_t{b.inertia_from_card}; },
       [](Body& b, std::int64_t v) { b.inertia_from_card = v != 0; });
   visit(

@@ -64,6 +64,20 @@ void SimulationAccess::write_members(Simulation& s, const Group& g) {
     }
     g.write("joint_force_moment", std::span<const double>(joint_loads));
   }
+  if (!s.nodal_constraints_.empty()) {  // spot welds and node sets: status and last forces
+    std::vector<std::int64_t> status;
+    std::vector<double> numbers;
+    for (const auto& w : s.nodal_constraints_.welds) {
+      status.push_back(static_cast<std::int64_t>(w.status));
+      numbers.insert(numbers.end(), {w.failure_time, w.normal_force, w.shear_force});
+    }
+    for (const auto& tie : s.nodal_constraints_.ties) {
+      status.push_back(static_cast<std::int64_t>(tie.status));
+      numbers.insert(numbers.end(), {tie.failure_time, 0.0, 0.0});
+    }
+    g.write("nodal_constraint_status", std::span<const std::int64_t>(status));
+    g.write("nodal_constraint_numbers", std::span<const double>(numbers));
+  }
   for (int k = 0; k < 3; ++k) {
     g.set(fmt::format("energy_momentum_{}", k), e.momentum[k]);
     g.set(fmt::format("energy_angular_momentum_{}", k), e.angular_momentum[k]);
@@ -121,6 +135,34 @@ void SimulationAccess::read_members(Simulation& s, const Group& g) {
       }
     }
   }
+  if (!s.nodal_constraints_.empty() && g.has("nodal_constraint_status")) {
+    auto& nc = s.nodal_constraints_;
+    const std::vector<std::int64_t> status = g.read_int64("nodal_constraint_status");
+    const std::vector<double> numbers = g.read_doubles("nodal_constraint_numbers");
+    const std::size_t count = nc.welds.size() + nc.ties.size();
+    if (status.size() != count || numbers.size() != 3 * count) {
+      g.fail("nodal_constraint_status",
+             fmt::format("holds {} entries, the rebuilt model has {} spot welds and node sets",
+                         status.size(), count));
+    }
+    for (const std::int64_t v : status) {
+      if (v < 0 || v > 3) g.fail("nodal_constraint_status", fmt::format("status {} unknown", v));
+    }
+    for (std::size_t j = 0; j < count; ++j) {
+      const auto st = static_cast<solver::ConstraintStatus>(status[j]);
+      if (j < nc.welds.size()) {
+        auto& w = nc.welds[j];
+        w.status = st;
+        w.failure_time = numbers[3 * j];
+        w.normal_force = numbers[3 * j + 1];
+        w.shear_force = numbers[3 * j + 2];
+      } else {
+        auto& tie = nc.ties[j - nc.welds.size()];
+        tie.status = st;
+        tie.failure_time = numbers[3 * j];
+      }
+    }
+  }
   for (int k = 0; k < 3; ++k) {
     e.momentum[k] = g.get_double(fmt::format("energy_momentum_{}", k));
     e.angular_momentum[k] = g.get_double(fmt::format("energy_angular_momentum_{}", k));
@@ -160,6 +202,11 @@ void SimulationAccess::write_output(Simulation& s, const Group& g) {
   g.set("jntforc_bytes", s.jntforc_csv_ ? s.jntforc_csv_->flushed_size() : std::int64_t{-1});
   write_schedule(g, "jntforc", s.jntforc_schedule_.interval, s.jntforc_schedule_.next,
                  s.jntforc_schedule_.last_cycle);
+  if (s.swforc_csv_) {
+    g.set("swforc_bytes", s.swforc_csv_->flushed_size());
+    write_schedule(g, "swforc", s.swforc_schedule_.interval, s.swforc_schedule_.next,
+                   s.swforc_schedule_.last_cycle);
+  }
   if (s.part_histories_) {
     const auto& work = s.part_histories_->internal_work();
     const auto& hourglass = s.part_histories_->hourglass();
@@ -204,6 +251,7 @@ void SimulationAccess::read_output(Simulation& s, const Group& g) {
   }
   if (g.has_attribute("secforc_bytes")) read_schedule(g, "secforc", s.secforc_schedule_);
   if (g.has_attribute("jntforc_bytes")) read_schedule(g, "jntforc", s.jntforc_schedule_);
+  if (g.has_attribute("swforc_bytes")) read_schedule(g, "swforc", s.swforc_schedule_);
   if (g.has_attribute("elout_shell_bytes")) {
     read_schedule(g, "elout_shell", s.elout_shell_schedule_);
   }

@@ -10,7 +10,9 @@ namespace rf::solver {
 PartHistories::PartHistories(const State& state, const RigidSystem& rigid) {
   std::map<model::Id, int> index;
   for (const element::HexBlock& block : state.hex_blocks) index[block.part_id] = 0;
-  for (const RigidBody& body : rigid.bodies) index[body.id] = 0;
+  for (const RigidBody& body : rigid.bodies) {
+    if (!body.weld) index[body.id] = 0;  // a spot weld is no part: its nodes count with theirs
+  }
   for (auto& [pid, k] : index) {
     k = static_cast<int>(parts_.size());
     parts_.push_back(pid);
@@ -93,7 +95,11 @@ std::vector<PartSummary> PartHistories::summaries(const State& state,
   const NodalState& nodes = state.nodes;
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const int p = owner_of_node_[i];
-    if (p < 0 || rigid.is_rigid(static_cast<std::int32_t>(i))) continue;
+    // Nodes of a spot weld count with their parts (their velocity is the weld's rigid field).
+    if (p < 0 || (rigid.is_rigid(static_cast<std::int32_t>(i)) &&
+                  !rigid.bodies[rigid.body_of_node[i]].weld)) {
+      continue;
+    }
     const double m = nodes.mass[i];
     const double v[3] = {nodes.v.x[i], nodes.v.y[i], nodes.v.z[i]};
     rows[p].kinetic_energy += 0.5 * m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
@@ -101,6 +107,7 @@ std::vector<PartSummary> PartHistories::summaries(const State& state,
   }
   for (const RigidBody& body : rigid.bodies) {
     // Bodies can come and go with part switching: found by their lead part's ID.
+    if (body.weld) continue;
     const auto it = std::lower_bound(parts_.begin(), parts_.end(), body.id);
     if (it == parts_.end() || *it != body.id) continue;
     const rigid::RigidBodyState& s = body.state;

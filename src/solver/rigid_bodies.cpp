@@ -78,8 +78,8 @@ void add_cmo_constraints(const model::Model& model, double cmo, double con1, dou
 rigid::RigidBodyState make_body(rigid::MassProperties props, const RigidBody& body,
                                 const model::SourceLocation& where, const char* field,
                                 std::vector<model::Warning>& warnings) {
-  const std::string name =
-      fmt::format("{} {}", body.nodal ? "nodal rigid body" : "rigid body", body.id);
+  const std::string name = fmt::format(
+      "{} {}", body.weld ? "spot weld" : (body.nodal ? "nodal rigid body" : "rigid body"), body.id);
   if (!(props.mass > 0.0)) {
     throw InputError(context_of(where, field),
                      fmt::format("{} has no mass (mass {:g}): its nodes carry no element mass; "
@@ -97,7 +97,7 @@ rigid::RigidBodyState make_body(rigid::MassProperties props, const RigidBody& bo
                                    "give it *PART_INERTIA (or _INERTIA)",
                                    name));
     }
-    if (moments.minCoeff() < 1e-6 * largest) {
+    if (!body.weld && moments.minCoeff() < 1e-6 * largest) {  // welds: spot_weld_properties
       props.inertia += 1e-6 * largest * Eigen::Matrix3d::Identity();
       warnings.push_back({where, fmt::format("{}: its nodes lie on a line; a principal moment "
                                              "of {:.3g} was added about every axis",
@@ -157,6 +157,9 @@ RigidSystem build_rigid_system(const model::Model& model, const NodeIndex& node_
   collect(state.beam_blocks);
 
   rigid.body_of_node.assign(n, -1);
+  auto kind_name = [](const RigidBody& b) {
+    return b.weld ? "spot weld" : (b.nodal ? "nodal rigid body" : "rigid body");
+  };
   // Where each body was defined (errors and warnings).
   std::vector<model::SourceLocation> where_of;
   auto claim = [&](std::int32_t node, int body, const model::SourceLocation& where,
@@ -170,8 +173,7 @@ RigidSystem build_rigid_system(const model::Model& model, const NodeIndex& node_
           context_of(where, field),
           fmt::format("node {} belongs to {} {} and to {} {}; a node can move with one rigid "
                       "body only (merge the bodies with *CONSTRAINED_RIGID_BODIES)",
-                      nodes.id[node], other.nodal ? "nodal rigid body" : "rigid body", other.id,
-                      self.nodal ? "nodal rigid body" : "rigid body", self.id));
+                      nodes.id[node], kind_name(other), other.id, kind_name(self), self.id));
     }
     owner = body;
   };
@@ -256,6 +258,42 @@ RigidSystem build_rigid_system(const model::Model& model, const NodeIndex& node_
     }
   }
 
+  // Spot welds: two-node nodal rigid bodies (docs/theory.md "Spot welds"). The body carries the
+  // lumped masses of its two nodes and, for nodes with rotations, their rotary inertia.
+  for (const auto& weld : model.spot_welds) {
+    RigidBody body;
+    body.id = weld.id;
+    body.nodal = true;
+    body.weld = true;
+    const int index = static_cast<int>(rigid.bodies.size());
+    const std::int32_t a = node_index.at(weld.n1, weld.where, "N1");
+    const std::int32_t c = node_index.at(weld.n2, weld.where, "N2");
+    const Eigen::Vector3d xa(nodes.x.x[a], nodes.x.y[a], nodes.x.z[a]);
+    const Eigen::Vector3d xc(nodes.x.x[c], nodes.x.y[c], nodes.x.z[c]);
+    const double scale = std::max({xa.norm(), xc.norm(), 1e-300});
+    if (!((xa - xc).norm() > 1e-9 * scale)) {
+      throw InputError(context_of(weld.where, "N2"),
+                       fmt::format("spot weld {}: nodes {} and {} coincide; a spot weld joins two "
+                                   "non-coincident nodes (its normal is the line between "
+                                   "them); merge coincident nodes or use *CONSTRAINED_NODE_SET",
+                                   weld.id, weld.n1, weld.n2));
+    }
+    for (const auto& [i, field] : {std::pair{a, "N1"}, std::pair{c, "N2"}}) {
+      if (!(nodes.mass[i] > 0.0)) {
+        throw InputError(context_of(weld.where, field),
+                         fmt::format("spot weld {}: node {} has no mass (it belongs to no "
+                                     "element); a spot weld joins nodes of elements",
+                                     weld.id, nodes.id[i]));
+      }
+    }
+    rigid.bodies.push_back(std::move(body));
+    where_of.push_back(weld.where);
+    plans.emplace_back();
+    claim(a, index, weld.where, "N1");
+    claim(c, index, weld.where, "N2");
+    plans.back().cards.push_back(spot_weld_properties(a, c, state));
+  }
+
   // Node lists, mass properties, constraints, update mode.
   for (std::size_t b = 0; b < rigid.bodies.size(); ++b) {
     RigidBody& body = rigid.bodies[b];
@@ -275,6 +313,7 @@ RigidSystem build_rigid_system(const model::Model& model, const NodeIndex& node_
                                                nodes.x.z.data()));
       }
     }
+
     body.state = make_body(rigid::combine(parts), body, where_of[b], body.nodal ? "NSID" : "PID",
                            rigid.warnings);
     body.initial_rotation = body.state.rotation;
@@ -283,13 +322,19 @@ RigidSystem build_rigid_system(const model::Model& model, const NodeIndex& node_
     // Type 0 also goes linear for bodies in contact with deformable parts (contact issue).
     const int type = model.rigid_body_update;
     body.update = (type != 2 && body.shares_nodes) ? NodeUpdate::kLinear : NodeUpdate::kCurvilinear;
+    // A spot weld's nodes stay exactly on its line (x_c + R X_i), so that no nodal force has a
+    // moment about the line, whose moment of inertia is only the regularisation: the linear
+    // update lets them drift off it by O((w dt)^2) and that moment would spin the weld up.
+    if (body.weld) body.update = NodeUpdate::kCurvilinear;
     auto axes_of_system = [&](Id cid) {
       const auto& rows = model.coordinate_systems.at(cid).axes;
       Eigen::Matrix3d a;
       for (int k = 0; k < 3; ++k) a.col(k) = vec(rows[k]);
       return a;
     };
-    if (body.nodal) {
+    if (body.weld) {
+      // No constraints, global output axes.
+    } else if (body.nodal) {
       const auto& nrb = model.nodal_rigid_bodies.at(body.id);
       if (nrb.cid != 0) body.output_axes = axes_of_system(nrb.cid);
       add_cmo_constraints(model, nrb.cmo, nrb.con1, nrb.con2, nrb.cmo_cid, nrb.cmo_local_fix,
@@ -316,7 +361,7 @@ RigidSystem build_rigid_system(const model::Model& model, const NodeIndex& node_
   auto body_index = [&](Id pid) {
     const Id lead = model.nodal_rigid_bodies.count(pid) ? pid : lead_of(pid);
     for (std::size_t b = 0; b < rigid.bodies.size(); ++b) {
-      if (rigid.bodies[b].id == lead &&
+      if (rigid.bodies[b].id == lead && !rigid.bodies[b].weld &&
           rigid.bodies[b].nodal == (model.nodal_rigid_bodies.count(pid) != 0)) {
         return static_cast<int>(b);
       }
@@ -428,7 +473,9 @@ void initialize_rigid_velocities(const model::Model& model, const NodeIndex& nod
       v += w.cross(s.centre - centre);
     }
     const model::RigidInertia* card = nullptr;
-    if (body.nodal) {
+    if (body.weld) {
+      // No inertia card.
+    } else if (body.nodal) {
       const auto& nrb = model.nodal_rigid_bodies.at(body.id);
       if (nrb.inertia) card = &*nrb.inertia;
     } else if (model.parts.at(body.id).inertia) {
@@ -637,6 +684,55 @@ void place_curvilinear_nodes(const RigidSystem& rigid, State& state) {
     rigid::place_nodes_curvilinear(body.state, body.nodes, body.body_coordinates, nodes.x.x.data(),
                                    nodes.x.y.data(), nodes.x.z.data());
   }
+}
+
+rigid::MassProperties spot_weld_properties(std::int32_t a, std::int32_t b, const State& state) {
+  const NodalState& nodes = state.nodes;
+  const std::vector<std::int32_t> pair{std::min(a, b), std::max(a, b)};
+  rigid::MassProperties props = rigid::mass_properties(pair, nodes.mass.data(), nodes.x.x.data(),
+                                                       nodes.x.y.data(), nodes.x.z.data());
+  if (!state.rotations.empty()) {
+    for (const std::int32_t i : {a, b}) {
+      const std::int32_t r = state.rotations.index(i);
+      if (r >= 0) props.inertia += state.rotations.inertia[r] * Eigen::Matrix3d::Identity();
+    }
+  }
+  // Without rotations the two points have no moment about their line; no nodal force has one
+  // either, so a small moment there (1e-6 of the others) changes no motion and makes J^-1 exist.
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(props.inertia);
+  const double largest = eigen.eigenvalues().maxCoeff();
+  if (eigen.eigenvalues().minCoeff() < 1e-6 * largest) {
+    props.inertia += 1e-6 * largest * Eigen::Matrix3d::Identity();
+  }
+  return props;
+}
+
+void remove_rigid_bodies(RigidSystem& rigid, const std::set<int>& gone,
+                         const std::map<int, int>& moved_to) {
+  if (gone.empty()) return;
+  std::vector<int> new_index(rigid.bodies.size(), -1);
+  int next = 0;
+  for (std::size_t b = 0; b < rigid.bodies.size(); ++b) {
+    if (!gone.count(static_cast<int>(b))) new_index[b] = next++;
+  }
+  auto remap = [&](int b) {
+    if (const auto it = moved_to.find(b); it != moved_to.end()) b = it->second;
+    return new_index[b];
+  };
+  for (auto& owner : rigid.body_of_node) {
+    if (owner >= 0) owner = remap(owner);
+  }
+  for (auto& m : rigid.motions) m.body = remap(m.body);
+  for (auto& l : rigid.loads) l.body = remap(l.body);
+  for (auto& f : rigid.flexible) f.body = remap(f.body);
+  std::stable_sort(rigid.motions.begin(), rigid.motions.end(),
+                   [](const auto& a, const auto& b) { return a.body < b.body; });
+  std::vector<RigidBody> kept;
+  kept.reserve(next);
+  for (std::size_t b = 0; b < rigid.bodies.size(); ++b) {
+    if (new_index[b] >= 0) kept.push_back(std::move(rigid.bodies[b]));
+  }
+  rigid.bodies = std::move(kept);
 }
 
 Eigen::Matrix3d output_rotation(const RigidBody& body) {

@@ -7,6 +7,8 @@
 
 #include <Eigen/Dense>
 #include <cstdint>
+#include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -50,7 +52,8 @@ struct RigidLoadTerm {
 
 struct RigidBody {
   model::Id id = 0;                 // lead part ID, or the nodal rigid body's PID
-  bool nodal = false;               // *CONSTRAINED_NODAL_RIGID_BODY
+  bool nodal = false;               // *CONSTRAINED_NODAL_RIGID_BODY (or a spot weld)
+  bool weld = false;                // *CONSTRAINED_SPOTWELD: id is the weld ID (nodal is set)
   std::vector<model::Id> parts;     // merged parts, lead first
   std::vector<std::int32_t> nodes;  // dense node indices, ascending
   bool inertia_from_card = false;   // *PART_INERTIA / _INERTIA (else from lumped masses)
@@ -134,6 +137,16 @@ void place_curvilinear_nodes(const RigidSystem& rigid, State& state);
 // Orientation for output: the rotation that maps the body's output axes to global axes at the
 // body's time t^n (previous_rotation once advanced).
 Eigen::Matrix3d output_rotation(const RigidBody& body);
+
+// Mass properties of the body of a spot weld between dense nodes a and b (at their current
+// places): their lumped masses, the rotary inertia of nodes with rotations, and a small moment
+// about the line between them where nothing else gives one (docs/theory.md "Spot welds").
+rigid::MassProperties spot_weld_properties(std::int32_t a, std::int32_t b, const State& state);
+
+// Removes the bodies whose index is in `gone`; every reference to a body (nodes, motions,
+// loads, flexible bodies) is renumbered, a removed body's references go to moved_to[b].
+void remove_rigid_bodies(RigidSystem& rigid, const std::set<int>& gone,
+                         const std::map<int, int>& moved_to = {});
 
 // Kinetic energy and momenta of the bodies at their current velocities (initial values).
 RigidStepSums rigid_body_sums(const RigidSystem& rigid);

@@ -96,6 +96,7 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
       std::unique(boundary_.constrained_nodes.begin(), boundary_.constrained_nodes.end()),
       boundary_.constrained_nodes.end());
   joints_ = build_joints(model_, node_index_, state_);
+  nodal_constraints_ = build_nodal_constraints(model_, node_index_, state_, rigid_);
   mass_scaling_ = setup_mass_scaling(model_, state_);
   contacts_ = contact::build_contacts(model_, node_index_, state_);
   // Contact surfaces are known before flexible bodies are attached: a flexible body reconstructs
@@ -260,6 +261,12 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
       jntforc_csv_ = std::make_unique<output::CsvFile>(options_.output_directory / "jntforc.csv",
                                                        std::string(output::kJntforcHeader),
                                                        options_.continuation.jntforc);
+    }
+    if (!nodal_constraints_.welds.empty()) {
+      swforc_schedule_.interval = default_interval(model.output.swforc_dt, span, 1000.0);
+      swforc_csv_ = std::make_unique<output::CsvFile>(options_.output_directory / "swforc.csv",
+                                                      std::string(output::kSwforcHeader),
+                                                      options_.continuation.swforc);
     }
     if (options_.write_fields) {
       d3plot_schedule_.interval = default_interval(model.output.d3plot_dt, span, 20.0);
@@ -606,8 +613,9 @@ void Simulation::run(const std::function<void(const Simulation&)>& on_progress) 
 // Every CSV file whole on disk (the end of a run, or a blow-up): each writer holds complete rows
 // in memory until a buffer fills.
 void Simulation::flush_csv_files() {
-  for (output::CsvFile* file : {matsum_csv_.get(), spcforc_csv_.get(), elout_csv_.get(),
-                                elout_shell_csv_.get(), secforc_csv_.get(), jntforc_csv_.get()}) {
+  for (output::CsvFile* file :
+       {matsum_csv_.get(), spcforc_csv_.get(), elout_csv_.get(), elout_shell_csv_.get(),
+        secforc_csv_.get(), jntforc_csv_.get(), swforc_csv_.get()}) {
     if (file) file->flush();
   }
   if (glstat_) glstat_->flush();
@@ -646,6 +654,13 @@ void Simulation::switch_parts_if_due() {
     if (set.nrbf == 2) {
       activation = switcher_->activate_nodal_rigid_bodies(state_.time, state_, rigid_);
     }
+    // NCSF: spot welds and constrained node sets (remark 4: the delete switch acts on all).
+    if (set.ncsf == 1) delete_nodal_constraints(nodal_constraints_, rigid_, state_.time);
+    if (set.ncsf == 2) {
+      activation += activate_nodal_constraints(nodal_constraints_, rigid_, state_, state_.time);
+    }
+    for (auto& notice : nodal_constraints_.notices) warnings_.push_back({{}, std::move(notice)});
+    nodal_constraints_.notices.clear();
     energy_.switch_energy -= activation;
     energy_.kinetic += activation;
     // RWF: remark 4, "all corresponding constraints are deactivated regardless of their
@@ -655,7 +670,7 @@ void Simulation::switch_parts_if_due() {
         contact::set_wall_active(walls_, wall.number, set.rwf == 2);
       }
     }
-    if (set.nrbf != 0) {  // nodal rigid bodies deleted or made: their nodes' body forces
+    if (set.nrbf != 0 || set.ncsf != 0) {  // bodies deleted or made: their nodes' body forces
       set_body_force_masses(boundary_, state_.nodes, rigid_.body_of_node, physical_mass());
       compute_external_forces();
     }
@@ -791,6 +806,9 @@ void Simulation::update_velocities() {
     nodes.v.x[i] += dt_avg * nodes.a.x[i];
     nodes.v.y[i] += dt_avg * nodes.a.y[i];
     nodes.v.z[i] += dt_avg * nodes.a.z[i];
+  }
+  if (!nodal_constraints_.ties.empty()) {
+    apply_node_set_ties(nodal_constraints_, rigid_, state_, state_.time);
   }
   constrain_velocities(boundary_, state_.time, state_.dt, state_);
   const auto rigid_start = PhaseClock::now();
@@ -951,6 +969,14 @@ void Simulation::update_velocities() {
       }
     }
   }
+  if (!nodal_constraints_.welds.empty()) {
+    // After this step's sums: failed welds leave the rigid system, their nodes keep v^{n+1/2}.
+    check_spot_welds(nodal_constraints_, rigid_, state_, vp, dt_avg, state_.time);
+  }
+  if (!nodal_constraints_.notices.empty()) {
+    for (auto& notice : nodal_constraints_.notices) warnings_.push_back({{}, std::move(notice)});
+    nodal_constraints_.notices.clear();
+  }
 }
 
 // Central difference for the rotations, alpha = (m_ext - m_int) / I with an isotropic lumped
@@ -1065,6 +1091,7 @@ void Simulation::write_output_if_due(bool force) {
     rbdout_rows_.clear();
     const double dt_avg = dt_average_;
     for (const auto& body : rigid_.bodies) {
+      if (body.weld) continue;  // a spot weld's state is in swforc.csv
       const rigid::RigidBodyState& s = body.state;
       output::RbdoutRow row;
       row.time = t;
@@ -1160,6 +1187,16 @@ void Simulation::write_output_if_due(bool force) {
     }
     jntforc_csv_->write_text(output::jntforc_text(jntforc_rows_));
     jntforc_schedule_.mark_written(t, cycle);
+  }
+  if (swforc_csv_ && wanted(swforc_schedule_)) {
+    fmt::memory_buffer text;
+    for (const SpotWeldState& w : nodal_constraints_.welds) {
+      // 17 significant digits, as every CSV file: values read back bit-identical.
+      fmt::format_to(std::back_inserter(text), "{:.17g},{},{:.17g},{:.17g},{},{:.17g}\n", t, w.id,
+                     w.normal_force, w.shear_force, static_cast<int>(w.status), w.failure_time);
+    }
+    swforc_csv_->write_text(std::string(text.data(), text.size()));
+    swforc_schedule_.mark_written(t, cycle);
   }
   if (fields_ && wanted(d3plot_schedule_)) {
     if (walls_.empty()) {

@@ -24,6 +24,7 @@
 #include "solver/flexible_bodies.hpp"
 #include "solver/joints.hpp"
 #include "solver/mass_scaling.hpp"
+#include "solver/nodal_constraints.hpp"
 #include "solver/part_histories.hpp"
 #include "solver/rigid_bodies.hpp"
 #include "solver/state.hpp"
@@ -176,6 +177,7 @@ class Simulation {
   std::int64_t element_count() const { return element_count_; }
   const RigidSystem& rigid_bodies() const { return rigid_; }
   const JointSystem& joints() const { return joints_; }
+  const NodalConstraints& nodal_constraints() const { return nodal_constraints_; }
   const MassScaling& mass_scaling() const { return mass_scaling_; }
   const contact::RigidWallSystem& rigid_walls() const { return walls_; }
   contact::RigidWallSystem& mutable_rigid_walls() { return walls_; }
@@ -259,6 +261,7 @@ class Simulation {
   State state_;
   RigidSystem rigid_;
   JointSystem joints_;  // *CONSTRAINED_JOINT_... (penalty springs between node pairs)
+  NodalConstraints nodal_constraints_;  // *CONSTRAINED_SPOTWELD, *CONSTRAINED_NODE_SET
   MassScaling mass_scaling_;  // *CONTROL_TIMESTEP DT2MS; inactive without it
   std::vector<model::Warning> warnings_;
   Boundary boundary_;
@@ -330,6 +333,9 @@ class Simulation {
   std::unique_ptr<output::CsvFile> jntforc_csv_;
   OutputSchedule jntforc_schedule_;
   std::vector<output::JntforcRow> jntforc_rows_;
+  // Spot welds: swforc.csv (*DATABASE_SWFORC DT, or about 1000 rows per run).
+  std::unique_ptr<output::CsvFile> swforc_csv_;
+  OutputSchedule swforc_schedule_;
   std::vector<SectionForce> section_rows_;
   std::vector<double> reduction_scratch_;
 

@@ -119,30 +119,7 @@ void rotate_block_state(element::HexBlock& block, const Eigen::Matrix3d& q) {
 // Removes the bodies whose index is in `gone` and renumbers every reference to bodies.
 void remove_bodies(RigidSystem& rigid, const std::set<int>& gone,
                    const std::map<int, int>& moved_to) {
-  if (gone.empty()) return;
-  std::vector<int> new_index(rigid.bodies.size(), -1);
-  int next = 0;
-  for (std::size_t b = 0; b < rigid.bodies.size(); ++b) {
-    if (!gone.count(static_cast<int>(b))) new_index[b] = next++;
-  }
-  auto remap = [&](int b) {
-    if (const auto it = moved_to.find(b); it != moved_to.end()) b = it->second;
-    return new_index[b];
-  };
-  for (auto& owner : rigid.body_of_node) {
-    if (owner >= 0) owner = remap(owner);
-  }
-  for (auto& m : rigid.motions) m.body = remap(m.body);
-  for (auto& l : rigid.loads) l.body = remap(l.body);
-  for (auto& f : rigid.flexible) f.body = remap(f.body);  // never removed (see to_rigid)
-  std::stable_sort(rigid.motions.begin(), rigid.motions.end(),
-                   [](const auto& a, const auto& b) { return a.body < b.body; });
-  std::vector<RigidBody> kept;
-  kept.reserve(next);
-  for (std::size_t b = 0; b < rigid.bodies.size(); ++b) {
-    if (new_index[b] >= 0) kept.push_back(std::move(rigid.bodies[b]));
-  }
-  rigid.bodies = std::move(kept);
+  solver::remove_rigid_bodies(rigid, gone, moved_to);
 }
 
 std::vector<std::uint8_t> deformable_nodes(const State& state) {
@@ -362,7 +339,10 @@ SwitchEvent PartSwitcher::to_rigid(const std::vector<model::PartSwitch>& cards, 
     }
     // The body that stays (the lead's, else the lowest-index one touched, else a new one).
     int keep = lead_body;
-    if (keep < 0 && !bodies.empty()) keep = *bodies.begin();
+    // A spot weld's body never becomes the merged body (it would lend its weld ID).
+    for (const int b : bodies) {
+      if (keep < 0 && !rigid.bodies[b].weld) keep = b;
+    }
     const bool lead_card = keep >= 0 && rigid.bodies[keep].inertia_from_card;
     Eigen::Matrix3d physical = Eigen::Matrix3d::Identity();
     if (keep >= 0) physical = body_rotation(rigid.bodies[keep]);
@@ -570,7 +550,7 @@ double PartSwitcher::delete_nodal_rigid_bodies(double time, State& state, RigidS
     RigidBody& body = rigid.bodies[b];
     // Nodal bodies that shared nodes with a switched part were merged into its body already
     // (the manual: "for all values of NRBF"); a nodal body holding switched parts stays.
-    if (!body.nodal || !body.parts.empty()) continue;
+    if (!body.nodal || body.weld || !body.parts.empty()) continue;
     auto& nodes = state.nodes;
     rigid::rigid_node_velocities(body.state.velocity, body.state.angular_velocity,
                                  body.state.centre, body.nodes, nodes.x.x.data(), nodes.x.y.data(),
@@ -622,7 +602,7 @@ double PartSwitcher::activate_nodal_rigid_bodies(double time, State& state, Rigi
   }
   std::erase_if(deleted_nodal_, [&](const RigidBody& b) {
     return std::any_of(rigid.bodies.begin(), rigid.bodies.end(),
-                       [&](const RigidBody& r) { return r.nodal && r.id == b.id; });
+                       [&](const RigidBody& r) { return r.nodal && !r.weld && r.id == b.id; });
   });
   return change;
 }

@@ -237,6 +237,9 @@ const Case kCases[] = {
     // Contact: friction springs, nodal contact forces and contact energy across the dump.
     {"contact", "", RIGIDFLEX_TEST_DECKS "/contact_sliding_block.k", {}, 0.004, 1},
     {"contact", "", RIGIDFLEX_TEST_DECKS "/contact_sliding_block.k", {}, 0.004, 2},
+    // Spot welds: deleted (NCSF 1) before the dump restarted from, activated (NCSF 2) and
+    // failed (TF) after it; swforc.csv continued.
+    {"spot_welds", "", RIGIDFLEX_TEST_DECKS "/spot_weld_switching.k", {}, 0.2, 1},
     // Mass-proportional damping of nodes and of a rigid body.
     {"damping", damped_spinning_rigid(), "", {}, 6e-6, 1},
     {"damping", damped_spinning_rigid(), "", {}, 6e-6, 2},

@@ -66,6 +66,10 @@ void damping_part_mass(const Block&, ReaderContext&);
 // handlers_joints.cpp
 void constrained_joint(const Block&, ReaderContext&);
 
+// handlers_welds.cpp
+void constrained_spotweld(const Block&, ReaderContext&);
+void constrained_node_set(const Block&, ReaderContext&);
+
 // handlers_control.cpp
 void control_termination(const Block&, ReaderContext&);
 void control_timestep(const Block&, ReaderContext&);

@@ -310,6 +310,8 @@ void database_ascii(const Block& block, ReaderContext& context) {
     context.model.output.elout_dt = dt;
   } else if (block.base == "*DATABASE_SECFORC") {
     context.model.output.secforc_dt = dt;
+  } else if (block.base == "*DATABASE_SWFORC") {
+    context.model.output.swforc_dt = dt;
   } else if (block.base == "*DATABASE_JNTFORC") {
     context.model.output.jntforc_dt = dt;
     context.model.output.jntforc = true;

@@ -163,11 +163,6 @@ void deformable_to_rigid_automatic(const Block& block, ReaderContext& context) {
                                                 "switch set {} has CODE {} and ignores it",
                                                 set.offset, set.swset, set.code));
   }
-  if (set.ncsf != 0) {
-    context.warn(second.location(),
-                 "NCSF: RigidFlex has no nodal constraint sets or spot welds, so the flag has "
-                 "nothing to act on");
-  }
   int n = 3;
   for (int k = 0; k < d2r; ++k) {
     set.to_rigid.push_back(read_part_switch(cursor.next(n, kEightByTen, "PID LRB PTYPE"), true));
