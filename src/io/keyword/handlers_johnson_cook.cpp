@@ -3,6 +3,7 @@
 // (material/johnson_cook_setup.cpp): the EOS may come later in the deck.
 #include <fmt/format.h>
 
+#include "io/keyword/definition_ids.hpp"
 #include "io/keyword/handlers.hpp"
 
 namespace rf::io::handlers {
@@ -17,22 +18,6 @@ int title_offset(const Block& block, CardCursor& cursor) {
   return 2;
 }
 
-model::Id positive_id(const Card& card, const char* field, const char* what) {
-  const model::Id id = card.id(0, field);
-  if (id <= 0) throw card.error(field, fmt::format("{} ID must be a positive integer", what));
-  return id;
-}
-
-template <typename Map>
-void check_unique(const Map& map, model::Id id, const Card& card, const char* field,
-                  const char* what) {
-  if (const auto it = map.find(id); it != map.end()) {
-    const auto& w = it->second.where;
-    throw card.error(field, fmt::format("{} {} is already defined at {}:{} ({})", what, id, w.file,
-                                        w.line, w.keyword));
-  }
-}
-
 }  // namespace
 
 // Card 1: MID RO G E PR DTF VP RATEOP; card 2: A B N C M TM TR EPSO; card 3: CP PC SPALL IT D1 D2
@@ -42,7 +27,7 @@ void mat_johnson_cook(const Block& block, ReaderContext& context) {
   const int n = title_offset(block, cursor);
   const Card card = cursor.next(n, kEightByTen, "MID RO G E PR DTF VP RATEOP");
   model::Material m;
-  m.id = positive_id(card, "MID", "material");
+  m.id = positive_id(card, 0, "MID", "material");
   m.kind = model::MaterialKind::JohnsonCook;
   m.keyword = block.keyword;
   m.where = card.location();
@@ -157,7 +142,7 @@ void eos_linear_polynomial(const Block& block, ReaderContext& context) {
   const int n = title_offset(block, cursor);
   const Card card = cursor.next(n, kEightByTen, "EOSID C0 C1 C2 C3 C4 C5 C6");
   model::EquationOfState eos;
-  eos.id = positive_id(card, "EOSID", "equation of state");
+  eos.id = positive_id(card, 0, "EOSID", "equation of state");
   eos.keyword = block.keyword;
   eos.where = card.location();
   static const char* const kC[] = {"C0", "C1", "C2", "C3", "C4", "C5", "C6"};

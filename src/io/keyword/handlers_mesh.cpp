@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "io/keyword/definition_ids.hpp"
 #include "io/keyword/handlers.hpp"
 #include "io/keyword/number.hpp"
 #include "material/hyperelastic_setup.hpp"
@@ -17,22 +18,6 @@ const Layout kEightByTen = uniform_layout(8, 10);
 std::string read_title(const Block& block, CardCursor& cursor) {
   if (!block.has_option("TITLE")) return {};
   return cursor.next_text(1, "title");
-}
-
-template <typename Map>
-void check_unique(const Map& map, model::Id id, const Card& card, const char* field,
-                  const char* what) {
-  if (const auto it = map.find(id); it != map.end()) {
-    const auto& w = it->second.where;
-    throw card.error(field, fmt::format("{} {} is already defined at {}:{} ({})", what, id, w.file,
-                                        w.line, w.keyword));
-  }
-}
-
-model::Id positive_id(const Card& card, std::size_t i, const char* field, const char* what) {
-  const model::Id id = card.id(i, field);
-  if (id <= 0) throw card.error(field, fmt::format("{} ID must be a positive integer", what));
-  return id;
 }
 
 bool only_blank_lines_left(const CardCursor& cursor, const Block& block) {

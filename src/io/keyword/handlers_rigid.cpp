@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "io/keyword/definition_ids.hpp"
 #include "io/keyword/geometry.hpp"
 #include "io/keyword/handlers.hpp"
 #include "io/keyword/number.hpp"
@@ -14,26 +15,10 @@ namespace {
 
 const Layout kEightByTen = uniform_layout(8, 10);
 
-model::Id positive_id(const Card& card, std::size_t i, const char* field, const char* what) {
-  const model::Id id = card.id(i, field);
-  if (id <= 0) throw card.error(field, fmt::format("{} ID must be a positive integer", what));
-  return id;
-}
-
 model::Id non_negative_id(const Card& card, std::size_t i, const char* field) {
   const model::Id id = card.id(i, field);
   if (id < 0) throw card.error(field, fmt::format("ID {} must not be negative", id));
   return id;
-}
-
-template <typename Map>
-void check_unique(const Map& map, model::Id id, const Card& card, const char* field,
-                  const char* what) {
-  if (const auto it = map.find(id); it != map.end()) {
-    const auto& w = it->second.where;
-    throw card.error(field, fmt::format("{} {} is already defined at {}:{} ({})", what, id, w.file,
-                                        w.line, w.keyword));
-  }
 }
 
 bool only_blank_lines_left(const CardCursor& cursor, const Block& block) {

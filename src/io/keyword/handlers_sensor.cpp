@@ -12,6 +12,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "io/keyword/definition_ids.hpp"
 #include "io/keyword/handlers.hpp"
 #include "io/keyword/number.hpp"
 #include "model/function.hpp"
@@ -37,25 +38,10 @@ std::string read_title(const Block& block, CardCursor& cursor, int& n) {
   return cursor.next_text(n++, "title");
 }
 
-Id positive_id(const Card& card, std::size_t i, const char* field, const char* what) {
-  const Id id = card.id(i, field);
-  if (id <= 0) throw card.error(field, fmt::format("{} ID must be a positive integer", what));
-  return id;
-}
-
 // A character field, trimmed and upper case; `fallback` when blank.
 std::string word(const Card& card, std::size_t i, const char* fallback) {
   const std::string_view t = card.text(i);
   return t.empty() ? std::string(fallback) : to_upper(t);
-}
-
-template <typename Map>
-void check_unique(const Map& map, Id id, const Card& card, const char* field, const char* what) {
-  if (const auto it = map.find(id); it != map.end()) {
-    const auto& w = it->second.where;
-    throw card.error(field, fmt::format("{} {} is already defined at {}:{} ({})", what, id, w.file,
-                                        w.line, w.keyword));
-  }
 }
 
 void check_unique_sensor(const model::Model& m, Id id, const Card& card) {
