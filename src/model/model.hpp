@@ -79,6 +79,7 @@ struct Part {
 struct SectionSolid {
   Id id = 0;
   int elform = 1;  // 1: one-point reduced + hourglass control; 2: selective-reduced 2x2x2
+                  // 10: one-point 4-node tetrahedron (constant strain)
   SourceLocation where;
 };
 
