@@ -17,6 +17,7 @@ struct EigenCommandOptions {
   std::optional<double> shift;               // --shift (eigenvalue units, negative)
   std::optional<double> remove_rigid_below;  // --remove-rigid F: LFLAG 1, LFTEND F
   std::string solver = "cholmod";            // cholmod | simplicial
+  bool explicit_rotary_inertia = false;      // --rotary-inertia explicit
   bool quiet = false;
 };
 

@@ -581,7 +581,7 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
 
   std::optional<int> eigen_modes;
-  std::string eigen_parts, eigen_solver = "cholmod";
+  std::string eigen_parts, eigen_solver = "cholmod", eigen_rotary_inertia = "physical";
   std::optional<double> eigen_shift, eigen_remove_rigid;
   auto* eigen = app.add_subcommand(
       "eigen", "Eigen analysis (modes of free-free or constrained parts) of any deck");
@@ -599,6 +599,11 @@ int main(int argc, char** argv) {
                     "Drop modes at or below this frequency (LFLAG 1, LFTEND)");
   eigen->add_option("--solver", eigen_solver, "Sparse Cholesky: cholmod or simplicial (Eigen)")
       ->check(CLI::IsMember({"cholmod", "simplicial"}));
+  eigen
+      ->add_option("--rotary-inertia", eigen_rotary_inertia,
+                   "Rotational inertia of shell and beam nodes: physical (default) or explicit "
+                   "(the explicit solver's scaled rotary inertia, docs/eigen.md)")
+      ->check(CLI::IsMember({"physical", "explicit"}));
   eigen->add_option("--threads", threads, "OpenMP threads (default: all cores)")
       ->check(CLI::NonNegativeNumber);
   eigen->add_flag("--quiet", quiet, "No progress or summary (warnings and errors still printed)");
@@ -649,6 +654,7 @@ int main(int argc, char** argv) {
       options.shift = eigen_shift;
       options.remove_rigid_below = eigen_remove_rigid;
       options.solver = eigen_solver;
+      options.explicit_rotary_inertia = eigen_rotary_inertia == "explicit";
       options.quiet = quiet;
       rf::model::Model model = rf::io::read_deck(deck, read_options);
       clear_output_directory(options.output, rf::app::ResultKind::kEigen, quiet);

@@ -49,17 +49,21 @@ NodeGroups connected_groups(const solver::State& state) {
     }
     return i;
   };
-  for (const auto& block : state.hex_blocks) {
-    const int npe = block.nodes_per_element();
-    for (std::size_t e = 0; e < block.size(); ++e) {
-      const std::int32_t* c = &block.conn[e * static_cast<std::size_t>(npe)];
-      const std::int32_t r0 = find(c[0]);
-      for (int a = 1; a < npe; ++a) {
+  const auto join = [&](const std::vector<std::int32_t>& conn, std::size_t elements) {
+    if (elements == 0) return;
+    const std::size_t npe = conn.size() / elements;
+    for (std::size_t e = 0; e < elements; ++e) {
+      const std::int32_t* c = &conn[e * npe];
+      for (std::size_t a = 1; a < npe; ++a) {
+        const std::int32_t r0 = find(c[0]);
         const std::int32_t r = find(c[a]);
         if (r != r0) parent[static_cast<std::size_t>(std::max(r, r0))] = std::min(r, r0);
       }
     }
-  }
+  };
+  for (const auto& block : state.hex_blocks) join(block.conn, block.size());
+  for (const auto& block : state.shell_blocks) join(block.conn, block.size());
+  for (const auto& block : state.beam_blocks) join(block.conn, block.size());
   NodeGroups groups;
   groups.group.assign(n, -1);
   std::map<std::int32_t, std::int32_t> label;
@@ -157,17 +161,21 @@ ModeSet compute_modes(const model::Model& model, const EigenRequest& request, Ei
                                                       request.mode_count));
   }
   auto t0 = Clock::now();
-  StructuralMatrices sm = assemble_structural_matrices(model, request.parts);
+  StructuralMatrices sm =
+      assemble_structural_matrices(model, request.parts, request.rotary_inertia);
   report.seconds_assembly = seconds_since(t0);
   for (auto& w : sm.warnings) report.warnings.push_back(w);
   const std::size_t ndof = static_cast<std::size_t>(sm.mass.size());
-  const std::size_t n = ndof / 3;
+  const std::size_t n = sm.state.nodes.size();
+  const std::size_t tdof = sm.translation_dofs();
+  const std::size_t rotations = sm.rotation_count();
   report.dof_count = ndof;
   report.stiffness_nonzeros = static_cast<std::size_t>(sm.stiffness.nonZeros());
   log(fmt::format(
-      "eigen: {} nodes, {} DOFs, K assembled in {:.3f} s ({} nonzeros, element "
+      "eigen: {} nodes ({} with rotations), {} DOFs, K assembled in {:.3f} s ({} nonzeros, element "
       "asymmetry {:.1e})",
-      n, ndof, report.seconds_assembly, report.stiffness_nonzeros, sm.element_asymmetry));
+      n, rotations, ndof, report.seconds_assembly, report.stiffness_nonzeros,
+      sm.element_asymmetry));
 
   // Free DOFs and the mass check.
   std::vector<std::int64_t> free_index(ndof, -1);
@@ -176,9 +184,9 @@ ModeSet compute_modes(const model::Model& model, const EigenRequest& request, Ei
     if (sm.fixed[i]) continue;
     if (!(sm.mass[static_cast<Eigen::Index>(i)] > 0.0)) {
       throw InputError(InputErrorContext{},
-                       fmt::format("eigen analysis: node {} has no mass (a part with RO = 0?); "
+                       fmt::format("eigen analysis: node {} has no {} (a part with RO = 0?); "
                                    "massless DOFs are not supported",
-                                   sm.state.nodes.id[i / 3]));
+                                   sm.node_of_dof(i), i < tdof ? "mass" : "rotational inertia"));
     }
     free_index[i] = static_cast<std::int64_t>(free_dofs.size());
     free_dofs.push_back(i);
@@ -351,12 +359,27 @@ ModeSet compute_modes(const model::Model& model, const EigenRequest& request, Ei
     modes.coordinates[3 * i + 1] = sm.state.nodes.x0.y[i];
     modes.coordinates[3 * i + 2] = sm.state.nodes.x0.z[i];
   }
-  modes.shapes.assign(kept.size() * ndof, 0.0);
+  modes.rotation_nodes.assign(sm.state.rotations.node.begin(), sm.state.rotations.node.end());
+  modes.rotational_inertia.resize(rotations);
+  for (std::size_t r = 0; r < rotations; ++r)
+    modes.rotational_inertia[r] = sm.mass[static_cast<Eigen::Index>(tdof + 3 * r)];
+  modes.shapes.assign(kept.size() * tdof, 0.0);
+  modes.rotation_shapes.assign(kept.size() * 3 * rotations, 0.0);
   for (std::size_t k = 0; k < kept.size(); ++k) {
     const Candidate& c = *kept[k];
-    double* shape = modes.shapes.data() + k * ndof;
-    for (std::size_t j = 0; j < nf; ++j) shape[free_dofs[j]] = c.phi[static_cast<Eigen::Index>(j)];
-    const double largest = c.phi.cwiseAbs().maxCoeff();
+    double* shape = modes.shapes.data() + k * tdof;
+    double* rotation_shape = modes.rotation_shapes.data() + k * 3 * rotations;
+    double largest = 0.0;
+    for (std::size_t j = 0; j < nf; ++j) {
+      const double value = c.phi[static_cast<Eigen::Index>(j)];
+      if (free_dofs[j] < tdof) {
+        shape[free_dofs[j]] = value;
+        largest = std::max(largest, std::abs(value));
+      } else {
+        rotation_shape[free_dofs[j] - tdof] = value;
+      }
+    }
+    if (!(largest > 0.0)) largest = c.phi.cwiseAbs().maxCoeff();  // a pure rotation mode
     modes.eigenvalues.push_back(c.lambda);
     // Generalized mass of the mode scaled to a largest translation of 1 (its form before mass
     // normalisation, as eigout tables give it).

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "modal/mode_set.hpp"
+#include "modal/stiffness_assembly.hpp"
 #include "model/model.hpp"
 
 namespace rf::modal {
@@ -39,13 +40,15 @@ struct EigenRequest {
   double tolerance = 1e-10;
   int max_iterations = 1000;
   FactorizationBackend backend = FactorizationBackend::Automatic;
+  // Rotational inertia of shell and beam nodes (stiffness_assembly.hpp, docs/eigen.md).
+  RotaryInertia rotary_inertia = RotaryInertia::kPhysical;
   // Where messages (convergence, warnings) go; null: nowhere.
   std::vector<std::string>* log = nullptr;
 };
 
 // Diagnostics of one analysis beyond the ModeSet (for the CLI, tests and eigout).
 struct EigenReport {
-  std::size_t dof_count = 0;       // 3 per node of the sub-model
+  std::size_t dof_count = 0;       // 3 per node of the sub-model, 3 more per node with rotations
   std::size_t free_dof_count = 0;  // without SPC-fixed DOFs
   std::size_t stiffness_nonzeros = 0;
   double shift = 0.0;                     // sigma used

@@ -12,7 +12,10 @@ namespace rf::modal {
 namespace {
 
 constexpr const char* kFormat = "rigidflex-modes";
+// Version 1: translations only (solid models, still written for them). Version 2: rotational
+// components of the nodes of shells and beams (mode_set.hpp).
 constexpr std::int64_t kVersion = 1;
+constexpr std::int64_t kRotationsVersion = 2;
 
 template <class T>
 std::span<const T> view(const std::vector<T>& v) {
@@ -26,14 +29,17 @@ void write_mode_database(const std::filesystem::path& file, const ModeSet& modes
   const std::size_t m = modes.mode_count();
   if (modes.node_parts.size() != n || modes.coordinates.size() != 3 * n || modes.mass.size() != n ||
       modes.generalized_mass.size() != m || modes.residual.size() != m || modes.rigid.size() != m ||
-      modes.shapes.size() != 3 * n * m) {
+      modes.shapes.size() != 3 * n * m ||
+      modes.rotational_inertia.size() != modes.rotation_count() ||
+      modes.rotation_shapes.size() != 3 * modes.rotation_count() * m) {
     throw std::invalid_argument("write_mode_database: inconsistent ModeSet sizes");
   }
   io::h5::File h5 = io::h5::File::create(file);
   {
     const io::h5::Group root = h5.root();
     root.set("format", std::string(kFormat));
-    root.set("version", kVersion);
+    const bool rotations = modes.rotation_count() > 0;
+    root.set("version", rotations ? kRotationsVersion : kVersion);
     root.set("rigid_mode_count", static_cast<std::int64_t>(modes.rigid_mode_count));
     root.set("node_count", static_cast<std::int64_t>(n));
     root.set("mode_count", static_cast<std::int64_t>(m));
@@ -42,6 +48,10 @@ void write_mode_database(const std::filesystem::path& file, const ModeSet& modes
     nodes.write("part", view(modes.node_parts));
     nodes.write("coordinates", view(modes.coordinates));
     nodes.write("mass", view(modes.mass));
+    if (rotations) {
+      nodes.write("rotation_node", view(modes.rotation_nodes));
+      nodes.write("rotational_inertia", view(modes.rotational_inertia));
+    }
     const io::h5::Group group = root.create_group("modes");
     std::vector<double> frequency(m);
     for (std::size_t k = 0; k < m; ++k) {
@@ -53,6 +63,7 @@ void write_mode_database(const std::filesystem::path& file, const ModeSet& modes
     group.write("residual", view(modes.residual));
     group.write("rigid", view(modes.rigid));
     group.write("shape", view(modes.shapes));
+    if (rotations) group.write("rotation_shape", view(modes.rotation_shapes));
   }
   h5.close();
 }
@@ -63,9 +74,10 @@ ModeSet read_mode_database(const std::filesystem::path& file) {
   if (!root.has_attribute("format") || root.get_string("format") != kFormat) {
     root.fail("format", fmt::format("is not \"{}\": not a RigidFlex mode database", kFormat));
   }
-  if (root.get_int("version") != kVersion) {
-    root.fail("version", fmt::format("is {}, this version reads version {}",
-                                     root.get_int("version"), kVersion));
+  const std::int64_t version = root.get_int("version");
+  if (version != kVersion && version != kRotationsVersion) {
+    root.fail("version", fmt::format("is {}, this version reads versions {} and {}", version,
+                                     kVersion, kRotationsVersion));
   }
   ModeSet modes;
   modes.rigid_mode_count = static_cast<int>(root.get_int("rigid_mode_count"));
@@ -99,6 +111,26 @@ ModeSet read_mode_database(const std::filesystem::path& file) {
   if (modes.rigid.size() != m) group.fail("rigid", fmt::format("must have {} entries", m));
   if (modes.shapes.size() != 3 * n * m) {
     group.fail("shape", fmt::format("must have {} entries (modes x 3 x nodes)", 3 * n * m));
+  }
+  if (version == kRotationsVersion) {
+    modes.rotation_nodes = nodes.read_int64("rotation_node");
+    const std::size_t r = modes.rotation_nodes.size();
+    for (const std::int64_t i : modes.rotation_nodes) {
+      if (i < 0 || static_cast<std::size_t>(i) >= n) {
+        nodes.fail("rotation_node", fmt::format("has the node index {}, outside [0, {})", i, n));
+      }
+    }
+    modes.rotational_inertia = nodes.read_doubles("rotational_inertia");
+    if (modes.rotational_inertia.size() != r) {
+      nodes.fail("rotational_inertia", fmt::format("must have {} entries (one per rotation "
+                                                   "node)",
+                                                   r));
+    }
+    modes.rotation_shapes = group.read_doubles("rotation_shape");
+    if (modes.rotation_shapes.size() != 3 * r * m) {
+      group.fail("rotation_shape",
+                 fmt::format("must have {} entries (modes x 3 x rotation nodes)", 3 * r * m));
+    }
   }
   return modes;
 }

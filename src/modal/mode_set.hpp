@@ -16,6 +16,12 @@
 //                                    K phi vanishes, rigid modes)
 //   /modes/rigid         uint8[m]    1 for a rigid-body (near-zero) mode
 //   /modes/shape         double[m*3n] mode k at offset k*3n, x y z per node (mass-normalised)
+// Version 2 (written only when some nodes have rotations: shells, beams; a solid model's file
+// stays version 1) adds
+//   /nodes/rotation_node      int64[r]    index (0-based, into /nodes/id) of each node with
+//                                         rotations
+//   /nodes/rotational_inertia double[r]   lumped rotational inertia (about every axis)
+//   /modes/rotation_shape     double[m*3r] mode k at offset k*3r, rx ry rz per rotation node
 #pragma once
 
 #include <cstdint>
@@ -36,11 +42,22 @@ struct ModeSet {
   std::vector<double> residual;
   std::vector<std::uint8_t> rigid;
   std::vector<double> shapes;  // mode k, node i, direction d at [k * 3n + 3 i + d]
+  // Nodes with rotations (shells, beams; empty for solids): the node index (into node_ids) of
+  // each, its lumped rotational inertia (about every axis) and the rotational components of the
+  // modes, mode k, rotation node j, axis d at [k * 3r + 3 j + d]. Mass normalisation covers
+  // both: shapes^T M shapes + rotation_shapes^T J rotation_shapes = I.
+  std::vector<std::int64_t> rotation_nodes;
+  std::vector<double> rotational_inertia;
+  std::vector<double> rotation_shapes;
   int rigid_mode_count = 0;
 
   std::size_t node_count() const { return node_ids.size(); }
   std::size_t mode_count() const { return eigenvalues.size(); }
   const double* shape(std::size_t k) const { return shapes.data() + k * 3 * node_count(); }
+  std::size_t rotation_count() const { return rotation_nodes.size(); }
+  const double* rotation_shape(std::size_t k) const {
+    return rotation_shapes.data() + k * 3 * rotation_count();
+  }
 };
 
 // Writes / reads modes.h5 (layout above). Reading checks format, version and sizes and throws

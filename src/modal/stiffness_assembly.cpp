@@ -2,9 +2,12 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <set>
+#include <unordered_map>
 #include <unordered_set>
 
 #include "element/kernels.hpp"
@@ -25,6 +28,44 @@ constexpr double kProbe = 1e-5;
 
 // Keeps the element matrices of one chunk within about this many doubles (64 MiB).
 constexpr std::size_t kChunkDoubles = std::size_t{8} << 20;
+
+// The probe mesh of `count` elements of `npe` nodes (connectivity `conn`, dense node indices):
+// element e's local node a is probe node e npe + a (a repeated node maps to its first
+// occurrence, as in the shared mesh), at the reference coordinates; `size` is each element's
+// largest bounding-box side.
+struct ProbeMesh {
+  std::array<std::vector<double>, 3> x0;
+  std::vector<std::int32_t> conn;
+  std::vector<double> size;
+};
+
+ProbeMesh probe_mesh(const std::int32_t* conn, int npe, std::size_t count,
+                     const solver::NodalState& nodes) {
+  const std::size_t copies = count * static_cast<std::size_t>(npe);
+  ProbeMesh mesh;
+  for (auto& coordinate : mesh.x0) coordinate.assign(copies, 0.0);
+  mesh.conn.resize(copies);
+  mesh.size.assign(count, 0.0);
+  const std::array<const std::vector<double>*, 3> ref{&nodes.x0.x, &nodes.x0.y, &nodes.x0.z};
+  for (std::size_t e = 0; e < count; ++e) {
+    const std::int32_t* c = conn + e * static_cast<std::size_t>(npe);
+    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+    const std::size_t copy = e * static_cast<std::size_t>(npe);
+    for (int a = 0; a < npe; ++a) {
+      int b = 0;
+      while (c[b] != c[a]) ++b;
+      mesh.conn[copy + static_cast<std::size_t>(a)] = static_cast<std::int32_t>(copy + b);
+      for (int d = 0; d < 3; ++d) {
+        const double value = (*ref[d])[static_cast<std::size_t>(c[a])];
+        mesh.x0[d][copy + static_cast<std::size_t>(a)] = value;
+        lo[d] = std::min(lo[d], value);
+        hi[d] = std::max(hi[d], value);
+      }
+    }
+    mesh.size[e] = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  }
+  return mesh;
+}
 
 }  // namespace
 
@@ -55,16 +96,53 @@ model::Model extract_parts(const model::Model& model, const std::vector<model::I
   sub.parameters = model.parameters;
   sub.implicit = model.implicit;
 
+  sub.shell_sections = model.shell_sections;
+  sub.beam_sections = model.beam_sections;
+  sub.shell_control = model.shell_control;
+
+  // Solids, shells and beams of the kept parts (shells and beams carry rotations: 6 DOFs per
+  // node, docs/eigen.md). Discrete elements and point masses are not part of the analysis.
   std::unordered_set<model::Id> used_nodes;
   for (const auto& solid : model.solids) {
     if (!all && keep.count(solid.pid) == 0) continue;
     sub.solids.push_back(solid);
     for (const model::Id n : solid.nodes) used_nodes.insert(n);
   }
-  if (sub.solids.empty()) {
+  for (const auto& shell : model.shells) {
+    if (!all && keep.count(shell.pid) == 0) continue;
+    sub.shells.push_back(shell);
+    for (const model::Id n : shell.nodes) used_nodes.insert(n);
+  }
+  if (!model.beams.empty()) {
+    std::unordered_map<model::Id, std::array<double, 3>> position;
+    for (const auto& node : model.nodes) position.emplace(node.id, node.x);
+    for (const auto& beam : model.beams) {
+      if (!all && keep.count(beam.pid) == 0) continue;
+      model::BeamElement b = beam;
+      // The orientation node N3 is geometry only: a node outside the elements would be a
+      // massless DOF of the analysis, so it becomes the equivalent orientation vector.
+      if (!b.orientation && b.nodes[2] != 0) {
+        const auto p1 = position.find(b.nodes[0]);
+        const auto p3 = position.find(b.nodes[2]);
+        if (p1 != position.end() && p3 != position.end()) {
+          b.orientation =
+              std::array<double, 3>{p3->second[0] - p1->second[0], p3->second[1] - p1->second[1],
+                                    p3->second[2] - p1->second[2]};
+          b.nodes[2] = 0;
+        }
+      }
+      for (int k = 0; k < 2; ++k) used_nodes.insert(b.nodes[k]);
+      if (b.nodes[2] != 0) used_nodes.insert(b.nodes[2]);  // unknown N3: build_state reports it
+      sub.beams.push_back(std::move(b));
+    }
+  }
+  if (sub.solids.empty() && sub.shells.empty() && sub.beams.empty()) {
     throw InputError(InputErrorContext{},
-                     all ? std::string("the deck has no solid elements to analyse")
-                         : fmt::format("the selected parts have no solid elements"));
+                     all ? std::string("the deck has no solid, shell or beam elements to analyse")
+                         : fmt::format("the selected parts have no solid, shell or beam elements"));
+  }
+  if (warnings && !model.discretes.empty()) {
+    warnings->push_back("*ELEMENT_DISCRETE springs and dampers are ignored by the eigen analysis");
   }
   for (const auto& node : model.nodes) {
     if (used_nodes.count(node.id)) sub.nodes.push_back(node);
@@ -137,34 +215,14 @@ std::vector<double> element_stiffness_matrices(const element::HexBlock& source,
   probe.element_id.assign(source.element_id.begin() + static_cast<std::ptrdiff_t>(first),
                           source.element_id.begin() + static_cast<std::ptrdiff_t>(first + count));
 
-  // Every element gets its own copies of its nodes; a node repeated in a degenerate
-  // connectivity maps to the copy of its first occurrence, as in the shared mesh.
-  std::array<std::vector<double>, 3> x0, x, v;
-  for (int d = 0; d < 3; ++d) {
-    x0[d].assign(copies, 0.0);
-    v[d].assign(copies, 0.0);
-  }
-  probe.conn.resize(copies);
-  std::vector<double> size(count, 0.0);
-  const std::array<const std::vector<double>*, 3> ref{&nodes.x0.x, &nodes.x0.y, &nodes.x0.z};
-  for (std::size_t e = 0; e < count; ++e) {
-    const std::int32_t* c = &source.conn[(first + e) * static_cast<std::size_t>(npe)];
-    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-    for (int a = 0; a < npe; ++a) {
-      int b = 0;
-      while (c[b] != c[a]) ++b;
-      const std::size_t copy = e * static_cast<std::size_t>(npe);
-      probe.conn[copy + static_cast<std::size_t>(a)] = static_cast<std::int32_t>(copy + b);
-      for (int d = 0; d < 3; ++d) {
-        const double value = (*ref[d])[static_cast<std::size_t>(c[a])];
-        x0[d][copy + static_cast<std::size_t>(a)] = value;
-        lo[d] = std::min(lo[d], value);
-        hi[d] = std::max(hi[d], value);
-      }
-    }
-    size[e] = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
-  }
-  x = x0;
+  // Every element gets its own copies of its nodes.
+  ProbeMesh mesh =
+      probe_mesh(&source.conn[first * static_cast<std::size_t>(npe)], npe, count, nodes);
+  const std::array<std::vector<double>, 3>& x0 = mesh.x0;
+  const std::vector<double>& size = mesh.size;
+  probe.conn = std::move(mesh.conn);
+  std::array<std::vector<double>, 3> x = x0, v;
+  for (auto& velocity : v) velocity.assign(copies, 0.0);
   const element::NodalView view{x[0].data(), x[1].data(), x[2].data(),
                                 v[0].data(), v[1].data(), v[2].data()};
   element::initialize_block(probe, view);
@@ -211,16 +269,328 @@ std::vector<double> element_stiffness_matrices(const element::HexBlock& source,
   return matrices;
 }
 
+namespace {
+
+// Shell and beam blocks restricted to elements [first, first + count) on the probe nodes:
+// element e's local node a is probe node e * npe + a (a repeated node maps to its first
+// occurrence), its rotational index the same number (-1 for a truss). Initialised on the
+// probe nodes, which start at the reference coordinates.
+element::ShellBlock probe_block(const element::ShellBlock& source, std::size_t first,
+                                std::size_t count, const element::NodalView& view,
+                                const std::vector<std::int32_t>& conn) {
+  element::ShellBlock probe = source;
+  probe.owned = {};
+  probe.step_scale.clear();
+  probe.rigid = false;
+  probe.has_force_slots = true;
+  // Viscous hourglass control (IHQ 1-3) has no stiffness: the stiffness form IHQ 4, same QM.
+  if (probe.hourglass.ihq <= 3) probe.hourglass.ihq = 4;
+  const auto from = static_cast<std::ptrdiff_t>(first),
+             to = static_cast<std::ptrdiff_t>(first + count);
+  probe.element_id.assign(source.element_id.begin() + from, source.element_id.begin() + to);
+  probe.thickness.assign(source.thickness.begin() + 4 * from, source.thickness.begin() + 4 * to);
+  probe.conn = conn;
+  probe.rotation_conn = conn;
+  element::initialize_shell_block(probe, view);
+  return probe;
+}
+
+element::BeamBlock probe_block(const element::BeamBlock& source, std::size_t first,
+                               std::size_t count, const element::NodalView& view,
+                               const std::vector<std::int32_t>& conn) {
+  element::BeamBlock probe = source;
+  probe.owned = {};
+  probe.step_scale.clear();
+  probe.rigid = false;
+  probe.has_force_slots = true;
+  const auto from = static_cast<std::ptrdiff_t>(first),
+             to = static_cast<std::ptrdiff_t>(first + count);
+  probe.element_id.assign(source.element_id.begin() + from, source.element_id.begin() + to);
+  probe.orientation.assign(source.orientation.begin() + 3 * from,
+                           source.orientation.begin() + 3 * to);
+  probe.conn = conn;
+  probe.rotation_conn = conn;
+  if (probe.elform == 3) std::fill(probe.rotation_conn.begin(), probe.rotation_conn.end(), -1);
+  element::initialize_beam_block(probe, view);
+  return probe;
+}
+
+element::KernelResult probe_forces(element::ShellBlock& block, const element::NodalView& nodes,
+                                   const element::RotationalView& rotations, double dt) {
+  return element::compute_shell_forces(block, nodes, rotations, dt);
+}
+element::KernelResult probe_forces(element::BeamBlock& block, const element::NodalView& nodes,
+                                   const element::RotationalView& rotations, double dt) {
+  return element::compute_beam_forces(block, nodes, rotations, dt);
+}
+constexpr int nodes_per_element(const element::ShellBlock&) {
+  return 4;
+}
+constexpr int nodes_per_element(const element::BeamBlock&) {
+  return 2;
+}
+bool has_rotations(const element::ShellBlock&) {
+  return true;
+}
+bool has_rotations(const element::BeamBlock& block) {
+  return block.elform != 3;
+}
+
+// Drilling stiffness of one shell element (the BLT kernel has none: the rotation of a node
+// about the shell normal would be a zero-energy DOF of every node, docs/eigen.md). A penalty
+// ties the drilling rotation n . theta_a of each distinct node a to the element's in-plane
+// rotation omega = (dv/dx - du/dy) / 2 at the centroid (Hughes and Brezzi, Comput. Methods
+// Appl. Mech. Engrg. 72 (1989) 105, with a small penalty instead of gamma = G): energy
+// 1/2 k sum_a (n . theta_a - omega)^2, k = kDrillingFactor G t A / distinct nodes. Rigid
+// motions have n . theta = omega, so they stay free; the element matrix gains k h_a h_a^T.
+void add_drilling_stiffness(const element::ShellBlock& block, std::size_t e,
+                            const solver::NodalState& nodes, double* k) {
+  const std::int32_t* c = &block.conn[4 * e];
+  const bool triangle = c[2] == c[3];
+  const int distinct = triangle ? 3 : 4;
+  Eigen::Vector3d p[4];
+  for (int a = 0; a < 4; ++a) {
+    const auto i = static_cast<std::size_t>(c[a]);
+    p[a] = {nodes.x0.x[i], nodes.x0.y[i], nodes.x0.z[i]};
+  }
+  const Eigen::Vector3d d1 = triangle ? Eigen::Vector3d(p[1] - p[0]) : Eigen::Vector3d(p[2] - p[0]);
+  const Eigen::Vector3d d2 = triangle ? Eigen::Vector3d(p[2] - p[0]) : Eigen::Vector3d(p[3] - p[1]);
+  const Eigen::Vector3d n = d1.cross(d2).normalized();
+  const Eigen::Vector3d e1 = (p[1] - p[0] - n.dot(p[1] - p[0]) * n).normalized();
+  const Eigen::Vector3d e2 = n.cross(e1);
+  double x[4], y[4];
+  for (int a = 0; a < 4; ++a) {
+    x[a] = e1.dot(p[a] - p[0]);
+    y[a] = e2.dot(p[a] - p[0]);
+  }
+  // Centroid derivatives of the shape functions, b1 = dN/dx, b2 = dN/dy (Belytschko, Lin and
+  // Tsay 1984, eq. 19, for the quadrilateral; the linear triangle's for a triangle).
+  double b1[4] = {}, b2[4] = {}, area = 0.0;
+  if (triangle) {
+    const double twice = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
+    area = 0.5 * twice;
+    b1[0] = (y[1] - y[2]) / twice, b1[1] = (y[2] - y[0]) / twice, b1[2] = (y[0] - y[1]) / twice;
+    b2[0] = (x[2] - x[1]) / twice, b2[1] = (x[0] - x[2]) / twice, b2[2] = (x[1] - x[0]) / twice;
+  } else {
+    const double twice = (x[2] - x[0]) * (y[3] - y[1]) - (x[3] - x[1]) * (y[2] - y[0]);
+    area = 0.5 * twice;
+    b1[0] = (y[1] - y[3]) / twice, b1[1] = (y[2] - y[0]) / twice;
+    b1[2] = (y[3] - y[1]) / twice, b1[3] = (y[0] - y[2]) / twice;
+    b2[0] = (x[3] - x[1]) / twice, b2[1] = (x[0] - x[2]) / twice;
+    b2[2] = (x[1] - x[3]) / twice, b2[3] = (x[2] - x[0]) / twice;
+  }
+  const double stiffness = kDrillingFactor * block.material.shear * block.element_thickness[e] *
+                           std::abs(area) / distinct;
+  constexpr std::size_t nd = 24;
+  for (int a = 0; a < distinct; ++a) {
+    double h[nd] = {};
+    for (int d = 0; d < 3; ++d) h[6 * a + 3 + d] = n[d];
+    for (int b = 0; b < distinct; ++b) {
+      const Eigen::Vector3d g = -0.5 * (b1[b] * e2 - b2[b] * e1);
+      for (int d = 0; d < 3; ++d) h[6 * b + d] = g[d];
+    }
+    for (std::size_t r = 0; r < nd; ++r) {
+      if (h[r] == 0.0) continue;
+      for (std::size_t col = 0; col < nd; ++col) k[r * nd + col] += stiffness * h[r] * h[col];
+    }
+  }
+}
+
+// Central differences of the block's kernel forces and moments, as for hexahedra: column
+// (a, d) from one kernel pass with every element's local node a moved along d (translation
+// kProbe times the element size, or rotation kProbe rad), the others at rest.
+template <class Block>
+std::vector<double> structural_element_matrices(const Block& source,
+                                                const solver::NodalState& nodes, std::size_t first,
+                                                std::size_t count) {
+  const int npe = nodes_per_element(source);
+  const std::size_t nd = 6 * static_cast<std::size_t>(npe);
+  const std::size_t copies = count * static_cast<std::size_t>(npe);
+  const ProbeMesh mesh =
+      probe_mesh(&source.conn[first * static_cast<std::size_t>(npe)], npe, count, nodes);
+  const std::array<std::vector<double>, 3>& x0 = mesh.x0;
+  const std::vector<double>& size = mesh.size;
+  const std::vector<std::int32_t>& conn = mesh.conn;
+  std::array<std::vector<double>, 3> x = x0, v, w;
+  for (int d = 0; d < 3; ++d) {
+    v[d].assign(copies, 0.0);
+    w[d].assign(copies, 0.0);
+  }
+  const element::NodalView view{x[0].data(), x[1].data(), x[2].data(),
+                                v[0].data(), v[1].data(), v[2].data()};
+  const element::RotationalView spin{w[0].data(), w[1].data(), w[2].data()};
+  Block probe = probe_block(source, first, count, view, conn);
+  const Block pristine = probe;
+  const int dofs = has_rotations(source) ? 6 : 3;
+
+  std::vector<double> matrices(count * nd * nd, 0.0);
+  for (int a = 0; a < npe; ++a) {
+    for (int d = 0; d < dofs; ++d) {
+      const std::size_t column = 6 * static_cast<std::size_t>(a) + static_cast<std::size_t>(d);
+      for (const double sign : {1.0, -1.0}) {
+        for (int k = 0; k < 3; ++k) {
+          std::copy(x0[k].begin(), x0[k].end(), x[k].begin());
+          std::fill(v[k].begin(), v[k].end(), 0.0);
+          std::fill(w[k].begin(), w[k].end(), 0.0);
+        }
+        for (std::size_t e = 0; e < count; ++e) {
+          const std::size_t copy = e * static_cast<std::size_t>(npe) + static_cast<std::size_t>(a);
+          if (conn[copy] != static_cast<std::int32_t>(copy)) continue;  // repeated node
+          if (d < 3) {
+            v[d][copy] = sign * size[e];
+            x[d][copy] += sign * kProbe * size[e];
+          } else {
+            w[d - 3][copy] = sign;
+          }
+        }
+        probe = pristine;
+        const element::KernelResult result = probe_forces(probe, view, spin, kProbe);
+        if (result.failed) {
+          throw SolverError(fmt::format(
+              "stiffness of part {}: element {} failed in the reference configuration",
+              source.part_id, probe.element_id[static_cast<std::size_t>(result.failed_element)]));
+        }
+#pragma omp parallel for schedule(static)
+        for (std::int64_t ie = 0; ie < static_cast<std::int64_t>(count); ++ie) {
+          const std::size_t e = static_cast<std::size_t>(ie);
+          const std::size_t copy = e * static_cast<std::size_t>(npe) + static_cast<std::size_t>(a);
+          if (conn[copy] != static_cast<std::int32_t>(copy)) continue;
+          const double scale = sign / (2.0 * kProbe * (d < 3 ? size[e] : 1.0));
+          const double* f = &probe.force[e * nd];
+          double* k = &matrices[e * nd * nd];
+          for (std::size_t r = 0; r < nd; ++r) k[r * nd + column] += scale * f[r];
+        }
+      }
+    }
+  }
+  // A truss's moment rows are zero already; a triangle's repeated node has zero columns and
+  // (its slot receives no force) zero rows.
+  return matrices;
+}
+
+}  // namespace
+
+std::vector<double> element_stiffness_matrices(const element::ShellBlock& block,
+                                               const solver::NodalState& nodes, std::size_t first,
+                                               std::size_t count) {
+  std::vector<double> matrices = structural_element_matrices(block, nodes, first, count);
+  for (std::size_t e = 0; e < count; ++e) {
+    add_drilling_stiffness(block, first + e, nodes, &matrices[e * 24 * 24]);
+  }
+  return matrices;
+}
+
+std::vector<double> element_stiffness_matrices(const element::BeamBlock& block,
+                                               const solver::NodalState& nodes, std::size_t first,
+                                               std::size_t count) {
+  return structural_element_matrices(block, nodes, first, count);
+}
+
+namespace {
+
+// K (the hexahedra's 3n x 3n translational block) becomes the whole (3n + 3r)^2 matrix with the
+// shell and beam element matrices added: triplets in (block, element) order, summed by
+// setFromTriplets in that fixed order (deterministic for any thread count).
+template <class Block>
+void add_block_triplets(const Block& block, const solver::State& state, std::size_t n,
+                        std::vector<Eigen::Triplet<double>>& triplets, double& asymmetry) {
+  const int npe = static_cast<int>(block.conn.size() / std::max<std::size_t>(1, block.size()));
+  const std::size_t nd = 6 * static_cast<std::size_t>(npe);
+  const std::size_t chunk = std::max<std::size_t>(1, kChunkDoubles / (nd * nd));
+  std::vector<std::int64_t> dof(nd);
+  for (std::size_t first = 0; first < block.size(); first += chunk) {
+    const std::size_t count = std::min(chunk, block.size() - first);
+    const std::vector<double> ke = element_stiffness_matrices(block, state.nodes, first, count);
+    for (std::size_t e = 0; e < count; ++e) {
+      const std::size_t element = first + e;
+      const double* k = &ke[e * nd * nd];
+      for (int a = 0; a < npe; ++a) {
+        const std::size_t slot =
+            element * static_cast<std::size_t>(npe) + static_cast<std::size_t>(a);
+        const std::int32_t node = block.conn[slot];
+        const std::int32_t rotation = block.rotation_conn[slot];
+        for (int d = 0; d < 6; ++d) {
+          dof[6 * static_cast<std::size_t>(a) + static_cast<std::size_t>(d)] =
+              d < 3 ? 3 * static_cast<std::int64_t>(node) + d
+                    : (rotation < 0 ? -1
+                                    : 3 * static_cast<std::int64_t>(n) +
+                                          3 * static_cast<std::int64_t>(rotation) + (d - 3));
+        }
+      }
+      double largest = 0.0, skew = 0.0;
+      for (std::size_t r = 0; r < nd; ++r) {
+        for (std::size_t c = 0; c < nd; ++c) {
+          largest = std::max(largest, std::abs(k[r * nd + c]));
+          if (c > r) skew = std::max(skew, std::abs(k[r * nd + c] - k[c * nd + r]));
+        }
+      }
+      if (largest > 0.0) asymmetry = std::max(asymmetry, skew / largest);
+      for (std::size_t r = 0; r < nd; ++r) {
+        if (dof[r] < 0) continue;
+        for (std::size_t c = 0; c < nd; ++c) {
+          const double value = 0.5 * (k[r * nd + c] + k[c * nd + r]);
+          if (dof[c] < 0 || value == 0.0) continue;
+          triplets.emplace_back(static_cast<int>(dof[r]), static_cast<int>(dof[c]), value);
+        }
+      }
+    }
+  }
+}
+
+void add_structural_stiffness(const solver::State& state, Eigen::SparseMatrix<double>& K,
+                              double& asymmetry) {
+  const std::size_t n = state.nodes.size();
+  const std::size_t ndof = 3 * n + 3 * state.rotations.size();
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(static_cast<std::size_t>(K.nonZeros()));
+  for (Eigen::Index c = 0; c < K.outerSize(); ++c) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(K, c); it; ++it) {
+      if (it.value() != 0.0)
+        triplets.emplace_back(static_cast<int>(it.row()), static_cast<int>(c), it.value());
+    }
+  }
+  for (const auto& block : state.shell_blocks) {
+    if (!block.rigid) add_block_triplets(block, state, n, triplets, asymmetry);
+  }
+  for (const auto& block : state.beam_blocks) {
+    if (!block.rigid) add_block_triplets(block, state, n, triplets, asymmetry);
+  }
+  Eigen::SparseMatrix<double> whole(static_cast<Eigen::Index>(ndof),
+                                    static_cast<Eigen::Index>(ndof));
+  whole.setFromTriplets(triplets.begin(), triplets.end());
+  K = std::move(whole);
+}
+
+}  // namespace
+
+model::Id StructuralMatrices::node_of_dof(std::size_t dof) const {
+  const std::size_t n = state.nodes.size();
+  const std::size_t node =
+      dof < 3 * n ? dof / 3 : static_cast<std::size_t>(state.rotations.node[(dof - 3 * n) / 3]);
+  return state.nodes.id[node];
+}
+
 StructuralMatrices assemble_structural_matrices(const model::Model& model,
-                                                const std::vector<model::Id>& parts) {
+                                                const std::vector<model::Id>& parts,
+                                                RotaryInertia inertia) {
   StructuralMatrices out;
   const model::Model sub = extract_parts(model, parts, &out.warnings);
   const solver::NodeIndex node_index(sub);
   out.state = solver::build_state(sub, node_index);
   solver::State& state = out.state;
   const std::size_t n = state.nodes.size();
-  const std::size_t ndof = 3 * n;
+  const std::size_t rotations = state.rotations.size();
+  const std::size_t ndof = 3 * n + 3 * rotations;
 
+  for (const auto& block : state.shell_blocks) {
+    if (block.hourglass.ihq <= 3) {
+      out.warnings.push_back(fmt::format(
+          "part {}: viscous shell hourglass control IHQ={} has no stiffness; the eigen analysis "
+          "uses the stiffness form IHQ 4 (QM={:g}) so that hourglass modes are not zero-energy "
+          "modes",
+          block.part_id, block.hourglass.ihq, block.hourglass.qm));
+    }
+  }
   for (const auto& block : state.hex_blocks) {
     if (block.order == 1 && block.elform != 2 && block.hourglass.ihq <= 3) {
       out.warnings.push_back(fmt::format(
@@ -231,19 +601,52 @@ StructuralMatrices assemble_structural_matrices(const model::Model& model,
     }
   }
 
-  // Mass: the explicit solver's lumped mass, repeated for x, y, z.
+  // Mass: the explicit solver's lumped mass, repeated for x, y, z, then its lumped rotational
+  // inertia (docs/eigen.md: the scaled rotary inertia of shells and beams).
   out.mass.resize(static_cast<Eigen::Index>(ndof));
   for (std::size_t i = 0; i < n; ++i) {
     for (int d = 0; d < 3; ++d)
       out.mass[static_cast<Eigen::Index>(3 * i + d)] = state.nodes.mass[i];
   }
-  out.node_parts.assign(n, 0);
-  for (const auto& block : state.hex_blocks) {
-    for (const std::int32_t node : block.conn) {
-      auto& p = out.node_parts[static_cast<std::size_t>(node)];
-      if (p == 0) p = block.part_id;
+  std::vector<double> rotational_inertia = state.rotations.inertia;
+  if (inertia == RotaryInertia::kPhysical && rotations > 0) {
+    std::fill(rotational_inertia.begin(), rotational_inertia.end(), 0.0);
+    for (const auto& block : state.shell_blocks) {
+      for (std::size_t e = 0; e < block.size(); ++e) {
+        const std::int32_t* c = &block.conn[4 * e];
+        const int distinct = c[2] == c[3] ? 3 : 4;
+        const double t = block.element_thickness[e];
+        const double m = block.material.rho * t * block.area0[e] / distinct;
+        for (int a = 0; a < distinct; ++a) {
+          rotational_inertia[static_cast<std::size_t>(block.rotation_conn[4 * e + a])] +=
+              m * t * t / 12.0;
+        }
+      }
+    }
+    for (const auto& block : state.beam_blocks) {
+      if (block.elform == 3) continue;
+      for (std::size_t e = 0; e < block.size(); ++e) {
+        const double j = 0.5 * block.material.rho * (block.iss + block.itt) * block.length0[e];
+        for (int a = 0; a < 2; ++a) {
+          rotational_inertia[static_cast<std::size_t>(block.rotation_conn[2 * e + a])] += j;
+        }
+      }
     }
   }
+  for (std::size_t r = 0; r < rotations; ++r) {
+    for (int d = 0; d < 3; ++d)
+      out.mass[static_cast<Eigen::Index>(3 * n + 3 * r + d)] = rotational_inertia[r];
+  }
+  out.node_parts.assign(n, 0);
+  const auto mark_parts = [&](const std::vector<std::int32_t>& conn, model::Id part) {
+    for (const std::int32_t node : conn) {
+      auto& p = out.node_parts[static_cast<std::size_t>(node)];
+      if (p == 0) p = part;
+    }
+  };
+  for (const auto& block : state.hex_blocks) mark_parts(block.conn, block.part_id);
+  for (const auto& block : state.shell_blocks) mark_parts(block.conn, block.part_id);
+  for (const auto& block : state.beam_blocks) mark_parts(block.conn, block.part_id);
 
   // SPCs and *NODE TC through the explicit solver's own resolution.
   std::vector<model::Warning> boundary_warnings;
@@ -252,6 +655,10 @@ StructuralMatrices assemble_structural_matrices(const model::Model& model,
   out.fixed.assign(ndof, 0);
   for (std::size_t i = 0; i < n && i < boundary.fixed.size(); ++i) {
     for (int d = 0; d < 3; ++d) out.fixed[3 * i + d] = (boundary.fixed[i] >> d) & 1u;
+  }
+  for (std::size_t r = 0; r < rotations && r < boundary.rotation_fixed.size(); ++r) {
+    for (int d = 0; d < 3; ++d)
+      out.fixed[3 * n + 3 * r + d] = (boundary.rotation_fixed[r] >> d) & 1u;
   }
 
   // Sparsity: node adjacency through elements (sorted neighbour lists, CSR), 3x3 blocks.
@@ -274,8 +681,11 @@ StructuralMatrices assemble_structural_matrices(const model::Model& model,
     offset[i + 1] = offset[i] + static_cast<std::int64_t>(list.size());
   }
   const std::int64_t nnz = 9 * offset[n];
+  // The hexahedra's translational block first (3n x 3n, assembled in place), then the shells and
+  // beams with it into the whole matrix.
+  const std::size_t tdof = 3 * n;
   Eigen::SparseMatrix<double>& K = out.stiffness;
-  K.resize(static_cast<Eigen::Index>(ndof), static_cast<Eigen::Index>(ndof));
+  K.resize(static_cast<Eigen::Index>(tdof), static_cast<Eigen::Index>(tdof));
   K.resizeNonZeros(static_cast<Eigen::Index>(nnz));
   {
     int* outer = K.outerIndexPtr();
@@ -293,7 +703,7 @@ StructuralMatrices assemble_structural_matrices(const model::Model& model,
         }
       }
     }
-    outer[ndof] = static_cast<int>(nnz);
+    outer[tdof] = static_cast<int>(nnz);
     std::fill(K.valuePtr(), K.valuePtr() + nnz, 0.0);
   }
 
@@ -356,6 +766,9 @@ StructuralMatrices assemble_structural_matrices(const model::Model& model,
         }
       }
     }
+  }
+  if (!state.shell_blocks.empty() || !state.beam_blocks.empty()) {
+    add_structural_stiffness(state, K, asymmetry);
   }
   out.element_asymmetry = asymmetry;
   return out;

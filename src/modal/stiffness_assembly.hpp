@@ -27,12 +27,22 @@
 
 namespace rf::modal {
 
+// DOF numbering: translations first, DOF 3 i + d of dense node i (d = x, y, z), then the
+// rotations of the nodes of shells and beams (solver::RotationalState), DOF 3 n + 3 r + d of
+// rotational index r. A solid-only model has 3 n DOFs, as before shells and beams.
 struct StructuralMatrices {
   solver::State state;                    // the explicit solver's state of the sub-model
   std::vector<model::Id> node_parts;      // per node: the part of the first element using it
-  Eigen::SparseMatrix<double> stiffness;  // 3n x 3n, DOF 3 i + d (i: dense node of `state`)
-  Eigen::VectorXd mass;                   // 3n: lumped node mass repeated for x, y, z
-  std::vector<std::uint8_t> fixed;        // 3n: 1 where *BOUNDARY_SPC / *NODE TC fixes the DOF
+  Eigen::SparseMatrix<double> stiffness;  // (3n + 3r)^2
+  // 3n + 3r: lumped node mass repeated for x, y, z, then the lumped rotational inertia of the
+  // explicit solver (the scaled rotary inertia of shells and beams, docs/eigen.md) repeated.
+  Eigen::VectorXd mass;
+  // 3n + 3r: 1 where *BOUNDARY_SPC / *NODE TC / RC fixes the DOF.
+  std::vector<std::uint8_t> fixed;
+  std::size_t translation_dofs() const { return 3 * state.nodes.size(); }
+  std::size_t rotation_count() const { return state.rotations.size(); }
+  // User ID of the node of a DOF.
+  model::Id node_of_dof(std::size_t dof) const;
   // Largest |K_e - K_e^T| / max |K_e| over the element matrices before symmetrisation.
   double element_asymmetry = 0.0;
   std::vector<std::string> warnings;
@@ -52,8 +62,32 @@ std::vector<double> element_stiffness_matrices(const element::HexBlock& block,
                                                const solver::NodalState& nodes, std::size_t first,
                                                std::size_t count);
 
+// Stiffness matrices of the elements [first, first + count) of a shell or beam block
+// (reference configuration), (6 npe)^2 each (npe 4 shells, 2 beams), row-major, DOF 6 a + d of
+// local node a (d 0-2 translations, 3-5 rotations; zero rows and columns for a truss's rotations
+// and a triangle's repeated node). Shell blocks get the drilling stiffness of docs/eigen.md.
+// Exposed for tests.
+std::vector<double> element_stiffness_matrices(const element::ShellBlock& block,
+                                               const solver::NodalState& nodes, std::size_t first,
+                                               std::size_t count);
+std::vector<double> element_stiffness_matrices(const element::BeamBlock& block,
+                                               const solver::NodalState& nodes, std::size_t first,
+                                               std::size_t count);
+
+// Drilling stiffness factor: k = kDrillingFactor G t A per shell element (docs/eigen.md).
+inline constexpr double kDrillingFactor = 1e-3;
+
+// Rotational inertia of the nodes of shells and beams in M (docs/eigen.md). kPhysical: the
+// rotary inertia of the continuum, lumped: rho t^3 / 12 per unit area of shell (Mindlin), and
+// rho (Iss + Itt) L / 2 per beam node (the polar moment, so that torsion is exact; bending of a
+// slender beam hardly depends on it). kExplicit: the explicit solver's scaled rotary inertia
+// (add_shell_lumped_mass, add_beam_lumped_mass), much larger, which lowers bending frequencies
+// by O(element size) but is the mass the time loop integrates with.
+enum class RotaryInertia { kPhysical, kExplicit };
+
 // Builds the state of the sub-model of `parts` and assembles K (OpenMP over elements) and M.
 StructuralMatrices assemble_structural_matrices(const model::Model& model,
-                                                const std::vector<model::Id>& parts);
+                                                const std::vector<model::Id>& parts,
+                                                RotaryInertia inertia = RotaryInertia::kPhysical);
 
 }  // namespace rf::modal
