@@ -344,7 +344,8 @@ bool has_rotations(const element::BeamBlock& block) {
 // 1/2 k sum_a (n . theta_a - omega)^2, k = kDrillingFactor G t A / distinct nodes. Rigid
 // motions have n . theta = omega, so they stay free; the element matrix gains k h_a h_a^T.
 void add_drilling_stiffness(const element::ShellBlock& block, std::size_t e,
-                            const solver::NodalState& nodes, double* k) {
+                            const solver::NodalState& nodes, double factor, double* k) {
+  if (factor == 0.0) return;
   const std::int32_t* c = &block.conn[4 * e];
   const bool triangle = c[2] == c[3];
   const int distinct = triangle ? 3 : 4;
@@ -379,8 +380,8 @@ void add_drilling_stiffness(const element::ShellBlock& block, std::size_t e,
     b2[0] = (x[3] - x[1]) / twice, b2[1] = (x[0] - x[2]) / twice;
     b2[2] = (x[1] - x[3]) / twice, b2[3] = (x[2] - x[0]) / twice;
   }
-  const double stiffness = kDrillingFactor * block.material.shear * block.element_thickness[e] *
-                           std::abs(area) / distinct;
+  const double stiffness =
+      factor * block.material.shear * block.element_thickness[e] * std::abs(area) / distinct;
   constexpr std::size_t nd = 24;
   for (int a = 0; a < distinct; ++a) {
     double h[nd] = {};
@@ -463,8 +464,26 @@ std::vector<double> structural_element_matrices(const Block& source,
       }
     }
   }
-  // A truss's moment rows are zero already; a triangle's repeated node has zero columns and
-  // (its slot receives no force) zero rows.
+  // A repeated node (a triangle's N4 = N3) has zero columns (it moves with its first
+  // occurrence); the forces the kernel puts in its slot act on the same node, so its rows are
+  // folded into the first occurrence's. A truss's moment rows are zero already.
+#pragma omp parallel for schedule(static)
+  for (std::int64_t ie = 0; ie < static_cast<std::int64_t>(count); ++ie) {
+    const std::size_t e = static_cast<std::size_t>(ie);
+    double* k = &matrices[e * nd * nd];
+    for (int a = 0; a < npe; ++a) {
+      const std::size_t copy = e * static_cast<std::size_t>(npe) + static_cast<std::size_t>(a);
+      const std::size_t b =
+          static_cast<std::size_t>(conn[copy]) - e * static_cast<std::size_t>(npe);
+      if (b == static_cast<std::size_t>(a)) continue;
+      for (std::size_t d = 0; d < 6; ++d) {
+        for (std::size_t c = 0; c < nd; ++c) {
+          k[(6 * b + d) * nd + c] += k[(6 * static_cast<std::size_t>(a) + d) * nd + c];
+          k[(6 * static_cast<std::size_t>(a) + d) * nd + c] = 0.0;
+        }
+      }
+    }
+  }
   return matrices;
 }
 
@@ -472,10 +491,10 @@ std::vector<double> structural_element_matrices(const Block& source,
 
 std::vector<double> element_stiffness_matrices(const element::ShellBlock& block,
                                                const solver::NodalState& nodes, std::size_t first,
-                                               std::size_t count) {
+                                               std::size_t count, double drilling_factor) {
   std::vector<double> matrices = structural_element_matrices(block, nodes, first, count);
   for (std::size_t e = 0; e < count; ++e) {
-    add_drilling_stiffness(block, first + e, nodes, &matrices[e * 24 * 24]);
+    add_drilling_stiffness(block, first + e, nodes, drilling_factor, &matrices[e * 24 * 24]);
   }
   return matrices;
 }

@@ -62,20 +62,22 @@ std::vector<double> element_stiffness_matrices(const element::HexBlock& block,
                                                const solver::NodalState& nodes, std::size_t first,
                                                std::size_t count);
 
+// Drilling stiffness factor: k = kDrillingFactor G t A per shell element (docs/eigen.md).
+inline constexpr double kDrillingFactor = 1e-3;
+
 // Stiffness matrices of the elements [first, first + count) of a shell or beam block
 // (reference configuration), (6 npe)^2 each (npe 4 shells, 2 beams), row-major, DOF 6 a + d of
 // local node a (d 0-2 translations, 3-5 rotations; zero rows and columns for a truss's rotations
-// and a triangle's repeated node). Shell blocks get the drilling stiffness of docs/eigen.md.
+// and a triangle's repeated node). Shell blocks get the drilling stiffness of docs/eigen.md with
+// `drilling_factor` (0: the kernel's stiffness alone, for tests).
 // Exposed for tests.
 std::vector<double> element_stiffness_matrices(const element::ShellBlock& block,
                                                const solver::NodalState& nodes, std::size_t first,
-                                               std::size_t count);
+                                               std::size_t count,
+                                               double drilling_factor = kDrillingFactor);
 std::vector<double> element_stiffness_matrices(const element::BeamBlock& block,
                                                const solver::NodalState& nodes, std::size_t first,
                                                std::size_t count);
-
-// Drilling stiffness factor: k = kDrillingFactor G t A per shell element (docs/eigen.md).
-inline constexpr double kDrillingFactor = 1e-3;
 
 // Rotational inertia of the nodes of shells and beams in M (docs/eigen.md). kPhysical: the
 // rotary inertia of the continuum, lumped: rho t^3 / 12 per unit area of shell (Mindlin), and

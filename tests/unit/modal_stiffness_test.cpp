@@ -8,8 +8,10 @@
 #include <cmath>
 #include <filesystem>
 #include <random>
+#include <type_traits>
 
 #include "../verification/deck_builder.hpp"
+#include "../verification/shell_builder.hpp"
 #include "element/kernels.hpp"
 #include "modal/mode_set.hpp"
 #include "modal/stiffness_assembly.hpp"
@@ -126,6 +128,151 @@ TEST(ModalStiffness, UnknownPartIsAnInputError) {
   const model::Model model = test::read(distorted_block_deck(1, 6));
   EXPECT_THROW(modal::assemble_structural_matrices(model, {42}), InputError);
 }
+
+// Shells on a curved surface (quads and a triangle; flat elements, or warped ones with the
+// Belytschko-Wong-Chiang correction BWC 1) and beams of ELFORM 1 and 2: each element's
+// probed matrix (without the drilling penalty) times the element's small displacement and
+// rotation equals the kernel's forces and moments for that motion; the assembled K (with the
+// drilling penalty) gives no force for a rigid translation and an infinitesimal rigid rotation
+// (translations and nodal rotations together).
+std::string shell_and_beam_deck(bool warped) {
+  test::ShellPlate plate;
+  plate.nx = 3;
+  plate.ny = 2;
+  plate.lx = 3.0;
+  plate.ly = 2.0;
+  plate.place = [warped](double u, double v) {
+    return Eigen::Vector3d(u, v, 0.15 * std::sin(1.1 * u) + (warped ? 0.1 * u * v : 0.0));
+  };
+  std::string deck = "*KEYWORD\n" + plate.text();
+  // Warped BLT elements need the Belytschko-Wong-Chiang correction to be free of force under
+  // an infinitesimal rigid rotation (the kernel's property, docs/eigen.md).
+  if (warped) deck += "*CONTROL_SHELL\n20,0,0,0,2,1\n";
+  // A triangle on the edge v = 2 (nodes 9, 10 and a new node 101 above the plate).
+  deck += "*NODE\n101,1.5,2.6,0.3\n*ELEMENT_SHELL\n100,1,9,10,101,101\n";
+  deck += test::shell_part(1, 0.05, 7.8e-9, 2.1e5, 0.3, 3, 4, 0.1);
+  // Beams from node 1 along a bent line, ELFORM 2 (part 2) and 1 (part 3).
+  deck += "*NODE\n201,-0.5,-0.3,0.2\n202,-1.1,-0.2,0.5\n";
+  deck += "*ELEMENT_BEAM_ORIENTATION\n201,2,1,201\n0,0,1\n202,3,201,202\n0,0,1\n";
+  deck += "*PART\nresultant\n2,2,2\n*SECTION_BEAM\n2,2,0.8333\n1e-2,8e-6,1.2e-5,0\n";
+  deck += "*MAT_ELASTIC\n2,7.8e-9,2.1e5,0.3\n";
+  deck += "*PART\nintegrated\n3,3,3\n*SECTION_BEAM\n3,1,0.8333,2,0\n0.1,0.1,0.08,0.08\n";
+  deck += "*MAT_ELASTIC\n3,7.8e-9,2.1e5,0.3\n*END\n";
+  return deck;
+}
+
+template <class Block>
+void expect_element_matrices_match_kernel(Block block, const solver::State& state,
+                                          std::vector<double> matrices, int npe) {
+  const std::size_t n = state.nodes.size(), r = state.rotations.size();
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> pick(-1.0, 1.0);
+  std::vector<double> u(3 * n), theta(3 * r);
+  for (double& value : u) value = 1e-8 * pick(rng);
+  for (double& value : theta) value = 1e-8 * pick(rng);
+  solver::NodalState nodes = state.nodes;
+  for (std::size_t i = 0; i < n; ++i) {
+    nodes.x.x[i] = nodes.x0.x[i] + u[3 * i];
+    nodes.x.y[i] = nodes.x0.y[i] + u[3 * i + 1];
+    nodes.x.z[i] = nodes.x0.z[i] + u[3 * i + 2];
+    nodes.v.x[i] = u[3 * i];  // dt = 1: the step's displacement is u
+    nodes.v.y[i] = u[3 * i + 1];
+    nodes.v.z[i] = u[3 * i + 2];
+  }
+  std::array<std::vector<double>, 3> w;
+  for (int d = 0; d < 3; ++d) {
+    w[d].resize(r);
+    for (std::size_t j = 0; j < r; ++j) w[d][j] = theta[3 * j + d];
+  }
+  const element::NodalView view{nodes.x.x.data(), nodes.x.y.data(), nodes.x.z.data(),
+                                nodes.v.x.data(), nodes.v.y.data(), nodes.v.z.data()};
+  const element::RotationalView spin{w[0].data(), w[1].data(), w[2].data()};
+  if constexpr (std::is_same_v<Block, element::ShellBlock>) {
+    element::compute_shell_forces(block, view, spin, 1.0);
+  } else {
+    element::compute_beam_forces(block, view, spin, 1.0);
+  }
+  const std::size_t nd = 6 * static_cast<std::size_t>(npe);
+  for (std::size_t e = 0; e < block.size(); ++e) {
+    std::vector<double> ue(nd, 0.0);
+    for (int a = 0; a < npe; ++a) {
+      const std::size_t slot = e * static_cast<std::size_t>(npe) + static_cast<std::size_t>(a);
+      if (a > 0 && block.conn[slot] == block.conn[slot - 1]) continue;  // triangle's node 4
+      for (int d = 0; d < 3; ++d) {
+        ue[6 * a + d] = u[3 * static_cast<std::size_t>(block.conn[slot]) + d];
+        if (block.rotation_conn[slot] >= 0)
+          ue[6 * a + 3 + d] = theta[3 * static_cast<std::size_t>(block.rotation_conn[slot]) + d];
+      }
+    }
+    // The kernel's forces with a repeated node's slot added to its first occurrence (the
+    // probed matrix folds those rows the same way).
+    std::vector<double> fe(block.force.begin() + static_cast<std::ptrdiff_t>(e * nd),
+                           block.force.begin() + static_cast<std::ptrdiff_t>((e + 1) * nd));
+    for (int a = 1; a < npe; ++a) {
+      const std::size_t slot = e * static_cast<std::size_t>(npe) + static_cast<std::size_t>(a);
+      if (block.conn[slot] != block.conn[slot - 1]) continue;
+      for (int d = 0; d < 6; ++d) {
+        fe[6 * (a - 1) + d] += fe[6 * a + d];
+        fe[6 * a + d] = 0.0;
+      }
+    }
+    double largest = 0.0, difference = 0.0;
+    for (std::size_t row = 0; row < nd; ++row) {
+      double ku = 0.0;
+      for (std::size_t c = 0; c < nd; ++c) ku += matrices[(e * nd + row) * nd + c] * ue[c];
+      const double f = fe[row];
+      largest = std::max(largest, std::abs(f));
+      difference = std::max(difference, std::abs(f - ku));
+    }
+    ASSERT_GT(largest, 0.0);
+    EXPECT_LT(difference / largest, 1e-6) << "part " << block.part_id << " element " << e;
+  }
+}
+
+class ShellModalStiffness : public ::testing::TestWithParam<bool> {};
+
+TEST_P(ShellModalStiffness, MatricesMatchKernelForcesAndMomentsAndRigidMotionsAreFree) {
+  const model::Model model = test::read(shell_and_beam_deck(GetParam()));
+  const modal::StructuralMatrices sm = modal::assemble_structural_matrices(model, {});
+  const solver::State& state = sm.state;
+  ASSERT_EQ(state.shell_blocks.size(), 1u);
+  ASSERT_EQ(state.beam_blocks.size(), 2u);
+  const auto& shells = state.shell_blocks.front();
+  expect_element_matrices_match_kernel(
+      shells, state, modal::element_stiffness_matrices(shells, state.nodes, 0, shells.size(), 0.0),
+      4);
+  for (const auto& beams : state.beam_blocks) {
+    expect_element_matrices_match_kernel(
+        beams, state, modal::element_stiffness_matrices(beams, state.nodes, 0, beams.size()), 2);
+  }
+  EXPECT_LT(sm.element_asymmetry, 1e-6);
+
+  // Rigid motions of the assembled K, rotations included: translation along y, and the rotation
+  // theta about the axis through c: u_i = theta x (X_i - c), every nodal rotation theta.
+  const std::size_t n = state.nodes.size(), r = state.rotations.size();
+  ASSERT_EQ(static_cast<std::size_t>(sm.stiffness.rows()), 3 * n + 3 * r);
+  const Eigen::Vector3d axis = Eigen::Vector3d(0.3, -0.5, 0.8).normalized(), c(0.4, 0.2, -0.1);
+  Eigen::VectorXd t = Eigen::VectorXd::Zero(sm.stiffness.rows()), q = t;
+  for (std::size_t i = 0; i < n; ++i) {
+    t[static_cast<Eigen::Index>(3 * i + 1)] = 1.0;
+    const Eigen::Vector3d x(state.nodes.x0.x[i], state.nodes.x0.y[i], state.nodes.x0.z[i]);
+    const Eigen::Vector3d v = axis.cross(x - c);
+    for (int d = 0; d < 3; ++d) q[static_cast<Eigen::Index>(3 * i + d)] = v[d];
+  }
+  for (std::size_t j = 0; j < r; ++j)
+    for (int d = 0; d < 3; ++d) q[static_cast<Eigen::Index>(3 * n + 3 * j + d)] = axis[d];
+  const double scale = sm.stiffness.diagonal().cwiseAbs().maxCoeff();
+  EXPECT_LT((sm.stiffness * t).cwiseAbs().maxCoeff() / scale, 1e-9);
+  EXPECT_LT((sm.stiffness * q).cwiseAbs().maxCoeff() / scale, 1e-9);
+  // The physical rotary inertia: rho t^3 / 12 per unit area on the shells' nodes.
+  double shell_inertia = 0.0;
+  for (std::size_t j = 0; j < r; ++j)
+    shell_inertia += sm.mass[static_cast<Eigen::Index>(3 * n + 3 * j)];
+  EXPECT_GT(shell_inertia, 0.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Surface, ShellModalStiffness, ::testing::Values(false, true),
+                         [](const auto& info) { return info.param ? "Warped" : "Curved"; });
 
 TEST(ModeDatabase, RoundTrip) {
   modal::ModeSet modes;
