@@ -53,6 +53,17 @@ SelectedModes select_part_modes(const model::PartModes& card, const std::string&
                                  "sizes do not match)",
                                  card.path));
   }
+  // A database with rotational components comes from a model with shells or beams: its shapes
+  // are mass-normalised with the rotational inertia included, and the flexible-body kinematics
+  // carry no nodal rotations yet (docs/eigen.md, Limits).
+  if (set.rotation_count() > 0) {
+    throw InputError(context_of(card.where, "FILENAME"),
+                     fmt::format("mode database '{}' has rotational components ({} nodes of "
+                                 "shells or beams): flexible bodies made of shells or beams are "
+                                 "not supported yet; compute the modes of the solid part alone "
+                                 "(rigidflex eigen --parts)",
+                                 card.path, set.rotation_count()));
+  }
   // Node matching by ID.
   std::unordered_map<model::Id, std::size_t> row_of;
   for (std::size_t r = 0; r < dn; ++r) row_of.emplace(set.node_ids[r], r);

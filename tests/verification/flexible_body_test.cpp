@@ -251,6 +251,27 @@ TEST(FlexibleBody, ModalDampingDecaysAtTheGivenRatio) {
   EXPECT_NEAR(sim.energy().ratio(), 1.0, 1e-12);
 }
 
+// A mode database with rotational components (made from a model with shells or beams) is
+// refused at FILENAME: flexible bodies carry no nodal rotations yet.
+TEST(FlexibleBodyDeck, DatabaseWithRotationsIsRefused) {
+  solver::SimulationOptions options = with_modes();
+  options.mode_loader = [](const std::filesystem::path&) {
+    modal::ModeSet modes = beam_modes();
+    modes.rotation_nodes = {0};
+    modes.rotational_inertia = {1.0};
+    modes.rotation_shapes.assign(3 * modes.mode_count(), 0.0);
+    return modes;
+  };
+  try {
+    solver::Simulation sim(read(flexible_deck(beam_mesh(), 10, 1, "", 1e-3, 1e-5)), options);
+    ADD_FAILURE() << "no error for a database with rotations";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("rotational components"), std::string::npos) << message;
+    EXPECT_NE(message.find("FILENAME"), std::string::npos) << message;
+  }
+}
+
 }  // namespace
 }  // namespace rf::test
 
