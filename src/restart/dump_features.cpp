@@ -203,14 +203,15 @@ void read_walls(contact::RigidWallSystem& walls, const Group& g) {
   }
 }
 
-// Contacts: per interface soft_dt, slave force x y z, active nodes; the friction springs of
-// every pass (3 per slave node, passes in order); the nodal contact forces of the last
+// Contacts: per interface soft_dt, slave force x y z, active nodes; the friction springs and
+// the contact normals (side memory of shell segments) of every pass (3 per slave node each,
+// passes in order); the nodal contact forces of the last
 // evaluation (3 per contact node), which the first cycle after the restart applies and counts.
 // The search grids are rebuilt: the contact found does not depend on them (docs/contact.md).
 constexpr int kContactNumbers = 5;
 
 void write_contacts(const contact::ContactSystem& contacts, const Group& g) {
-  std::vector<double> numbers, springs, forces;
+  std::vector<double> numbers, springs, normals, forces;
   for (const auto& c : contacts.interfaces) {
     for (const double v : {c.soft_dt, c.slave_force[0], c.slave_force[1], c.slave_force[2],
                            static_cast<double>(c.active_nodes)}) {
@@ -218,6 +219,7 @@ void write_contacts(const contact::ContactSystem& contacts, const Group& g) {
     }
     for (const auto& pass : c.passes) {
       springs.insert(springs.end(), pass.tangential_force.begin(), pass.tangential_force.end());
+      normals.insert(normals.end(), pass.contact_normal.begin(), pass.contact_normal.end());
     }
   }
   for (const auto i : contacts.nodes) {
@@ -228,6 +230,7 @@ void write_contacts(const contact::ContactSystem& contacts, const Group& g) {
   g.set("count", static_cast<std::int64_t>(contacts.interfaces.size()));
   g.write("numbers", span_of(numbers));
   g.write("friction_springs", span_of(springs));
+  g.write("contact_normals", span_of(normals));
   g.write("nodal_forces", span_of(forces));
 }
 
@@ -236,6 +239,7 @@ void read_contacts(contact::ContactSystem& contacts, const Group& g) {
                contacts.interfaces.size());
   const auto numbers = g.read_doubles("numbers");
   const auto springs = g.read_doubles("friction_springs");
+  const auto normals = g.read_doubles("contact_normals");
   const auto forces = g.read_doubles("nodal_forces");
   expect_count(g, "numbers", numbers.size(), kContactNumbers * contacts.interfaces.size());
   expect_count(g, "nodal_forces", forces.size(), 3 * contacts.nodes.size());
@@ -244,6 +248,7 @@ void read_contacts(contact::ContactSystem& contacts, const Group& g) {
     for (const auto& pass : c.passes) spring_count += pass.tangential_force.size();
   }
   expect_count(g, "friction_springs", springs.size(), spring_count);
+  expect_count(g, "contact_normals", normals.size(), spring_count);
   std::size_t at = 0;
   for (std::size_t k = 0; k < contacts.interfaces.size(); ++k) {
     auto& c = contacts.interfaces[k];
@@ -255,6 +260,9 @@ void read_contacts(contact::ContactSystem& contacts, const Group& g) {
       std::copy(springs.begin() + static_cast<long>(at),
                 springs.begin() + static_cast<long>(at + pass.tangential_force.size()),
                 pass.tangential_force.begin());
+      std::copy(normals.begin() + static_cast<long>(at),
+                normals.begin() + static_cast<long>(at + pass.contact_normal.size()),
+                pass.contact_normal.begin());
       at += pass.tangential_force.size();
       pass.grid.built = false;
     }
