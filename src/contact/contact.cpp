@@ -234,9 +234,10 @@ std::vector<model::Id> parts_of_side(const model::Model& model, model::Id id, in
   return parts;
 }
 
-// `node_set_half_thickness`: the contact offset of nodes without segments (SST/2).
+// `node_set_half_thickness`: the contact offset of nodes without segments (SST/2); nodes of
+// shells (a node set of NODES_TO_SURFACE) take `shell_half_thickness` (by dense node; empty: none).
 void finish_surface(const solver::State& state, double node_set_half_thickness,
-                    ContactSurface& surface) {
+                    ContactSurface& surface, const std::vector<double>& shell_half_thickness = {}) {
   struct NodeData {
     double stiffness;
     model::Id part;
@@ -278,8 +279,11 @@ void finish_surface(const solver::State& state, double node_set_half_thickness,
     }
     surface.node_stiffness.push_back(kInfinity);
     surface.node_part.push_back(block_part[n]);
-    surface.node_half_thickness.push_back(node_set_half_thickness);
-    surface.max_half_thickness = std::max(surface.max_half_thickness, node_set_half_thickness);
+    const double h = !shell_half_thickness.empty() && shell_half_thickness[n] >= 0.0
+                         ? shell_half_thickness[n]
+                         : node_set_half_thickness;
+    surface.node_half_thickness.push_back(h);
+    surface.max_half_thickness = std::max(surface.max_half_thickness, h);
   }
   // Node -> segment incidence (CSR), segments in ascending order for each node.
   const std::size_t nn = surface.nodes.size();
@@ -343,7 +347,19 @@ ContactSurface build_side(const model::Model& model, const solver::NodeIndex& no
     std::sort(surface.nodes.begin(), surface.nodes.end());
     surface.nodes.erase(std::unique(surface.nodes.begin(), surface.nodes.end()),
                         surface.nodes.end());
-    finish_surface(state, solid_half_thickness, surface);
+    // A node of a shell carries the shell's contact thickness as LS-DYNA's nodes-to-surface
+    // does: SST/2 when given, else SFST times half the largest thickness of its shells.
+    std::vector<double> shell_half;
+    if (!state.shell_blocks.empty() && !(thickness.given > 0.0)) {
+      shell_half.assign(state.nodes.size(), -1.0);
+      for (const auto& block : state.shell_blocks) {
+        for (std::size_t k = 0; k < block.conn.size(); ++k) {
+          const double h = 0.5 * thickness.shell_scale * block.thickness[k];
+          shell_half[block.conn[k]] = std::max(shell_half[block.conn[k]], h);
+        }
+      }
+    }
+    finish_surface(state, solid_half_thickness, surface, shell_half);
     return surface;
   }
   if (type == 0) {  // segment set: each segment must be a solid face or a shell element

@@ -11,7 +11,6 @@
 //    contact surface by more than a small penalty penetration;
 //  - the energy balance (energy_ratio = 1, contact energy counted).
 #include <gtest/gtest.h>
-#include <omp.h>
 
 #include <Eigen/Dense>
 #include <cmath>
@@ -302,6 +301,95 @@ TEST(ShellContact, PlateRestsOnShellAtHalfTheThicknessSum) {
   EXPECT_NEAR(u.z_mean / (0.5 * (t1 + t2)), 1.0, 0.01);
 }
 
+// (c) NODES_TO_SURFACE with a node set of shell nodes: the nodes carry their shells' thickness
+// (SST = 0), so the plate is first touched when its mid-surface is (t1 + t2)/2 above the other.
+TEST(ShellContact, NodeSetOfShellNodesTouchesAtHalfTheThicknessSum) {
+  constexpr double t1 = 0.002, t2 = 0.006;
+  const ShellPlate lower = plate(4, 0.08, 2, 100001, 0.0);
+  const ShellPlate upper = plate(4, 0.06, 1, 1, 0.5 * (t1 + t2) + 0.001);
+  std::vector<int> ids;
+  for (int i = 1; i <= upper.node_count(); ++i) ids.push_back(i);
+  const std::string deck = "*KEYWORD\n" + upper.text() + lower.text() +
+                           shell_part(1, t1, 2700.0, 7e10, 0.3) +
+                           fixed_rigid_shell(2, t2, 2700.0, 7e10, 0.3) + node_set(1, ids) +
+                           "*INITIAL_VELOCITY_GENERATION\n1,2,0,0,0,-1.0\n0,0,0,0,0,0\n" +
+                           "*CONTACT_AUTOMATIC_NODES_TO_SURFACE\n1,2,4,3\n0,0\n1,1\n" +
+                           "*CONTROL_TIMESTEP\n0,0.5\n*CONTROL_TERMINATION\n0.003\n*END\n";
+  solver::Simulation sim(read(deck), {});
+  double first_touch = -1.0, step = 0.0;
+  while (!sim.finished() && first_touch < 0.0) {
+    const double before = nodes_of(sim.state(), 1, 100000).z_min;
+    sim.cycle();
+    if (active(sim) > 0) {
+      first_touch = nodes_of(sim.state(), 1, 100000).z_min;
+      step = before - first_touch;
+    }
+  }
+  RecordProperty("first_touch_over_half_sum",
+                 fmt::format("{:.6g}", first_touch / (0.5 * (t1 + t2))));
+  ASSERT_GT(step, 0.0);
+  EXPECT_LT(first_touch, 0.5 * (t1 + t2));
+  EXPECT_GT(first_touch, 0.5 * (t1 + t2) - 1.01 * step);
+}
+
+// (d) Friction on a shell: an elastic 2 x 2 x 2 block sliding down a fixed rigid shell plane
+// inclined at a = 30 degrees under gravity, mu = 0.3, VDC 20, SURFACE_TO_SURFACE, SOFT = 1.
+// Coulomb: x = g (sin a - mu cos a) T^2 / 2 along the slope; the block stays t/2 off the plane.
+
+TEST(ShellContact, BlockSlidesDownInclinedShellWithCoulombFriction) {
+  constexpr double t = 0.004, mu = 0.3, t_end = 0.15;
+  const double angle = std::numbers::pi / 6.0;
+  const double c = std::cos(angle), s = std::sin(angle);
+  auto tilt = [c, s](const Vector3d& p) {
+    return Vector3d(c * p.x() + s * p.z(), p.y(), -s * p.x() + c * p.z());
+  };
+  ShellPlate plane;
+  plane.nx = 12;
+  plane.ny = 2;
+  plane.lx = 0.24;
+  plane.ly = 0.04;
+  plane.pid = 2;
+  plane.first_node = plane.first_element = 100001;
+  plane.place = [tilt](double u, double v) { return tilt(Vector3d(u - 0.03, v - 0.01, 0.0)); };
+  Block block;
+  block.nx = block.ny = block.nz = 2;
+  block.lx = block.ly = block.lz = 0.02;
+  block.local = Vector3d(0.0, 0.0, 0.5 * t);
+  block.tilt = angle;
+  const std::string deck =
+      "*KEYWORD\n" + block.text() + plane.text() + elastic(1, 1000.0, 1e7, 0.3) +
+      fixed_rigid_shell(2, t, 2700.0, 7e10, 0.3) + gravity() +
+      fmt::format("*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE\n1,2,3,3\n{0},{0},0,0,20\n1,1\n1\n", mu) +
+      fmt::format("*CONTROL_TIMESTEP\n0,0.5\n*CONTROL_TERMINATION\n{}\n*END\n", t_end);
+  solver::Simulation sim(read(deck), {});
+  auto centre = [&] {
+    const auto& n = sim.state().nodes;
+    Vector3d sum = Vector3d::Zero();
+    double m = 0.0;
+    for (std::size_t i = 0; i < n.size(); ++i) {
+      if (n.id[i] > 100000) continue;
+      sum += n.mass[i] * Vector3d(n.x.x[i], n.x.y[i], n.x.z[i]);
+      m += n.mass[i];
+    }
+    return Vector3d(sum / m);
+  };
+  const Vector3d start = centre();
+  double worst_ratio = 0.0;
+  while (!sim.finished()) {
+    sim.cycle();
+    worst_ratio = std::max(worst_ratio, std::abs(sim.energy().ratio() - 1.0));
+  }
+  const Vector3d moved = centre() - start;
+  const Vector3d down(c, 0.0, -s), normal(s, 0.0, c);
+  const double expected = kGravity * (s - mu * c) * t_end * t_end / 2.0;
+  RecordProperty("slide_over_coulomb", fmt::format("{:.6g}", moved.dot(down) / expected));
+  RecordProperty("normal_motion", fmt::format("{:.3g}", moved.dot(normal)));
+  RecordProperty("energy_ratio_error", fmt::format("{:.3g}", worst_ratio));
+  EXPECT_NEAR(moved.dot(down) / expected, 1.0, 0.03);
+  EXPECT_LT(std::abs(moved.dot(normal)), 1e-4);  // stays on the plane's contact surface
+  EXPECT_LT(worst_ratio, 1e-6);
+}
+
 // ---------------------------------------------------------------------------------------
 // 4. Single surface: a U-shaped strip (two legs joined by a half circle), bottom leg held, top
 // leg thrown down onto it. No node of the top leg may come closer to the bottom leg's
@@ -379,23 +467,11 @@ TEST(ShellContact, FoldingStripDoesNotPassThroughItself) {
 // its edges) gives bit-identical results on 1 and 2 threads with the parallel loops forced on.
 
 TEST(ShellContact, ResultsDoNotDependOnThreadCount) {
-  std::vector<std::vector<double>> finals;
-  const int saved = omp_get_max_threads();
-  for (const int threads : {1, 2}) {
-    omp_set_num_threads(threads);
+  const auto finals = contact_runs_on_1_and_2_threads([] {
     auto model = io::read_deck(RIGIDFLEX_TEST_DECKS "/contact_shell_plate.k");
     model.termination.endtim = 0.0012;  // both bodies in contact by then
-    solver::Simulation sim(std::move(model), {});
-    sim.mutable_contacts().parallel_minimum = 0;
-    while (!sim.finished()) sim.cycle();
-    const auto& n = sim.state().nodes;
-    std::vector<double> values(n.x.z);
-    values.insert(values.end(), n.v.z.begin(), n.v.z.end());
-    values.insert(values.end(), n.v.x.begin(), n.v.x.end());
-    values.push_back(sim.energy().contact_energy);
-    finals.push_back(values);
-  }
-  omp_set_num_threads(saved);
+    return model;
+  });
   ASSERT_EQ(finals[0].size(), finals[1].size());
   for (std::size_t i = 0; i < finals[0].size(); ++i) ASSERT_EQ(finals[0][i], finals[1][i]) << i;
 }
