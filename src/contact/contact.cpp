@@ -648,7 +648,8 @@ void evaluate_pass(ContactInterface& contact, ContactPass& pass, const solver::S
     // shell it approaches from when it was not in contact before.
     const Vec p_old{p[0] - dt * v.x[node], p[1] - dt * v.y[node], p[2] - dt * v.z[node]};
     const Vec side_memory{remembered[0], remembered[1], remembered[2]};
-    const bool has_memory = dot(side_memory, side_memory) > 0.0;
+    const std::int32_t remembered_segment = pass.contact_segment[j];
+    const bool has_memory = remembered_segment >= 0 && dot(side_memory, side_memory) > 0.0;
     std::array<std::int64_t, 3> a{}, b{};
     Projection best;
     std::int32_t best_segment = -1;
@@ -696,8 +697,17 @@ void evaluate_pass(ContactInterface& contact, ContactPass& pass, const solver::S
           // A shell pushes the node back to the side it came from: the side of the node's
           // contact normal of the last cycle if it was in contact, else the side its position
           // x^n was on relative to the segment's position at x^n (docs/contact.md section 3).
-          double side = 0.0;
+          // The memory holds on the segment touched and its neighbours (a node sliding over the
+          // shell): a node between two shells keeps its own side of the other one.
+          bool near_remembered = false;
           if (has_memory) {
+            const auto& last = master.segments[remembered_segment];
+            for (int a4 = 0; a4 < 4 && !near_remembered; ++a4) {
+              near_remembered = contains(q, last[a4]);
+            }
+          }
+          double side = 0.0;
+          if (near_remembered) {
             side = dot(trial.normal, side_memory);
           } else {
             Vec point_old = trial.point;
@@ -741,9 +751,11 @@ void evaluate_pass(ContactInterface& contact, ContactPass& pass, const solver::S
     if (!touching) {
       ft[0] = ft[1] = ft[2] = 0.0;
       remembered[0] = remembered[1] = remembered[2] = 0.0;
+      pass.contact_segment[j] = -1;
       continue;
     }
     for (int d = 0; d < 3; ++d) remembered[d] = best.normal[d];
+    pass.contact_segment[j] = best_segment;
     const auto& segment = master.segments[best_segment];
     // Stiffness (docs/contact.md): SOFT = 0, the smaller of the master segment's SLSFAC K A^2 / V
     // and that of the node's own segment that faces it most directly, each with its side's
@@ -902,6 +914,7 @@ ContactSystem build_contacts(const model::Model& model, const solver::NodeIndex&
       pass.results.resize(slave.nodes.size());
       pass.tangential_force.assign(3 * slave.nodes.size(), 0.0);
       pass.contact_normal.assign(3 * slave.nodes.size(), 0.0);
+      pass.contact_segment.assign(slave.nodes.size(), -1);
       contact.passes.push_back(std::move(pass));
     };
     add_pass(0, 1);
@@ -934,6 +947,7 @@ void compute_contact_forces(ContactSystem& system, const solver::State& state, d
       for (auto& pass : contact.passes) {
         std::fill(pass.tangential_force.begin(), pass.tangential_force.end(), 0.0);
         std::fill(pass.contact_normal.begin(), pass.contact_normal.end(), 0.0);
+        std::fill(pass.contact_segment.begin(), pass.contact_segment.end(), -1);
         for (auto& r : pass.results) r.segment = -1;
       }
       continue;

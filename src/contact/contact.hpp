@@ -101,10 +101,12 @@ struct ContactPass {
   SegmentGrid grid;
   std::vector<NodeContact> results;      // parallel to the slave side's nodes
   std::vector<double> tangential_force;  // 3 per slave node: the friction spring (state)
-  // 3 per slave node: the unit contact normal of the last evaluation (zero: not in contact).
-  // The side memory of two-sided (shell) segments: a node in contact stays on the side it
-  // touched from (docs/contact.md section 3). State: written to restart dumps.
+  // The side memory of two-sided (shell) segments (docs/contact.md section 1.1): per slave node
+  // the unit contact normal (3 per node, zero: not in contact) and the master segment (-1) of
+  // the last evaluation. A node in contact keeps its side on that segment and the segments that
+  // share a node with it. State: written to restart dumps.
   std::vector<double> contact_normal;
+  std::vector<std::int32_t> contact_segment;
 };
 
 struct ContactInterface {

@@ -393,6 +393,43 @@ TEST(ShellContact, BlockSlidesDownInclinedShellWithCoulombFriction) {
   EXPECT_LT(worst_ratio, 1e-6);
 }
 
+// (e) A shell between two shells: a deformable plate resting on a fixed rigid plate, squeezed by
+// a heavy rigid plate coming down. Its nodes remember the lower plate's side, which must not
+// decide their side of the upper plate: they stay between the two mid-surfaces.
+TEST(ShellContact, ShellSqueezedBetweenTwoShellsStaysBetweenThem) {
+  constexpr double t = 0.004, t_mid = 0.002;
+  const double z_mid = 0.5 * (t + t_mid);
+  const ShellPlate lower = plate(4, 0.08, 1, 100001, 0.0);
+  const ShellPlate middle = plate(4, 0.06, 3, 1, z_mid);
+  const ShellPlate upper = plate(4, 0.08, 2, 200001, 2.0 * z_mid + 0.001);
+  const std::string deck =
+      "*KEYWORD\n" + lower.text() + middle.text() + upper.text() +
+      fixed_rigid_shell(1, t, 2700.0, 7e10, 0.3) + shell_part(3, t_mid, 2700.0, 7e10, 0.3) +
+      fmt::format(
+          "*PART\nupper\n2,2,2\n*SECTION_SHELL\n2,2,0.8333333333333334,2\n{0},{0},{0},{0}\n"
+          "*MAT_RIGID\n2,27000.0,7e10,0.3\n0.0,0,0\n",
+          t) +
+      gravity() + "*INITIAL_VELOCITY_GENERATION\n2,2,0,0,0,-0.5\n0,0,0,0,0,0\n" +
+      "*SET_PART_LIST\n10\n1,2\n*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE\n3,10,3,2\n0,0\n1,1\n" +
+      "*CONTROL_TIMESTEP\n0,0.5\n*CONTROL_TERMINATION\n0.005\n*END\n";
+  solver::Simulation sim(read(deck), {});
+  double below = 1e300, above = 1e300;
+  std::int64_t most_active = 0;
+  while (!sim.finished()) {
+    sim.cycle();
+    const Nodes m = nodes_of(sim.state(), 1, 100000);
+    const Nodes u = nodes_of(sim.state(), 200001, 300000);
+    below = std::min(below, m.z_min);            // middle above the lower mid-surface (z = 0)
+    above = std::min(above, u.z_min - m.z_max);  // upper mid-surface above the middle
+    most_active = std::max(most_active, active(sim));
+  }
+  RecordProperty("closest_to_lower_over_contact_distance", fmt::format("{:.6g}", below / z_mid));
+  RecordProperty("closest_to_upper_over_contact_distance", fmt::format("{:.6g}", above / z_mid));
+  EXPECT_GT(most_active, 25);  // pressed on both sides
+  EXPECT_GT(below, 0.9 * z_mid);
+  EXPECT_GT(above, 0.9 * z_mid);
+}
+
 // ---------------------------------------------------------------------------------------
 // 4. Single surface: a U-shaped strip (two legs joined by a half circle), bottom leg held, top
 // leg thrown down onto it. No node of the top leg may come closer to the bottom leg's
