@@ -385,15 +385,7 @@ int command_run(const std::string& deck, std::string output_dir, int threads, bo
   // writes one (Dumper::write_if_due).
   rf::restart::DumpSchedule schedule = rf::restart::Dumper::every(dump_every);
   schedule.at_termination = dump_every > 0.0;
-  // Restart dumps do not carry shell and beam state yet: none is written for such a model (an
-  // interrupt then stops without a dump), and asking for one is refused.
-  const bool structural = !model.shells.empty() || !model.beams.empty();
-  if (structural && dump_every > 0.0) {
-    throw rf::InputError({},
-                         "--dump-every: restart dumps of models with shell or beam elements are "
-                         "not supported yet");
-  }
-  if (!structural && !world.distributed()) {  // distributed runs write no dumps (stage 1)
+  if (!world.distributed()) {  // distributed runs write no dumps (stage 1)
     sim->enable_restart_dumps(std::make_unique<rf::restart::Dumper>(std::move(input), schedule));
   }
   rf::app::RunLog log(out / "d3hsp.txt", false);

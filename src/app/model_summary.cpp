@@ -15,6 +15,12 @@ namespace rf::app {
 
 namespace {
 
+// The ELFORM as the deck wrote it (ELFORM 10 tetrahedra run the ELFORM 1 kernel).
+int section_elform(const model::Model& model, model::Id secid, int kernel_elform) {
+  const auto it = model.solid_sections.find(secid);
+  return it != model.solid_sections.end() ? it->second.elform : kernel_elform;
+}
+
 const char* shape_of(const model::SolidElement& e) {
   std::set<model::Id> distinct(e.nodes.begin(), e.nodes.end());
   switch (distinct.size()) {
@@ -87,7 +93,8 @@ void print_model_summary(const model::Model& model, const solver::Simulation& si
         part.id, part.title, block.size(),
         block.order > 1 ? fmt::format("order {} ({} nodes, GLL, total-Lagrangian neo-Hookean)",
                                       block.order, block.nodes_per_element())
-                        : fmt::format("section {} (ELFORM {})", part.secid, block.elform),
+                        : fmt::format("section {} (ELFORM {})", part.secid,
+                                      section_elform(model, part.secid, block.elform)),
         mat.id, mat.keyword, mat.rho, mat.e, mat.pr,
         block.order > 1
             ? std::string()

@@ -79,6 +79,7 @@ struct Part {
 struct SectionSolid {
   Id id = 0;
   int elform = 1;  // 1: one-point reduced + hourglass control; 2: selective-reduced 2x2x2
+                  // 10: one-point 4-node tetrahedron (constant strain)
   SourceLocation where;
 };
 
@@ -845,7 +846,7 @@ struct MassDamping {
 // *CONSTRAINED_JOINT_SPHERICAL / _REVOLUTE / _CYLINDRICAL / _TRANSLATIONAL: a penalty joint
 // between coincident node pairs (N1,N2), (N3,N4), (N5,N6); odd nodes on body A, even on B.
 struct Joint {
-  enum class Type { Spherical, Revolute, Cylindrical, Translational };
+  enum class Type { Spherical, Revolute, Cylindrical, Translational, Universal, Locking };
   Type type = Type::Spherical;
   Id id = 0;  // JID of the _ID card, else the joint's 1-based position in the deck
   std::string title;

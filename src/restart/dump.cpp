@@ -9,9 +9,11 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "element/block_state.hpp"
 #include "model/error.hpp"
 #include "output/output_directory.hpp"
 #include "restart/simulation_access.hpp"
+#include "solver/rotational_state_visit.hpp"
 
 namespace rf::restart {
 
@@ -510,30 +512,6 @@ void read_nodes(const Group& g, solver::NodalState& nodes, solver::Vec3Array& v_
 
 // ---- Element blocks --------------------------------------------------------------------------
 
-namespace {
-
-// Every per-element array of a HexBlock that may change after set-up, and the reference volumes.
-// Not stored: the order > 1 reference Jacobians, weights, steps and lengths, which are set up
-// from x0 and never change (a third of a p = 3 dump); the rebuilt model has them bit for bit.
-// A member that starts to change during a run (e.g. re-referencing on switching) goes here.
-template <class Visit>
-void visit_block_arrays(Visit&& visit) {
-  visit(
-      "stress", [](auto& b) -> auto& { return b.stress; });
-  visit(
-      "hourglass_state", [](auto& b) -> auto& { return b.hourglass_state; });
-  visit(
-      "volume0", [](auto& b) -> auto& { return b.volume0; });
-  visit(
-      "volume0_cbrt", [](auto& b) -> auto& { return b.volume0_cbrt; });
-  visit(
-      "volume", [](auto& b) -> auto& { return b.volume; });
-  visit(
-      "force", [](auto& b) -> auto& { return b.force; });
-}
-
-}  // namespace
-
 void write_hex_blocks(const Group& g, const std::vector<element::HexBlock>& blocks) {
   g.set("count", static_cast<std::int64_t>(blocks.size()));
   for (std::size_t b = 0; b < blocks.size(); ++b) {
@@ -545,10 +523,9 @@ void write_hex_blocks(const Group& g, const std::vector<element::HexBlock>& bloc
     bg.set("rigid", std::int64_t{block.rigid});
     bg.set("size", static_cast<std::int64_t>(block.size()));
     write_vector(bg, "element_id", block.element_id);
-    visit_block_arrays([&](const char* name, auto get) { write_vector(bg, name, get(block)); });
-    // Material history, whatever the material: one dataset per registered field.
-    for (const auto& h : block.history)
-      write_vector(bg, fmt::format("history_{}", h.field.name), h.values);
+    element::visit_hex_state(block, [&](const std::string& name, const std::vector<double>& array) {
+      write_vector(bg, name, array);
+    });
   }
 }
 
@@ -639,13 +616,127 @@ void read_hex_blocks(const Group& g, std::vector<element::HexBlock>& blocks) {
     }
     // A part rigid by switching keeps its (zeroed) assembly slots: only the flag changes.
     block.rigid = dumped_rigid;
-    visit_block_arrays([&](const char* name, auto get) {
-      auto& array = get(block);
+    element::visit_hex_state(block, [&](const std::string& name, std::vector<double>& array) {
       array = read_exact<double>(bg, name, array.size());
     });
-    for (auto& h : block.history)
-      h.values = read_exact<double>(bg, fmt::format("history_{}", h.field.name), h.values.size());
   }
+}
+
+// ---- Shells, beams and nodal rotations ---------------------------------------------------------
+
+namespace {
+
+// One group per block of a structural family: what identifies the block (part, ELFORM, rigid
+// flag, element IDs) and the arrays its family's visitor names (visit_shell_state,
+// visit_beam_state), the material's history fields among them (`history_<name>`).
+template <class Block, class VisitState>
+void write_structural_blocks(const Group& g, const std::vector<Block>& blocks,
+                             VisitState visit_state) {
+  g.set("count", static_cast<std::int64_t>(blocks.size()));
+  for (std::size_t b = 0; b < blocks.size(); ++b) {
+    const Block& block = blocks[b];
+    const Group bg = g.create_group(fmt::format("{:04d}", b));
+    bg.set("part_id", std::int64_t{block.part_id});
+    bg.set("elform", std::int64_t{block.elform});
+    bg.set("rigid", std::int64_t{block.rigid});
+    bg.set("size", static_cast<std::int64_t>(block.size()));
+    write_vector(bg, "element_id", block.element_id);
+    visit_state(block, [&](const std::string& name, const std::vector<double>& array) {
+      write_vector(bg, name, array);
+    });
+  }
+}
+
+template <class Block, class VisitState>
+void read_structural_blocks(const Group& g, std::vector<Block>& blocks, const char* family,
+                            VisitState visit_state) {
+  if (count_of(g, "count") != blocks.size()) {
+    g.fail("count", fmt::format("is {} {} blocks, the model rebuilt from the dump's deck has {}",
+                                g.get_int("count"), family, blocks.size()));
+  }
+  for (std::size_t b = 0; b < blocks.size(); ++b) {
+    Block& block = blocks[b];
+    const std::string name = fmt::format("{:04d}", b);
+    const Group bg = g.group(name);
+    if (bg.get_int("part_id") != block.part_id || bg.get_int("elform") != block.elform ||
+        count_of(bg, "size") != block.size()) {
+      g.fail(name,
+             fmt::format("describes {} part {} (ELFORM {}, {} elements), the model rebuilt "
+                         "from the dump's deck has {} part {} (ELFORM {}, {} elements) here",
+                         family, bg.get_int("part_id"), bg.get_int("elform"), bg.get_int("size"),
+                         family, block.part_id, block.elform, block.size()));
+    }
+    if (read_exact<std::int64_t>(bg, "element_id", block.size()) != block.element_id) {
+      bg.fail("element_id", fmt::format("differs from the element IDs of {} part {} of the "
+                                        "rebuilt model",
+                                        family, block.part_id));
+    }
+    if ((bg.get_int("rigid") != 0) != block.rigid) {
+      // Shell and beam parts do not switch (solver::check_structural_support): the flag is the
+      // deck's (*MAT_RIGID) in both runs.
+      bg.fail("rigid", fmt::format("says {} part {} was {}, the rebuilt model has it {}", family,
+                                   block.part_id, bg.get_int("rigid") != 0 ? "rigid" : "deformable",
+                                   block.rigid ? "rigid" : "deformable"));
+    }
+    visit_state(block, [&](const std::string& dataset, std::vector<double>& array) {
+      if (!bg.has(dataset)) {
+        bg.fail(dataset, fmt::format("is missing: {} part {} of the rebuilt model has this state "
+                                     "(another material or formulation than the dumped run's)",
+                                     family, block.part_id));
+      }
+      array = read_exact<double>(bg, dataset, array.size());
+    });
+  }
+}
+
+}  // namespace
+
+void write_shell_blocks(const Group& g, const std::vector<element::ShellBlock>& blocks) {
+  write_structural_blocks(
+      g, blocks, [](const auto& block, auto&& visit) { element::visit_shell_state(block, visit); });
+}
+
+void read_shell_blocks(const Group& g, std::vector<element::ShellBlock>& blocks) {
+  read_structural_blocks(g, blocks, "shell", [](auto& block, auto&& visit) {
+    element::visit_shell_state(block, visit);
+  });
+}
+
+void write_beam_blocks(const Group& g, const std::vector<element::BeamBlock>& blocks) {
+  write_structural_blocks(
+      g, blocks, [](const auto& block, auto&& visit) { element::visit_beam_state(block, visit); });
+}
+
+void read_beam_blocks(const Group& g, std::vector<element::BeamBlock>& blocks) {
+  read_structural_blocks(g, blocks, "beam", [](auto& block, auto&& visit) {
+    element::visit_beam_state(block, visit);
+  });
+}
+
+void write_rotations(const Group& g, const solver::RotationalState& rotations) {
+  g.set("count", static_cast<std::int64_t>(rotations.size()));
+  write_vector(g, "node", rotations.node);
+  solver::visit_rotational_state(rotations,
+                                 [&](const std::string& name, const std::vector<double>& array) {
+                                   write_vector(g, name, array);
+                                 });
+}
+
+void read_rotations(const Group& g, solver::RotationalState& rotations) {
+  const std::size_t n = rotations.size();
+  if (count_of(g, "count") != n) {
+    g.fail("count", fmt::format("is {} nodes with rotations, the model rebuilt from the dump's "
+                                "deck has {}",
+                                g.get_int("count"), n));
+  }
+  if (read_exact<std::int32_t>(g, "node", n) != rotations.node) {
+    g.fail("node",
+           "differs from the nodes with rotations of the model rebuilt from the dump's "
+           "deck");
+  }
+  solver::visit_rotational_state(rotations, [&](const std::string& name, std::vector<double>& a) {
+    a = read_exact<double>(g, name, a.size());
+  });
 }
 
 // ---- Rigid system ----------------------------------------------------------------------------
@@ -941,6 +1032,15 @@ void write_restart_dump(solver::Simulation& sim, const std::filesystem::path& pa
         write_hex_blocks(root.create_group("blocks"), state.hex_blocks);
         if (!state.discrete_blocks.empty()) {
           write_discrete_blocks(root.create_group("discrete"), state.discrete_blocks);
+        }
+        if (!state.shell_blocks.empty()) {
+          write_shell_blocks(root.create_group("shells"), state.shell_blocks);
+        }
+        if (!state.beam_blocks.empty()) {
+          write_beam_blocks(root.create_group("beams"), state.beam_blocks);
+        }
+        if (!state.rotations.empty()) {
+          write_rotations(root.create_group("rotations"), state.rotations);
         }
         write_rigid_system(root.create_group("rigid"), SimulationAccess::rigid(sim), model);
         write_boundary(root.create_group("boundary"), SimulationAccess::boundary(sim), model);

@@ -6,6 +6,9 @@
 //   /nodes       nodal arrays (write_nodes)
 //   /blocks/NNNN per-element state of each HexBlock (write_hex_blocks)
 //   /discrete    energies and forces of the discrete blocks (only when the model has any)
+//   /shells/NNNN per-element state of each ShellBlock (element::visit_shell_state; with shells)
+//   /beams/NNNN  per-element state of each BeamBlock (element::visit_beam_state; with beams)
+//   /rotations   the nodal rotational state (solver::visit_rotational_state; with shells/beams)
 //   /rigid       the rigid system, wholesale: bodies, body_of_node, motions, loads
 //   /boundary    resolved constraints and loads, wholesale (write_boundary)
 //   /simulation  Simulation's own members (SimulationAccess::write_members)
@@ -62,6 +65,19 @@ void read_hex_blocks(const io::h5::Group& g, std::vector<element::HexBlock>& blo
 void write_discrete_blocks(const io::h5::Group& g,
                            const std::vector<element::DiscreteBlock>& blocks);
 void read_discrete_blocks(const io::h5::Group& g, std::vector<element::DiscreteBlock>& blocks);
+
+// Shells and beams: per block its identity (part, ELFORM, rigid flag, element IDs, checked
+// against the rebuilt model on reading) and the arrays the family's visitor names
+// (element::visit_shell_state, element::visit_beam_state), material history included.
+void write_shell_blocks(const io::h5::Group& g, const std::vector<element::ShellBlock>& blocks);
+void read_shell_blocks(const io::h5::Group& g, std::vector<element::ShellBlock>& blocks);
+void write_beam_blocks(const io::h5::Group& g, const std::vector<element::BeamBlock>& blocks);
+void read_beam_blocks(const io::h5::Group& g, std::vector<element::BeamBlock>& blocks);
+
+// Angular velocities, moments and rotational inertias of the nodes with rotations
+// (solver::visit_rotational_state); the rotational node list is checked against the rebuilt one.
+void write_rotations(const io::h5::Group& g, const solver::RotationalState& rotations);
+void read_rotations(const io::h5::Group& g, solver::RotationalState& rotations);
 
 // `model` resolves time functions to IDs (write) and back (read). Read replaces the whole
 // system (bodies may have been created or removed during the run); node_count checks indices.

@@ -426,35 +426,40 @@ void read_flexible(solver::RigidSystem& rigid, const Group& g) {
   }
 }
 
-// Mass scaling (solver/mass_scaling.hpp): the element factors of the hexahedron blocks (dumps
-// hold no shells or beams yet) and the running sums; the nodal masses are in /nodes, the
-// physical masses are rebuilt from the deck.
+// Mass scaling (solver/mass_scaling.hpp): the element factors of the hexahedron, shell and beam
+// blocks and the running sums; the nodal masses are in /nodes and the rotational inertias in
+// /rotations, the physical masses are rebuilt from the deck.
 void write_mass_scaling(const solver::MassScaling& m, const Group& g) {
   g.set("started", std::int64_t{m.started});
   g.set("added_mass", m.added_mass);
   g.set("mass_scaling_work", m.mass_scaling_work);
   g.set("rescaled_cycles", m.rescaled_cycles);
-  g.set("hex_blocks", static_cast<std::int64_t>(m.hex_factor.size()));
-  for (std::size_t b = 0; b < m.hex_factor.size(); ++b) {
-    g.write(fmt::format("hex_factor_{}", b), span_of(m.hex_factor[b]));
+  for (const auto& [family, factors] :
+       {std::pair{"hex", &m.hex_factor}, std::pair{"shell", &m.shell_factor},
+        std::pair{"beam", &m.beam_factor}}) {
+    g.set(fmt::format("{}_blocks", family), static_cast<std::int64_t>(factors->size()));
+    for (std::size_t b = 0; b < factors->size(); ++b) {
+      g.write(fmt::format("{}_factor_{}", family, b), span_of((*factors)[b]));
+    }
   }
 }
 
-void read_mass_scaling(solver::MassScaling& m, solver::State& state, const Group& g) {
-  m.started = g.get_int("started") != 0;
-  m.added_mass = g.get_double("added_mass");
-  m.mass_scaling_work = g.get_double("mass_scaling_work");
-  m.rescaled_cycles = g.get_int("rescaled_cycles");
-  const std::int64_t blocks = g.get_int("hex_blocks");
-  if (blocks != 0 && blocks != static_cast<std::int64_t>(state.hex_blocks.size())) {
-    g.fail("hex_blocks", fmt::format("is {}, the rebuilt model has {} hexahedron blocks", blocks,
-                                     state.hex_blocks.size()));
+// The factors of one family's blocks; each block's step_scale is sqrt(s_e), as scale_masses
+// sets it. A dump without the family's count (shells and beams) is a dump of a model without it.
+template <class Block>
+void read_mass_factors(const Group& g, const char* family, std::vector<Block>& blocks,
+                       std::vector<std::vector<double>>& factors) {
+  const std::string count = fmt::format("{}_blocks", family);
+  const std::int64_t n = g.has_attribute(count) ? g.get_int(count) : 0;
+  if (n != 0 && n != static_cast<std::int64_t>(blocks.size())) {
+    g.fail(count,
+           fmt::format("is {}, the rebuilt model has {} {} blocks", n, blocks.size(), family));
   }
-  m.hex_factor.assign(static_cast<std::size_t>(blocks), {});
-  for (std::size_t b = 0; b < m.hex_factor.size(); ++b) {
-    const std::string name = fmt::format("hex_factor_{}", b);
+  factors.assign(static_cast<std::size_t>(n), {});
+  for (std::size_t b = 0; b < factors.size(); ++b) {
+    const std::string name = fmt::format("{}_factor_{}", family, b);
     std::vector<double> factor = g.read_doubles(name);
-    auto& block = state.hex_blocks[b];
+    auto& block = blocks[b];
     if (factor.empty()) {  // a block that was rigid throughout
       block.step_scale.clear();
     } else {
@@ -467,8 +472,18 @@ void read_mass_scaling(solver::MassScaling& m, solver::State& state, const Group
         block.step_scale[e] = std::sqrt(factor[e]);
       }
     }
-    m.hex_factor[b] = std::move(factor);
+    factors[b] = std::move(factor);
   }
+}
+
+void read_mass_scaling(solver::MassScaling& m, solver::State& state, const Group& g) {
+  m.started = g.get_int("started") != 0;
+  m.added_mass = g.get_double("added_mass");
+  m.mass_scaling_work = g.get_double("mass_scaling_work");
+  m.rescaled_cycles = g.get_int("rescaled_cycles");
+  read_mass_factors(g, "hex", state.hex_blocks, m.hex_factor);
+  read_mass_factors(g, "shell", state.shell_blocks, m.shell_factor);
+  read_mass_factors(g, "beam", state.beam_blocks, m.beam_factor);
 }
 
 }  // namespace

@@ -210,6 +210,21 @@ Restarted restart_from_dump(const RestartOptions& options) {
     }
     read_discrete_blocks(root.group("discrete"), state.discrete_blocks);
   }
+  // Shells, beams and the nodal rotations: present in the dump exactly when the model has them.
+  const auto read_family = [&](const char* group, bool in_model, const char* what, auto read) {
+    if (in_model != root.has(group)) {
+      root.fail(group, fmt::format("is {}: the dump {} {}, the model rebuilt from its deck {}",
+                                   in_model ? "missing" : "unexpected", in_model ? "has no" : "has",
+                                   what, in_model ? "has some" : "has none"));
+    }
+    if (in_model) read(root.group(group));
+  };
+  read_family("shells", !state.shell_blocks.empty(), "shell elements",
+              [&](const io::h5::Group& g) { read_shell_blocks(g, state.shell_blocks); });
+  read_family("beams", !state.beam_blocks.empty(), "beam elements",
+              [&](const io::h5::Group& g) { read_beam_blocks(g, state.beam_blocks); });
+  read_family("rotations", !state.rotations.empty(), "nodes with rotations",
+              [&](const io::h5::Group& g) { read_rotations(g, state.rotations); });
   read_rigid_system(root.group("rigid"), SimulationAccess::rigid(sim), sim_model,
                     state.nodes.size());
   read_boundary(root.group("boundary"), SimulationAccess::boundary(sim), sim_model);

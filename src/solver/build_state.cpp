@@ -352,12 +352,21 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
     element::HexBlock block;
     block.part_id = pid;
     block.part_index = static_cast<int>(state.parts.size());
-    block.elform = sec_it->second.elform;
+    // ELFORM 10, the one-point tetrahedron, is the ELFORM 1 kernel on LS-DYNA's degenerate
+    // hexahedron n1 n2 n3 n4 n4 n4 n4 n4: hex_block.cpp evaluates it as the collapsed hexahedron
+    // that reproduces the linear tetrahedron exactly, so its one-point gradient is the
+    // constant-strain gradient. A tetrahedron has no hourglass modes (every velocity field of
+    // four nodes is linear), so the hourglass control is switched off (QM 0): LS-DYNA's IHQ 1-3
+    // base vectors are not orthogonal to linear fields on a collapsed element and would resist
+    // ordinary deformation.
+    const bool tetrahedra_only = sec_it->second.elform == 10;
+    block.elform = tetrahedra_only ? 1 : sec_it->second.elform;
     block.rigid = mat.kind == model::MaterialKind::Rigid;
     block.has_force_slots = !block.rigid;
     block.order = part_order(model, pid);
     // Rigid parts: the section and hourglass do not matter; E and PR only for contact later.
     if (!block.rigid) block.hourglass = resolve_hourglass(model, part);
+    if (tetrahedra_only) block.hourglass.qm = 0.0;
     if (!block.rigid && block.order == 1)
       block.bulk_viscosity = resolve_bulk_viscosity(model, part);
     block.material = material::make_elastic(mat.rho, mat.e, mat.pr);
@@ -393,13 +402,24 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
     block.conn.reserve(element_indices.size() * 8);
     for (const std::size_t e : element_indices) {
       const auto& solid = model.solids[e];
+      if (tetrahedra_only) {
+        std::array<model::Id, 8> sorted = solid.nodes;
+        std::sort(sorted.begin(), sorted.end());
+        const auto distinct = std::unique(sorted.begin(), sorted.end()) - sorted.begin();
+        if (distinct != 4) {
+          throw InputError(context_of(solid.where, "N1"),
+                           fmt::format("element {} of part {} has {} distinct nodes, but its "
+                                       "section {} is ELFORM 10, the 4-node tetrahedron",
+                                       solid.id, pid, distinct, part.secid));
+        }
+      }
       block.element_id.push_back(solid.id);
       for (int k = 0; k < 8; ++k) {
         block.conn.push_back(node_index.at(solid.nodes[k], solid.where, "N"));
       }
     }
     state.parts.push_back(
-        PartInfo{pid, part.title, block.elform, static_cast<std::int64_t>(block.size())});
+        PartInfo{pid, part.title, sec_it->second.elform, static_cast<std::int64_t>(block.size())});
     state.hex_blocks.push_back(std::move(block));
   }
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "model/error.hpp"
 #include "model/error_context.hpp"
@@ -52,6 +53,16 @@ double inverse_point_mass(const RigidSystem& rigid, const State& state, std::int
       .maxCoeff();
 }
 
+// A force f on node a and -f on node b (a = (f_ext - f_int) / m: a force f is -f in f_int).
+void add_pair_force(NodalState& nodes, std::int32_t a, std::int32_t b, const Eigen::Vector3d& f) {
+  nodes.f_int.x[a] -= f.x();
+  nodes.f_int.y[a] -= f.y();
+  nodes.f_int.z[a] -= f.z();
+  nodes.f_int.x[b] += f.x();
+  nodes.f_int.y[b] += f.y();
+  nodes.f_int.z[b] += f.z();
+}
+
 }  // namespace
 
 JointSystem build_joints(const model::Model& model, const NodeIndex& node_index,
@@ -85,8 +96,15 @@ JointSystem build_joints(const model::Model& model, const NodeIndex& node_index,
         joint.pairs = 3;
         joint.axial_free = true;
         break;
+      case model::Joint::Type::Universal:
+        joint.pairs = 1;
+        joint.link = true;
+        break;
+      case model::Joint::Type::Locking:
+        joint.pairs = 3;
+        break;
     }
-    for (int k = 0; k < 2 * joint.pairs; ++k) {
+    for (int k = 0; k < 2 * joint.pairs + (joint.link ? 2 : 0); ++k) {
       joint.node[k] = node_index.at(card.nodes[k], card.where, kNodeField[k]);
     }
     for (int p = 0; p < joint.pairs; ++p) {
@@ -105,14 +123,47 @@ JointSystem build_joints(const model::Model& model, const NodeIndex& node_index,
                                      2 * p + 1, 2 * p + 2, card.nodes[2 * p]));
       }
     }
-    if (joint.pairs >= 2) {
-      const Eigen::Vector3d a1 = position(state.nodes.x0, joint.node[0]);
+    const Eigen::Vector3d a1 = position(state.nodes.x0, joint.node[0]);
+    if (joint.pairs >= 2 || joint.link) {
       const Eigen::Vector3d a3 = position(state.nodes.x0, joint.node[2]);
       if ((a3 - a1).norm() <= 1e-9 * std::max(size, 1e-300)) {
         throw InputError(
             context_of(card.where, "N3"),
             fmt::format("joint {}: N1 and N3 coincide, so they define no axis", card.id));
       }
+    }
+    if (joint.pairs == 3) {
+      // Three pairs on one line hold nothing against a turn about that line.
+      const Eigen::Vector3d axis = (position(state.nodes.x0, joint.node[2]) - a1).normalized();
+      const Eigen::Vector3d r5 = position(state.nodes.x0, joint.node[4]) - a1;
+      if ((r5 - r5.dot(axis) * axis).norm() <= 1e-6 * std::max(size, 1e-300)) {
+        throw InputError(context_of(card.where, "N5"),
+                         fmt::format("joint {}: N5 lies on the axis N1 -> N3; it must be off the "
+                                     "axis to hold the turn about it",
+                                     card.id));
+      }
+    }
+    if (joint.link) {
+      const Eigen::Vector3d arm_a = position(state.nodes.x0, joint.node[2]) - a1;
+      const Eigen::Vector3d arm_b =
+          position(state.nodes.x0, joint.node[3]) - position(state.nodes.x0, joint.node[1]);
+      if (arm_b.norm() <= 1e-9 * std::max(size, 1e-300)) {
+        throw InputError(
+            context_of(card.where, "N4"),
+            fmt::format("joint {}: N2 and N4 coincide, so they define no axis", card.id));
+      }
+      const double cosine = arm_a.dot(arm_b) / (arm_a.norm() * arm_b.norm());
+      if (std::abs(cosine) > 0.01) {
+        throw InputError(
+            context_of(card.where, "N4"),
+            fmt::format("joint {}: the arms N1 -> N3 and N2 -> N4 of a universal joint must be "
+                        "perpendicular; they make {:.4g} degrees",
+                        card.id,
+                        std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / std::numbers::pi));
+      }
+      joint.link_length =
+          (position(state.nodes.x0, joint.node[3]) - position(state.nodes.x0, joint.node[2]))
+              .norm();
     }
     system.joints.push_back(joint);
   }
@@ -125,7 +176,7 @@ void prepare_joint_stiffness(JointSystem& joints, const RigidSystem& rigid, cons
   for (SolverJoint& joint : joints.joints) {
     double stiffness = std::numeric_limits<double>::infinity();
     double mass = 0.0;
-    for (int p = 0; p < joint.pairs; ++p) {
+    for (int p = 0; p < joint.pairs + (joint.link ? 1 : 0); ++p) {  // pairs, then the link
       const double inverse = inverse_point_mass(rigid, state, joint.node[2 * p]) +
                              inverse_point_mass(rigid, state, joint.node[2 * p + 1]);
       if (!std::isfinite(inverse)) {
@@ -174,13 +225,20 @@ void add_joint_forces(JointSystem& joints, State& state) {
       }
       joint.gap = std::max(joint.gap, g.norm());
       const Eigen::Vector3d f = joint.stiffness * g + joint.damping * w;  // on node a
-      // a = (f_ext - f_int) / m: a force f on a node is -f in f_int.
-      nodes.f_int.x[a] -= f.x();
-      nodes.f_int.y[a] -= f.y();
-      nodes.f_int.z[a] -= f.z();
-      nodes.f_int.x[b] += f.x();
-      nodes.f_int.y[b] += f.y();
-      nodes.f_int.z[b] += f.z();
+      add_pair_force(nodes, a, b, f);
+      joint.force += f;
+      joint.moment += (position(nodes.x, a) - origin).cross(f);
+    }
+    if (joint.link) {
+      const std::int32_t a = joint.node[2], b = joint.node[3];
+      const Eigen::Vector3d d = position(nodes.x, b) - position(nodes.x, a);
+      const double length = d.norm();
+      const Eigen::Vector3d e = d / length;
+      const double stretch = length - joint.link_length;
+      const double rate = (position(nodes.v, b) - position(nodes.v, a)).dot(e);
+      const Eigen::Vector3d f = (joint.stiffness * stretch + joint.damping * rate) * e;  // on a
+      add_pair_force(nodes, a, b, f);
+      joint.gap = std::max(joint.gap, std::abs(stretch));
       joint.force += f;
       joint.moment += (position(nodes.x, a) - origin).cross(f);
     }

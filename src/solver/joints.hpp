@@ -1,5 +1,5 @@
-// Penalty joints (*CONSTRAINED_JOINT_SPHERICAL / _REVOLUTE / _CYLINDRICAL / _TRANSLATIONAL)
-// resolved to dense node indices. docs/theory.md "Joints".
+// Penalty joints (*CONSTRAINED_JOINT_SPHERICAL / _REVOLUTE / _CYLINDRICAL / _TRANSLATIONAL /
+// _UNIVERSAL / _LOCKING) resolved to dense node indices. docs/theory.md "Joints".
 #pragma once
 
 #include <Eigen/Dense>
@@ -19,6 +19,13 @@ struct SolverJoint {
   model::Id id = 0;
   std::array<std::int32_t, 6> node{-1, -1, -1, -1, -1, -1};
   int pairs = 1;  // node pairs (N1,N2), (N3,N4), (N5,N6) in use
+  // Universal joint: besides the pair (N1,N2), a penalty link keeps the distance between N3
+  // (body A) and N4 (body B) at its initial value `link_length`. With N1 = N2 the joint centre
+  // and the arms N1->N3, N2->N4 of fixed length (rigid bodies), |x4 - x3|^2 = |a|^2 + |b|^2 -
+  // 2 a.b, so a constant distance is a constant angle between the arms: perpendicular arms stay
+  // perpendicular, which is the Hooke (cross) joint constraint.
+  bool link = false;
+  double link_length = 0.0;
   // Pairs constrained only across the axis N1 -> N3 of body A (cylindrical, translational).
   bool axial_free = false;
   double rps = 1.0, damp = 1.0;
@@ -41,7 +48,9 @@ struct JointSystem {
 
 // Resolves the joints of the model. Throws InputError naming the card when a node does not
 // exist, when a pair's nodes do not coincide (within 1e-6 of the larger of the model's size and
-// the pair's distance from the origin), or when N1 and N3 coincide where they define the axis.
+// the pair's distance from the origin), when N1 and N3 coincide where they define the axis,
+// when N5 lies on the axis N1 -> N3 (translational, locking), or when the arms N1 -> N3 and
+// N2 -> N4 of a universal joint are not perpendicular (within 0.01 of the cosine).
 JointSystem build_joints(const model::Model& model, const NodeIndex& node_index,
                          const State& state);
 
@@ -58,7 +67,8 @@ void prepare_joint_stiffness(JointSystem& joints, const RigidSystem& rigid, cons
 // Adds the joint forces at x^{n+1} (and v^{n+1/2} for the dashpots) to f_int: a pair's force
 // F = k g + c w (g = x_B - x_A, w = v_B - v_A, across the axis only where the axis is free) pulls
 // the body-A node towards the body-B node and the body-B node back, so the work of the joints
-// is internal work (the springs' energy and the dashpots' losses are in internal_energy).
+// is internal work (the springs' energy and the dashpots' losses are in internal_energy). A
+// universal joint's link adds F = (k (|d| - L0) + c w.e) e along e = d / |d|, d = x4 - x3.
 void add_joint_forces(JointSystem& joints, State& state);
 
 }  // namespace rf::solver

@@ -542,6 +542,12 @@ void Simulation::enable_restart_dumps(std::unique_ptr<restart::Dumper> dumper) {
 // first run need not have flagged switching: the switcher is made here if it is missing.
 void Simulation::apply_restart_switches(const std::vector<model::RestartSwitch>& switches) {
   if (switches.empty()) return;
+  // As in the first run (check_structural_support): switching does not know shells and beams yet.
+  if (!state_.shell_blocks.empty() || !state_.beam_blocks.empty()) {
+    throw InputError(model::context_of(switches.front().where, "PID"),
+                     fmt::format("part switching in a model with {} elements is not supported yet",
+                                 !state_.shell_blocks.empty() ? "shell" : "beam"));
+  }
   if (!switcher_) {
     switcher_ = std::make_unique<switching::PartSwitcher>(model_, state_);
     switcher_->enable_flexible_bodies(mode_loader(), state_);

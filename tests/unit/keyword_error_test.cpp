@@ -47,9 +47,13 @@ std::vector<ErrorCase> cases() {
        deck("*NODE\n       9             abc             0.0             0.0\n"),
        {"bar.k:12: *NODE card 1 field X: 'abc' is not a number"}},
       {"UnsupportedElform",
+       deck("", "", "         1         7\n"),
+       {"bar.k:17: *SECTION_SOLID card 1 field ELFORM: value 7 is not supported "
+        "(supported: 1, 2, 10)"}},
+      {"UnsupportedTetrahedronElform",
        deck("", "", "         1        13\n"),
-       {"bar.k:17: *SECTION_SOLID card 1 field ELFORM: value 13 is not supported "
-        "(supported: 1, 2)"}},
+       {"bar.k:17: *SECTION_SOLID card 1 field ELFORM: tetrahedron formulation 13 is not "
+        "supported (supported: 10, the one-point 4-node tetrahedron)"}},
       {"UnknownNodeInElement",
        "*NODE\n1,0,0,0\n*ELEMENT_SOLID\n1,1,1,1,1,1,1,1,1,99\n*PART\np\n1,1,1\n"
        "*SECTION_SOLID\n1,1\n*MAT_ELASTIC\n1,1.0,1.0,0.3\n",

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "deck_builder.hpp"
+#include "shell_builder.hpp"
 
 namespace rf::test::restart_decks {
 
@@ -150,6 +151,64 @@ inline std::string quadratic(double end_time) {
   s += fmt::format("*LOAD_NODE_POINT\n{},3,1,20.0\n", mesh.node_id(2, 1, 1));
   s += "*DEFINE_CURVE\n1\n0.0,0.0\n1.0e-5,1.0\n1.0,1.0\n";
   s += fmt::format("*DATABASE_HISTORY_NODE\n{},{}\n", mesh.node_id(2, 1, 1), mesh.node_id(0, 0, 0));
+  s += "*END\n";
+  return s;
+}
+
+// A 4 x 4 mm steel plate of shells (0.2 mm) with beams along two edges (mm, t, s), spinning about
+// its normal and drifting, bent by a corner force and a corner moment from curves: part 1
+// (x < 2) ELFORM 2, *MAT_PIECEWISE_LINEAR_PLASTICITY (*MAT_024), stiffness hourglass IHQ 4
+// (accumulated hourglass forces); part 2 ELFORM 2 with 5 Gauss points, IHQ 5,
+// *MAT_PLASTIC_KINEMATIC with a back stress; part 3 integrated beams (ELFORM 1)
+// *MAT_PLASTIC_KINEMATIC along y = 0; part 4 resultant beams (ELFORM 2) along y = 4. The spin (1e5
+// rad/s) yields the plate in membrane, the loads bend it and turn the nodes: stresses, plastic
+// strains and back stresses, hourglass forces, beam frames and resultants and the nodal angular
+// velocities all cross the dump.
+inline std::string shells_and_beams(double end_time, double dt2ms = 0.0) {
+  ShellPlate plate;
+  plate.nx = 4;
+  plate.ny = 4;
+  plate.lx = 4.0;
+  plate.ly = 4.0;
+  std::string s = "*KEYWORD\n*TITLE\nrestart: shells and beams\n";
+  s += fmt::format("*CONTROL_TERMINATION\n{},0\n*CONTROL_TIMESTEP\n0,0.5,0,0.0,{}\n", end_time,
+                   dt2ms);
+  s += output_cards(2e-7, 2e-6);
+  s += plate.nodes_text();
+  s += "*ELEMENT_SHELL\n";
+  int eid = 1;
+  for (int j = 0; j < plate.ny; ++j)
+    for (int i = 0; i < plate.nx; ++i) {
+      s += fmt::format("{},{},{},{},{},{}\n", eid++, i < 2 ? 1 : 2, plate.node_id(i, j),
+                       plate.node_id(i + 1, j), plate.node_id(i + 1, j + 1),
+                       plate.node_id(i, j + 1));
+    }
+  s += "*ELEMENT_BEAM\n";
+  for (int i = 0; i < plate.nx; ++i) {
+    s += fmt::format("{},3,{},{}\n", 100 + i, plate.node_id(i, 0), plate.node_id(i + 1, 0));
+    s += fmt::format("{},4,{},{}\n", 200 + i, plate.node_id(i, plate.ny),
+                     plate.node_id(i + 1, plate.ny));
+  }
+  s += "*PART\nshells mat024 ihq4\n1,1,1,0,1\n*PART\nshells nip5 ihq5\n2,2,2,0,2\n";
+  s += "*PART\nintegrated beams\n3,3,2\n*PART\nresultant beams\n4,4,3\n";
+  s += "*SECTION_SHELL\n1,2,0.8333333333333334,3\n0.2,0.2,0.2,0.2\n";
+  s += "*SECTION_SHELL\n2,2,0.8333333333333334,5\n0.2,0.2,0.2,0.2\n";
+  s += "*SECTION_BEAM\n3,1,0.8333,2,0\n0.3,0.3,0.2,0.2\n";
+  s += "*SECTION_BEAM\n4,2,0.8333\n0.06,2.0e-4,4.5e-4,0.0\n";
+  s += "*MAT_PIECEWISE_LINEAR_PLASTICITY\n1,7.85e-9,210000.0,0.3,0,0\n0,0,0,0,0\n"
+       "0,0.01,0.02,0.05,0.1,0.2,0.5,1.0\n100,110,120,135,150,165,185,200\n";
+  s += "*MAT_PLASTIC_KINEMATIC\n2,7.85e-9,210000.0,0.3,100.0,2000.0,0.5\n";
+  s += "*MAT_ELASTIC\n3,7.85e-9,210000.0,0.3\n";
+  s += "*HOURGLASS\n1,4,0.1\n2,5,0.1\n";
+  s += "*INITIAL_VELOCITY_GENERATION\n0,2,1.0e5,1000.0,-500.0,200.0\n2.0,2.0,0.0,0.0,0.0,1.0\n";
+  s += fmt::format("*LOAD_NODE_POINT\n{},3,1,5.0\n{},5,1,2.0\n{},6,2,-1.0\n",
+                   plate.node_id(plate.nx, plate.ny), plate.node_id(plate.nx, 0),
+                   plate.node_id(0, plate.ny));
+  s += "*DEFINE_CURVE\n1\n0.0,0.0\n1.0e-5,1.0\n1.0,1.0\n";
+  s += "*DEFINE_CURVE\n2\n0.0,1.0\n1.0e-5,0.0\n1.0,-1.0\n";
+  s += fmt::format("*DATABASE_HISTORY_NODE\n{},{},{}\n", plate.node_id(plate.nx, plate.ny),
+                   plate.node_id(2, 2), plate.node_id(0, 0));
+  s += "*DATABASE_HISTORY_SHELL\n1,8,16\n*DATABASE_ELOUT\n2e-7\n";
   s += "*END\n";
   return s;
 }

@@ -249,6 +249,15 @@ const Case kCases[] = {
     {"mass_scaling", deformable_mass_scaled(), "", {}, 6e-6, 2},
     {"springs", deformable_with_springs(), "", {}, 6e-6, 1},
     {"springs", deformable_with_springs(), "", {}, 6e-6, 2},
+    // Shells (ELFORM 2: *MAT_024 with IHQ 4, *MAT_003 NIP 5 with IHQ 5) and beams (integrated
+    // *MAT_003, resultant), spinning and bent: stresses, history, hourglass forces, beam frames and
+    // resultants, nodal angular velocities and moments across the dump.
+    {"shells_beams", restart_decks::shells_and_beams(4e-5), "", {}, 6e-6, 1},
+    {"shells_beams", restart_decks::shells_and_beams(4e-5), "", {}, 6e-6, 2},
+    // The same with mass scaling (DT2MS just above the elements' steps): shell and beam factors
+    // and the scaled rotational inertias.
+    {"shells_beams_mass_scaled", restart_decks::shells_and_beams(4e-5, -2.0e-7), "", {}, 6e-6, 1},
+    {"shells_beams_mass_scaled", restart_decks::shells_and_beams(4e-5, -2.0e-7), "", {}, 6e-6, 2},
 };
 
 INSTANTIATE_TEST_SUITE_P(Restart, RestartBitwise, testing::ValuesIn(kCases), case_name);
@@ -456,6 +465,21 @@ TEST(Restart, FromTheFinalDumpTheRunContinues) {
 
 // ---- Bad input: clear errors, no crash -------------------------------------------------------
 
+// The message of the InputError that restarting `dump` (with `deck`, into `output`) throws ("" if
+// none).
+std::string restart_error_of(const fs::path& dump, const fs::path& deck, const fs::path& output) {
+  restart::RestartOptions options;
+  options.dump = dump;
+  options.restart_deck = deck;
+  options.output_directory = output;
+  try {
+    restart::restart_from_dump(options);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
 class RestartInput : public testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -471,18 +495,8 @@ class RestartInput : public testing::Test {
     fs::copy_file(dump(), path, fs::copy_options::overwrite_existing);
     return path;
   }
-  // The message of the InputError that restarting `dump` throws ("" if none).
   static std::string restart_error(const fs::path& dump, const fs::path& deck = {}) {
-    restart::RestartOptions options;
-    options.dump = dump;
-    options.restart_deck = deck;
-    options.output_directory = base_ / "out";
-    try {
-      restart::restart_from_dump(options);
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "";
+    return restart_error_of(dump, deck, base_ / "out");
   }
   static fs::path base_;
 };
@@ -589,6 +603,69 @@ TEST_F(RestartInput, SwitchingAPartWithoutElementsIsAnError) {
   const std::string message = restart_error(dump(), base_ / "switch.k");
   EXPECT_NE(message.find("switch.k:3"), std::string::npos) << message;
   EXPECT_NE(message.find("77"), std::string::npos) << message;
+}
+
+// A dump of the shell-and-beam deck (at 6 us), for the refusals below.
+class ShellRestartInput : public testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    omp_set_num_threads(1);
+    base_ = scratch("shell_input");
+    deck_ = restart_decks::shells_and_beams(4e-5);
+    write_file(base_ / "deck.k", deck_);
+    run_with_dumps(base_ / "deck.k", base_ / "run", 6e-6, 7e-6);
+  }
+  static void TearDownTestSuite() { fs::remove_all(base_); }
+  static fs::path dump() { return base_ / "run" / "d3dump_0001.h5"; }
+  static fs::path base_;
+  static std::string deck_;
+};
+fs::path ShellRestartInput::base_;
+std::string ShellRestartInput::deck_;
+
+// The dump with its deck text replaced by one with a shell element less (element 15, part 2):
+// the rebuilt model no longer matches the dumped shell block, and the restart says which part
+// and how many elements each side has.
+TEST_F(ShellRestartInput, DumpRefusesAModelWithAnotherShellCount) {
+  const fs::path path = base_ / "fewer_shells.h5";
+  fs::copy_file(dump(), path, fs::copy_options::overwrite_existing);
+  std::string fewer = deck_;
+  const std::size_t at = fewer.find("\n15,2,");
+  ASSERT_NE(at, std::string::npos);
+  fewer.erase(at + 1, fewer.find('\n', at + 1) - at);
+  {
+    const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    ASSERT_GE(file, 0);
+    const hid_t model = H5Gopen2(file, "/model", H5P_DEFAULT);
+    ASSERT_GE(H5Ldelete(model, "file_0000", H5P_DEFAULT), 0);
+    const hsize_t size[1] = {fewer.size()};
+    const hid_t space = H5Screate_simple(1, size, nullptr);
+    const hid_t set = H5Dcreate2(model, "file_0000", H5T_NATIVE_UINT8, space, H5P_DEFAULT,
+                                 H5P_DEFAULT, H5P_DEFAULT);
+    H5Dwrite(set, H5T_NATIVE_UINT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, fewer.data());
+    H5Dclose(set);
+    H5Sclose(space);
+    H5Gclose(model);
+    H5Fclose(file);
+  }
+  const std::string message = restart_error_of(path, {}, base_ / "out");
+  EXPECT_NE(message.find("/shells"), std::string::npos) << message;
+  EXPECT_NE(message.find("describes shell part 2 (ELFORM 2, 8 elements), the model rebuilt "
+                         "from the dump's deck has shell part 2 (ELFORM 2, 7 elements)"),
+            std::string::npos)
+      << message;
+}
+
+// Switching shell and beam parts is not supported yet (solver::check_structural_support refuses
+// it in the first run): a restart deck's *DEFORMABLE_TO_RIGID in a shell model is refused too,
+// naming the card.
+TEST_F(ShellRestartInput, SwitchingOnRestartIsRefused) {
+  write_file(base_ / "switch.k", "*KEYWORD\n*DEFORMABLE_TO_RIGID\n1\n*END\n");
+  const std::string message = restart_error_of(dump(), base_ / "switch.k", base_ / "out");
+  EXPECT_NE(message.find("switch.k:3"), std::string::npos) << message;
+  EXPECT_NE(message.find("part switching in a model with shell elements is not supported yet"),
+            std::string::npos)
+      << message;
 }
 
 // A small restart that switches part 2 (ELFORM 2) of the deformable block to rigid half way and

@@ -1,5 +1,6 @@
-// *CONSTRAINED_JOINT_SPHERICAL, _REVOLUTE, _CYLINDRICAL, _TRANSLATIONAL (with _ID): penalty
-// joints between node pairs (LS-DYNA manual, volume I, *CONSTRAINED_JOINT_OPTION).
+// *CONSTRAINED_JOINT_SPHERICAL, _REVOLUTE, _CYLINDRICAL, _TRANSLATIONAL, _UNIVERSAL, _LOCKING
+// (with _ID): penalty joints between node pairs (LS-DYNA manual, volume I,
+// *CONSTRAINED_JOINT_OPTION).
 #include <fmt/format.h>
 
 #include <cmath>
@@ -24,6 +25,8 @@ JointKind kind_of(const Block& block) {
       {"*CONSTRAINED_JOINT_REVOLUTE", model::Joint::Type::Revolute, 4},
       {"*CONSTRAINED_JOINT_CYLINDRICAL", model::Joint::Type::Cylindrical, 4},
       {"*CONSTRAINED_JOINT_TRANSLATIONAL", model::Joint::Type::Translational, 6},
+      {"*CONSTRAINED_JOINT_UNIVERSAL", model::Joint::Type::Universal, 4},
+      {"*CONSTRAINED_JOINT_LOCKING", model::Joint::Type::Locking, 6},
   };
   for (const auto& k : kinds)
     if (block.base == k.name) return k;

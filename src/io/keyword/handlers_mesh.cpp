@@ -339,9 +339,14 @@ void section_solid(const Block& block, ReaderContext& context) {
     s.id = positive_id(card, 0, "SECID", "section");
     s.elform = card.flag(1, "ELFORM", 1);
     if (s.elform == 0) s.elform = 1;  // LS-DYNA: 0 means the default formulation 1
-    if (s.elform != 1 && s.elform != 2) {
+    if (s.elform == 13 || s.elform == 16 || s.elform == 17) {
+      throw card.error("ELFORM", fmt::format("tetrahedron formulation {} is not supported "
+                                             "(supported: 10, the one-point 4-node tetrahedron)",
+                                             s.elform));
+    }
+    if (s.elform != 1 && s.elform != 2 && s.elform != 10) {
       throw card.error("ELFORM",
-                       fmt::format("value {} is not supported (supported: 1, 2)", s.elform));
+                       fmt::format("value {} is not supported (supported: 1, 2, 10)", s.elform));
     }
     s.where = card.location();
     check_unique(context.model.solid_sections, s.id, card, "SECID", "section");

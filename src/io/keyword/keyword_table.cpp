@@ -79,6 +79,8 @@ const std::vector<KeywordEntry>& table() {
       {"*CONSTRAINED_JOINT_REVOLUTE", constrained_joint, {"ID", "FAILURE"}},
       {"*CONSTRAINED_JOINT_CYLINDRICAL", constrained_joint, {"ID", "FAILURE"}},
       {"*CONSTRAINED_JOINT_TRANSLATIONAL", constrained_joint, {"ID", "FAILURE"}},
+      {"*CONSTRAINED_JOINT_UNIVERSAL", constrained_joint, {"ID", "FAILURE"}},
+      {"*CONSTRAINED_JOINT_LOCKING", constrained_joint, {"ID", "FAILURE"}},
       {"*CONSTRAINED_NODAL_RIGID_BODY", constrained_nodal_rigid_body, {"SPC", "INERTIA", "TITLE"}},
       {"*CONSTRAINED_SPOTWELD", constrained_spotweld, {"ID", "FILTERED", "FORCE"}},
       {"*CONSTRAINED_NODE_SET", constrained_node_set, {"ID"}},
