@@ -2,8 +2,10 @@
 // docs/performance.md): two N x N x 1 plates of hexahedra, the upper one pressed 1 % of an
 // element into the lower one over its whole face, SURFACE_TO_SURFACE between them (both passes).
 // "Cycle" times compute_contact_forces with the grids valid (the steady state); "Rebuild" forces
-// both grids to be rebuilt every call (the worst case). Counters: segments (both sides) and
-// ns per segment. Run with OMP_NUM_THREADS=1 for the per-core figure:
+// both grids to be rebuilt every call (the worst case). "ShellCycle", "ThinShellCycle": the same
+// with two N x N shell plates of thickness 1 and 0.1 (two-sided segments, contact surfaces at
+// t/2: the same 1 % penetration). Counters: segments (both sides), ns per segment and ns per slave
+// node (the slave nodes of both passes). Run with OMP_NUM_THREADS=1 for the per-core figure:
 //   OMP_NUM_THREADS=1 build/bench/rigidflex_bench --benchmark_filter=Contact
 #include <benchmark/benchmark.h>
 
@@ -53,7 +55,38 @@ void add_plate(rf::solver::State& state, int n, double z0, double shift, rf::mod
   state.hex_blocks.push_back(std::move(block));
 }
 
-std::unique_ptr<Plates> make_plates(int n) {
+// Shell plate `part` of n x n unit quadrilaterals of thickness `t` at height z0.
+void add_shell_plate(rf::solver::State& state, int n, double z0, double shift, rf::model::Id part,
+                     double t) {
+  auto& nodes = state.nodes;
+  const auto first = static_cast<std::int32_t>(nodes.size());
+  const int m = n + 1;
+  for (int j = 0; j < m; ++j)
+    for (int i = 0; i < m; ++i) {
+      nodes.id.push_back(static_cast<rf::model::Id>(nodes.id.size() + 1));
+      nodes.x.x.push_back(i + shift);
+      nodes.x.y.push_back(j + shift);
+      nodes.x.z.push_back(z0);
+      nodes.mass.push_back(1.0);
+    }
+  rf::element::ShellBlock block;
+  block.part_id = part;
+  block.material = rf::material::make_elastic(1000.0, 1e7, 0.3);
+  auto id = [&](int i, int j) { return first + i + m * j; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      block.element_id.push_back(static_cast<rf::model::Id>(block.element_id.size() + 1));
+      for (auto c : {id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)}) {
+        block.conn.push_back(c);
+        block.thickness.push_back(t);
+      }
+      block.triangle.push_back(0);
+    }
+  state.shell_blocks.push_back(std::move(block));
+}
+
+// shell_thickness > 0: shell plates of that thickness, mid-surfaces 0.99 t apart.
+std::unique_ptr<Plates> make_plates(int n, double shell_thickness = 0.0) {
   auto p = std::make_unique<Plates>();
   rf::model::Part part;
   part.id = 1;
@@ -68,8 +101,13 @@ std::unique_ptr<Plates> make_plates(int n) {
   contact.sstyp = 3;
   contact.mstyp = 3;
   p->model.contacts.push_back(contact);
-  add_plate(p->state, n, 0.99, 0.3, 1);  // upper plate, 1 % into the lower one, offset in x y
-  add_plate(p->state, n, 0.0, 0.0, 2);
+  if (shell_thickness > 0.0) {  // contact distance (t + t) / 2: 1 % penetration
+    add_shell_plate(p->state, n, 0.99 * shell_thickness, 0.3, 1, shell_thickness);
+    add_shell_plate(p->state, n, 0.0, 0.0, 2, shell_thickness);
+  } else {
+    add_plate(p->state, n, 0.99, 0.3, 1);  // upper plate, 1 % into the lower one, offset in x y
+    add_plate(p->state, n, 0.0, 0.0, 2);
+  }
   const std::size_t count = p->state.nodes.size();
   p->state.nodes.v.resize(count);
   p->state.nodes.f_ext.resize(count);
@@ -86,8 +124,8 @@ std::int64_t segment_count(const rf::contact::ContactSystem& contacts) {
   return n;
 }
 
-void run(benchmark::State& bench, bool rebuild) {
-  const auto plates = make_plates(static_cast<int>(bench.range(0)));
+void run(benchmark::State& bench, bool rebuild, double shell_thickness = 0.0) {
+  const auto plates = make_plates(static_cast<int>(bench.range(0)), shell_thickness);
   rf::contact::compute_contact_forces(plates->contacts, plates->state, 1e-6);
   for (auto _ : bench) {
     if (rebuild) {
@@ -102,6 +140,13 @@ void run(benchmark::State& bench, bool rebuild) {
   bench.counters["ns_per_segment"] = benchmark::Counter(
       static_cast<double>(segments) * 1e-9,
       benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  std::int64_t slave_nodes = 0;
+  for (const auto& pass : plates->contacts.interfaces[0].passes) {
+    slave_nodes += static_cast<std::int64_t>(pass.results.size());
+  }
+  bench.counters["ns_per_slave_node"] = benchmark::Counter(
+      static_cast<double>(slave_nodes) * 1e-9,
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
 void ContactCycle(benchmark::State& bench) {
@@ -110,9 +155,20 @@ void ContactCycle(benchmark::State& bench) {
 void ContactRebuild(benchmark::State& bench) {
   run(bench, true);
 }
+// Shells as thick as the elements are long (the reach of the search grows with the thickness)
+// and a typical t = h / 10.
+void ContactShellCycle(benchmark::State& bench) {
+  run(bench, false, 1.0);
+}
+void ContactThinShellCycle(benchmark::State& bench) {
+  run(bench, false, 0.1);
+}
 
 // N = 50, 158, 500: about 1e4, 1e5, 1e6 segments over both plates (2 N^2 + 4 N each).
 BENCHMARK(ContactCycle)->Arg(50)->Arg(158)->Arg(500)->Unit(benchmark::kMillisecond);
 BENCHMARK(ContactRebuild)->Arg(50)->Arg(158)->Arg(500)->Unit(benchmark::kMillisecond);
+// Shells: N = 70, 224: about 1e4, 1e5 segments (2 N^2).
+BENCHMARK(ContactShellCycle)->Arg(70)->Arg(224)->Unit(benchmark::kMillisecond);
+BENCHMARK(ContactThinShellCycle)->Arg(70)->Arg(224)->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include "element/kernels.hpp"
 
 #include <algorithm>
+#include <array>
 #include <map>
 #include <set>
 
@@ -215,8 +216,17 @@ void print_model_summary(const model::Model& model, const solver::Simulation& si
   for (const auto& c : contacts) {
     static const char* const kKind[] = {"surface to surface", "nodes to surface",
                                         "one way surface to surface", "single surface"};
+    std::array<std::size_t, 2> shells{};  // two-sided segments per side
+    for (int side = 0; side < 2; ++side) {
+      for (const auto flag : c.sides[side].two_sided) shells[side] += flag;
+    }
+    const std::string shell_note =
+        shells[0] + shells[1] > 0
+            ? fmt::format(", shell segments {} / {} (two-sided, at half the thickness)", shells[0],
+                          shells[1])
+            : "";
     fmt::print(
-        out, "  contact {}{}: {}, {} slave nodes / {} segments, {} master segments, {}, {}{}{}\n",
+        out, "  contact {}{}: {}, {} slave nodes / {} segments, {} master segments, {}, {}{}{}{}\n",
         c.id, c.heading.empty() ? "" : fmt::format(" ({})", c.heading),
         kKind[static_cast<int>(c.kind)], c.sides[0].nodes.size(), c.sides[0].segments.size(),
         c.sides[1].segments.size(), c.soft == 1 ? "SOFT 1" : "SOFT 0",
@@ -224,7 +234,8 @@ void print_model_summary(const model::Model& model, const solver::Simulation& si
                                  : "frictionless",
         c.vdc > 0.0 ? fmt::format(", VDC {:g}", c.vdc) : "",
         c.birth > 0.0 || c.death < 1e20 ? fmt::format(", birth {:g}, death {:g}", c.birth, c.death)
-                                        : "");
+                                        : "",
+        shell_note);
   }
   if (model.switching.flagged) {
     const auto& sw = model.switching;

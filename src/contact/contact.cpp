@@ -117,7 +117,8 @@ std::map<FaceKey, FaceRef> face_table(const solver::State& state,
 
 // Adds the segments of face `s` of element e: the face itself (order 1) or the p x p linear
 // sub-quads of its node grid, each ordered so that its normal points out of the element.
-void add_face_segments(const solver::State& state, const FaceRef& face, ContactSurface& surface) {
+void add_face_segments(const solver::State& state, const FaceRef& face, double half_thickness,
+                       ContactSurface& surface) {
   const auto& block = state.hex_blocks[face.block];
   const std::size_t e = static_cast<std::size_t>(face.element);
   const int p = block.order;
@@ -171,6 +172,8 @@ void add_face_segments(const solver::State& state, const FaceRef& face, ContactS
       surface.segments.push_back(q);
       surface.stiffness.push_back(bulk > 0.0 && depth > 0.0 ? kSlsfac * bulk * area / depth
                                                             : kInfinity);
+      surface.two_sided.push_back(0);
+      surface.half_thickness.push_back(half_thickness);
       surface.size.push_back(std::sqrt(area));
       surface.part.push_back(block.part_id);
       // A rigid part's segment moves with the whole body: as heavy as it gets.
@@ -179,6 +182,44 @@ void add_face_segments(const solver::State& state, const FaceRef& face, ContactS
       surface.mass.push_back(block.rigid ? kInfinity : m);
     }
   }
+}
+
+// The contact thickness of one side (SST or MST) and the scale of its shell thickness (SFST or
+// SFMT): LS-DYNA's rule, a nonzero SST overrides the shell thickness.
+struct SideThickness {
+  double given = 0.0;
+  double shell_scale = 1.0;
+};
+
+// Adds shell element e of block b as a two-sided segment (a triangle repeats its third node).
+// Penalty stiffness of a shell segment, LS-DYNA Theory Manual (contact, penalty method):
+// k = SLSFAC K A / max(shell diagonal); the contact surface lies at half the (scaled) mean nodal
+// thickness on each side of the element.
+void add_shell_segment(const solver::State& state, std::size_t b, std::size_t e,
+                       const SideThickness& thickness, ContactSurface& surface) {
+  const auto& block = state.shell_blocks[b];
+  const auto& x = state.nodes.x;
+  std::array<std::int32_t, 4> q{};
+  for (int k = 0; k < 4; ++k) q[k] = block.conn[4 * e + k];
+  const Vec a = position(x, q[0]), bb = position(x, q[1]), c = position(x, q[2]),
+            d = position(x, q[3]);
+  const double area = 0.5 * norm(diagonal_normal(a, bb, c, d));
+  const double diagonal = std::max(norm(sub(c, a)), norm(sub(d, bb)));
+  const double bulk = block.material.bulk;
+  double mean_thickness = 0.0;
+  const int corners = block.triangle[e] ? 3 : 4;
+  for (int k = 0; k < corners; ++k) mean_thickness += block.thickness[4 * e + k] / corners;
+  surface.segments.push_back(q);
+  surface.stiffness.push_back(bulk > 0.0 && diagonal > 0.0 ? kSlsfac * bulk * area / diagonal
+                                                           : kInfinity);
+  surface.two_sided.push_back(1);
+  surface.half_thickness.push_back(
+      thickness.given > 0.0 ? 0.5 * thickness.given : 0.5 * thickness.shell_scale * mean_thickness);
+  surface.size.push_back(std::sqrt(area));
+  surface.part.push_back(block.part_id);
+  double m = 0.0;
+  for (const auto node : q) m += state.nodes.mass[node] / 4.0;
+  surface.mass.push_back(block.rigid ? kInfinity : m);
 }
 
 std::vector<model::Id> parts_of_side(const model::Model& model, model::Id id, int type) {
@@ -193,14 +234,27 @@ std::vector<model::Id> parts_of_side(const model::Model& model, model::Id id, in
   return parts;
 }
 
-void finish_surface(const solver::State& state, ContactSurface& surface) {
-  std::map<std::int32_t, std::pair<double, model::Id>> node_data;  // stiffness, part
+// `node_set_half_thickness`: the contact offset of nodes without segments (SST/2); nodes of
+// shells (a node set of NODES_TO_SURFACE) take `shell_half_thickness` (by dense node; empty: none).
+void finish_surface(const solver::State& state, double node_set_half_thickness,
+                    ContactSurface& surface, const std::vector<double>& shell_half_thickness = {}) {
+  struct NodeData {
+    double stiffness;
+    model::Id part;
+    double half_thickness;
+  };
+  std::map<std::int32_t, NodeData> node_data;
   for (std::size_t s = 0; s < surface.segments.size(); ++s) {
     for (const auto n : surface.segments[s]) {
-      auto [it, inserted] = node_data.try_emplace(n, surface.stiffness[s], surface.part[s]);
-      if (!inserted) it->second.first = std::min(it->second.first, surface.stiffness[s]);
+      auto [it, inserted] = node_data.try_emplace(
+          n, NodeData{surface.stiffness[s], surface.part[s], surface.half_thickness[s]});
+      if (!inserted) {
+        it->second.stiffness = std::min(it->second.stiffness, surface.stiffness[s]);
+        it->second.half_thickness = std::max(it->second.half_thickness, surface.half_thickness[s]);
+      }
     }
     surface.max_size = std::max(surface.max_size, surface.size[s]);
+    surface.max_half_thickness = std::max(surface.max_half_thickness, surface.half_thickness[s]);
   }
   if (surface.nodes.empty()) {  // segment-based side: its nodes are the segments' nodes
     for (const auto& [n, data] : node_data) surface.nodes.push_back(n);
@@ -209,18 +263,27 @@ void finish_surface(const solver::State& state, ContactSurface& surface) {
   std::vector<model::Id> block_part;
   if (node_data.size() < surface.nodes.size()) {
     block_part.assign(state.nodes.size(), 0);
+    for (auto b = state.shell_blocks.rbegin(); b != state.shell_blocks.rend(); ++b) {
+      for (const auto n : b->conn) block_part[n] = b->part_id;
+    }
     for (auto b = state.hex_blocks.rbegin(); b != state.hex_blocks.rend(); ++b) {
       for (const auto n : b->conn) block_part[n] = b->part_id;
     }
   }
   for (const auto n : surface.nodes) {
     if (const auto it = node_data.find(n); it != node_data.end()) {
-      surface.node_stiffness.push_back(it->second.first);
-      surface.node_part.push_back(it->second.second);
+      surface.node_stiffness.push_back(it->second.stiffness);
+      surface.node_part.push_back(it->second.part);
+      surface.node_half_thickness.push_back(it->second.half_thickness);
       continue;
     }
     surface.node_stiffness.push_back(kInfinity);
     surface.node_part.push_back(block_part[n]);
+    const double h = !shell_half_thickness.empty() && shell_half_thickness[n] >= 0.0
+                         ? shell_half_thickness[n]
+                         : node_set_half_thickness;
+    surface.node_half_thickness.push_back(h);
+    surface.max_half_thickness = std::max(surface.max_half_thickness, h);
   }
   // Node -> segment incidence (CSR), segments in ascending order for each node.
   const std::size_t nn = surface.nodes.size();
@@ -259,6 +322,8 @@ void update_node_normals(ContactSurface& surface, const solver::Vec3Array& x,
   for (std::int64_t j = 0; j < nn; ++j) {
     Vec sum{0, 0, 0};
     for (auto k = surface.node_segment_start[j]; k < surface.node_segment_start[j + 1]; ++k) {
+      // A shell has no outward side: its nodes meet segments from either side.
+      if (surface.two_sided[surface.node_segments[k]]) continue;
       const auto& q = surface.segments[surface.node_segments[k]];
       const Vec n = diagonal_normal(position(x, q[0]), position(x, q[1]), position(x, q[2]),
                                     position(x, q[3]));
@@ -272,8 +337,9 @@ void update_node_normals(ContactSurface& surface, const solver::Vec3Array& x,
 
 ContactSurface build_side(const model::Model& model, const solver::NodeIndex& node_index,
                           const solver::State& state, const model::Contact& contact, model::Id id,
-                          int type, const char* field) {
+                          int type, const char* field, const SideThickness& thickness) {
   ContactSurface surface;
+  const double solid_half_thickness = 0.5 * thickness.given;
   if (type == 4) {  // node set: slave nodes only
     for (const auto nid : model.node_sets.at(id).nodes) {
       surface.nodes.push_back(node_index.at(nid, contact.where, field));
@@ -281,44 +347,87 @@ ContactSurface build_side(const model::Model& model, const solver::NodeIndex& no
     std::sort(surface.nodes.begin(), surface.nodes.end());
     surface.nodes.erase(std::unique(surface.nodes.begin(), surface.nodes.end()),
                         surface.nodes.end());
-    finish_surface(state, surface);
+    // A node of a shell carries the shell's contact thickness as LS-DYNA's nodes-to-surface
+    // does: SST/2 when given, else SFST times half the largest thickness of its shells.
+    std::vector<double> shell_half;
+    if (!state.shell_blocks.empty() && !(thickness.given > 0.0)) {
+      shell_half.assign(state.nodes.size(), -1.0);
+      for (const auto& block : state.shell_blocks) {
+        for (std::size_t k = 0; k < block.conn.size(); ++k) {
+          const double h = 0.5 * thickness.shell_scale * block.thickness[k];
+          shell_half[block.conn[k]] = std::max(shell_half[block.conn[k]], h);
+        }
+      }
+    }
+    finish_surface(state, solid_half_thickness, surface, shell_half);
     return surface;
   }
-  if (type == 0) {  // segment set: each segment must be a face of a solid element
+  if (type == 0) {  // segment set: each segment must be a solid face or a shell element
     const std::vector<bool> all(state.hex_blocks.size(), true);
     const auto faces = face_table(state, all);
+    std::map<FaceKey, std::pair<std::size_t, std::size_t>> shells;  // block, element
+    for (std::size_t b = 0; b < state.shell_blocks.size(); ++b) {
+      const auto& block = state.shell_blocks[b];
+      for (std::size_t e = 0; e < block.size(); ++e) {
+        const auto key = face_key({block.conn[4 * e], block.conn[4 * e + 1], block.conn[4 * e + 2],
+                                   block.conn[4 * e + 3]});
+        if (key) shells.try_emplace(*key, b, e);
+      }
+    }
     for (const auto& segment : model.segment_sets.at(id).segments) {
       std::array<std::int32_t, 4> dense{};
       for (int k = 0; k < 4; ++k) dense[k] = node_index.at(segment[k], contact.where, field);
       const auto key = face_key(dense);
-      const auto it = key ? faces.find(*key) : faces.end();
-      if (it == faces.end()) {
-        throw InputError(model::context_of(contact.where, field),
-                         fmt::format("segment {} {} {} {} of segment set {} is not a face of a "
-                                     "solid element: contact segments need the element behind "
-                                     "them (stiffness, orientation)",
-                                     segment[0], segment[1], segment[2], segment[3], id));
+      if (const auto it = key ? faces.find(*key) : faces.end(); it != faces.end()) {
+        add_face_segments(state, it->second, solid_half_thickness, surface);
+        continue;
       }
-      add_face_segments(state, it->second, surface);
+      if (const auto it = key ? shells.find(*key) : shells.end(); it != shells.end()) {
+        add_shell_segment(state, it->second.first, it->second.second, thickness, surface);
+        continue;
+      }
+      throw InputError(model::context_of(contact.where, field),
+                       fmt::format("segment {} {} {} {} of segment set {} is neither a face of a "
+                                   "solid element nor a shell element: contact segments need "
+                                   "the element behind them (stiffness, orientation, thickness)",
+                                   segment[0], segment[1], segment[2], segment[3], id));
     }
-    finish_surface(state, surface);
+    finish_surface(state, solid_half_thickness, surface);
     return surface;
   }
   const auto parts = parts_of_side(model, id, type);
+  auto on_side = [&](model::Id pid) { return std::binary_search(parts.begin(), parts.end(), pid); };
+  // Beams have no contact segments (edge-to-edge and beam contact are not implemented): refuse
+  // rather than let them pass through everything.
+  for (const auto& block : state.beam_blocks) {
+    if (!on_side(block.part_id)) continue;
+    throw InputError(model::context_of(contact.where, field),
+                     fmt::format("part {} (beam elements) is on this contact side: contact with "
+                                 "beams is not supported (leave beam parts out of the side: "
+                                 "use a part or part set instead of all parts)",
+                                 block.part_id));
+  }
   std::vector<bool> use(state.hex_blocks.size(), false);
   for (std::size_t b = 0; b < state.hex_blocks.size(); ++b) {
-    use[b] = std::binary_search(parts.begin(), parts.end(), state.hex_blocks[b].part_id);
+    use[b] = on_side(state.hex_blocks[b].part_id);
   }
   // Exterior faces: those of one element only among the side's elements.
   for (const auto& [key, face] : face_table(state, use)) {
-    if (face.count == 1) add_face_segments(state, face, surface);
+    if (face.count == 1) add_face_segments(state, face, solid_half_thickness, surface);
+  }
+  // Shells: every element is a (two-sided) segment.
+  for (std::size_t b = 0; b < state.shell_blocks.size(); ++b) {
+    if (!on_side(state.shell_blocks[b].part_id)) continue;
+    for (std::size_t e = 0; e < state.shell_blocks[b].size(); ++e) {
+      add_shell_segment(state, b, e, thickness, surface);
+    }
   }
   if (surface.segments.empty()) {
     throw InputError(model::context_of(contact.where, field),
-                     fmt::format("{} {} has no solid elements, so no contact surface",
+                     fmt::format("{} {} has no solid or shell elements, so no contact surface",
                                  type == 3 ? "part" : "part set", id));
   }
-  finish_surface(state, surface);
+  finish_surface(state, solid_half_thickness, surface);
   return surface;
 }
 
@@ -532,8 +641,15 @@ void evaluate_pass(ContactInterface& contact, ContactPass& pass, const solver::S
     const std::int32_t node = slave.nodes[j];
     NodeContact& result = pass.results[j];
     double* ft = pass.tangential_force.data() + 3 * j;
+    double* remembered = pass.contact_normal.data() + 3 * j;
     result.segment = -1;
     const Vec p = position(x, node);
+    // The node's position at the start of the step, x^n = x^{n+1} - dt v^{n+1/2}: the side of a
+    // shell it approaches from when it was not in contact before.
+    const Vec p_old{p[0] - dt * v.x[node], p[1] - dt * v.y[node], p[2] - dt * v.z[node]};
+    const Vec side_memory{remembered[0], remembered[1], remembered[2]};
+    const std::int32_t remembered_segment = pass.contact_segment[j];
+    const bool has_memory = remembered_segment >= 0 && dot(side_memory, side_memory) > 0.0;
     std::array<std::int64_t, 3> a{}, b{};
     Projection best;
     std::int32_t best_segment = -1;
@@ -576,7 +692,36 @@ void evaluate_pass(ContactInterface& contact, ContactPass& pass, const solver::S
           outside = p[d] < lo - reach || p[d] > hi + reach;
         }
         if (outside) continue;
-        const Projection trial = project(x, q, p);
+        Projection trial = project(x, q, p);
+        if (master.two_sided[s]) {
+          // A shell pushes the node back to the side it came from: the side of the node's
+          // contact normal of the last cycle if it was in contact, else the side its position
+          // x^n was on relative to the segment's position at x^n (docs/contact.md section 3).
+          // The memory holds on the segment touched and its neighbours (a node sliding over the
+          // shell): a node between two shells keeps its own side of the other one.
+          bool near_remembered = false;
+          if (has_memory) {
+            const auto& last = master.segments[remembered_segment];
+            for (int a4 = 0; a4 < 4 && !near_remembered; ++a4) {
+              near_remembered = contains(q, last[a4]);
+            }
+          }
+          double side = 0.0;
+          if (near_remembered) {
+            side = dot(trial.normal, side_memory);
+          } else {
+            Vec point_old = trial.point;
+            for (int a4 = 0; a4 < 4; ++a4) {
+              point_old[0] -= dt * trial.weight[a4] * v.x[q[a4]];
+              point_old[1] -= dt * trial.weight[a4] * v.y[q[a4]];
+              point_old[2] -= dt * trial.weight[a4] * v.z[q[a4]];
+            }
+            side = dot(sub(p_old, point_old), trial.normal);
+          }
+          if (side < 0.0) {
+            for (int d = 0; d < 3; ++d) trial.normal[d] = -trial.normal[d];
+          }
+        }
         // Only segments that face the node's own surface (not the sides of the body it is
         // pressed against: an edge node lies in the plane of the other body's side faces).
         if (has_normal && dot(trial.normal, node_normal) > -kFacingTolerance) continue;
@@ -592,16 +737,25 @@ void evaluate_pass(ContactInterface& contact, ContactPass& pass, const solver::S
     if (best_segment >= 0) {
       const Vec diff = sub(p, best.point);
       const double along = dot(diff, best.normal);
-      gap = along - contact.offset;
+      const double offset = slave.node_half_thickness[j] + master.half_thickness[best_segment];
+      gap = along - offset;
       const double size = master.size[best_segment];
       Vec beside{};
       for (int d = 0; d < 3; ++d) beside[d] = diff[d] - along * best.normal[d];
-      touching = gap < 0.0 && gap > -kDepthFraction * size && norm(beside) <= kEdgeTolerance * size;
+      // Depth release: beyond half a segment behind a solid face's contact surface; for a shell
+      // (whose side is remembered) beyond half a segment past its mid-surface.
+      const double deepest =
+          master.two_sided[best_segment] ? offset + kDepthFraction * size : kDepthFraction * size;
+      touching = gap < 0.0 && gap > -deepest && norm(beside) <= kEdgeTolerance * size;
     }
     if (!touching) {
       ft[0] = ft[1] = ft[2] = 0.0;
+      remembered[0] = remembered[1] = remembered[2] = 0.0;
+      pass.contact_segment[j] = -1;
       continue;
     }
+    for (int d = 0; d < 3; ++d) remembered[d] = best.normal[d];
+    pass.contact_segment[j] = best_segment;
     const auto& segment = master.segments[best_segment];
     // Stiffness (docs/contact.md): SOFT = 0, the smaller of the master segment's SLSFAC K A^2 / V
     // and that of the node's own segment that faces it most directly, each with its side's
@@ -617,7 +771,8 @@ void evaluate_pass(ContactInterface& contact, ContactPass& pass, const solver::S
                                           position(x, own[2]), position(x, own[3]));
         const double length = norm(n_own);
         if (!(length > 0.0)) continue;
-        const double facing = dot(n_own, best.normal) / length;
+        double facing = dot(n_own, best.normal) / length;
+        if (slave.two_sided[slave.node_segments[q]]) facing = -std::abs(facing);
         if (facing < most_opposed) {
           most_opposed = facing;
           k_slave = slave.stiffness[slave.node_segments[q]];
@@ -722,14 +877,15 @@ ContactSystem build_contacts(const model::Model& model, const solver::NodeIndex&
     contact.fsf = c.fsf;
     contact.birth = c.birth;
     contact.death = c.death;
-    contact.offset = 0.5 * (c.sst + c.mst);
     contact.soft = c.soft;
     contact.sofscl = c.sofscl;
     contact.where = c.where;
     const bool single = c.kind == model::ContactKind::SingleSurface;
-    contact.sides[0] = build_side(model, node_index, state, c, c.ssid, c.sstyp, "SSID");
+    contact.sides[0] = build_side(model, node_index, state, c, c.ssid, c.sstyp, "SSID",
+                                  SideThickness{c.sst, c.sfst});
     contact.sides[1] = single ? contact.sides[0]
-                              : build_side(model, node_index, state, c, c.msid, c.mstyp, "MSID");
+                              : build_side(model, node_index, state, c, c.msid, c.mstyp, "MSID",
+                                           SideThickness{c.mst, c.sfmt});
     if (contact.sides[1].segments.empty()) {
       throw InputError(model::context_of(c.where, "MSID"), "the master side has no segments");
     }
@@ -749,13 +905,16 @@ ContactSystem build_contacts(const model::Model& model, const solver::NodeIndex&
                          "neither side of the contact has a bulk modulus to take the penalty "
                          "stiffness from (give E and PR on the materials, or SOFT = 1)");
       }
-      // Grid: nodes within reach (thickness offset plus the deepest penetration considered)
+      // Grid: nodes within reach (thickness offsets plus the deepest penetration considered)
       // of a segment find it; the grid is rebuilt after the segments moved half a segment.
-      const double reach = contact.offset + kDepthFraction * master.max_size;
+      const double reach =
+          slave.max_half_thickness + master.max_half_thickness + kDepthFraction * master.max_size;
       pass.grid.slack = 0.5 * master.max_size;
       pass.grid.expansion = reach + pass.grid.slack + 1e-9 * master.max_size;
       pass.results.resize(slave.nodes.size());
       pass.tangential_force.assign(3 * slave.nodes.size(), 0.0);
+      pass.contact_normal.assign(3 * slave.nodes.size(), 0.0);
+      pass.contact_segment.assign(slave.nodes.size(), -1);
       contact.passes.push_back(std::move(pass));
     };
     add_pass(0, 1);
@@ -787,6 +946,8 @@ void compute_contact_forces(ContactSystem& system, const solver::State& state, d
     if (!alive) {
       for (auto& pass : contact.passes) {
         std::fill(pass.tangential_force.begin(), pass.tangential_force.end(), 0.0);
+        std::fill(pass.contact_normal.begin(), pass.contact_normal.end(), 0.0);
+        std::fill(pass.contact_segment.begin(), pass.contact_segment.end(), -1);
         for (auto& r : pass.results) r.segment = -1;
       }
       continue;
@@ -873,13 +1034,18 @@ bool within_offset(const ContactSystem& system, model::Id contact_id, double off
       if (contains(master.segments[s], node)) return false;
       const Projection r = project(x, master.segments[s], p);
       if (r.distance2 < offset2) return true;
-      // A node that has already penetrated is within any offset.
+      // A node that has already penetrated is within any offset (a shell: a node closer to
+      // its mid-surface than the two contact thicknesses, on either side).
       const Vec diff = sub(p, r.point);
       const double along = dot(diff, r.normal);
       Vec beside{};
       for (int d = 0; d < 3; ++d) beside[d] = diff[d] - along * r.normal[d];
       const double size = master.size[s];
-      return along < 0.0 && along > -kDepthFraction * size && norm(beside) <= kEdgeTolerance * size;
+      if (norm(beside) > kEdgeTolerance * size) return false;
+      if (master.two_sided[s]) {
+        return std::abs(along) < slave.node_half_thickness[j] + master.half_thickness[s];
+      }
+      return along < 0.0 && along > -kDepthFraction * size;
     };
     if (!grid.built) {  // before the first evaluation: every segment
       for (std::size_t s = 0; s < master.segments.size(); ++s) {

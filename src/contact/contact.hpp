@@ -1,4 +1,4 @@
-// Penalty contact between surfaces of solid parts (*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE,
+// Penalty contact between surfaces of solid and shell parts (*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE,
 // _NODES_TO_SURFACE, _ONE_WAY_SURFACE_TO_SURFACE, _SINGLE_SURFACE).
 //
 // Node-to-segment penalty method (LS-DYNA Theory Manual, "Contact-Impact Algorithm", penalty
@@ -31,25 +31,37 @@
 
 namespace rf::contact {
 
-// Segments (bilinear quadrilaterals, triangles repeat their third node) of one contact side,
-// ordered so that (x2 - x1) x (x4 - x1) points out of the solid.
+// Segments (bilinear quadrilaterals, triangles repeat their third node) of one contact side:
+// exterior faces of solids, ordered so that (x2 - x1) x (x4 - x1) points out of the solid
+// (one-sided), and shell elements in their element order (two-sided: a node meets them from
+// either side, docs/contact.md section 1).
 struct ContactSurface {
   std::vector<std::array<std::int32_t, 4>> segments;  // dense node indices
-  std::vector<double> stiffness;  // SOFT = 0 penalty stiffness, SLSFAC K A^2 / V (scale incl.)
-  std::vector<double> size;       // sqrt of the segment area at the start
-  std::vector<model::Id> part;    // part of the element the segment bounds
-  std::vector<double> mass;       // mean lumped mass of the segment's nodes (SOFT = 1)
+  // SOFT = 0 penalty stiffness: SLSFAC K A^2 / V (solids), SLSFAC K A / max diagonal (shells).
+  std::vector<double> stiffness;
+  std::vector<std::uint8_t> two_sided;  // 1: a shell element (contact on both sides)
+  // Distance of the contact surface from the segment: half the shell thickness times SFST/SFMT
+  // (or SST/2, MST/2 when given), SST/2 or MST/2 for solid faces.
+  std::vector<double> half_thickness;
+  std::vector<double> size;     // sqrt of the segment area at the start
+  std::vector<model::Id> part;  // part of the element the segment bounds
+  std::vector<double> mass;     // mean lumped mass of the segment's nodes (SOFT = 1)
   // Distinct nodes of the side (ascending): segment nodes, or a node set (NODES_TO_SURFACE).
   std::vector<std::int32_t> nodes;
   std::vector<double> node_stiffness;  // smallest stiffness of the node's segments (inf: none)
-  std::vector<model::Id> node_part;    // part of the node's first segment (or element)
+  // The node's own contact offset: the largest half thickness of its segments (SST/2 or MST/2
+  // for the nodes of a node set).
+  std::vector<double> node_half_thickness;
+  std::vector<model::Id> node_part;  // part of the node's first segment (or element)
   // Segments of each node (CSR over `nodes`) and the node's outward normal at the last
-  // evaluation (3 per node, the normalised sum of its segments' area vectors; zero for nodes
-  // without segments). A node only meets segments that face it (n_node . n_segment < 0).
+  // evaluation (3 per node, the normalised sum of its one-sided segments' area vectors; zero
+  // for nodes without solid faces: node sets, shell nodes). A node with a normal only meets
+  // segments that face it (n_node . n_segment < 0).
   std::vector<std::int64_t> node_segment_start;
   std::vector<std::int32_t> node_segments;
   std::vector<double> node_normal;
   double max_size = 0.0;
+  double max_half_thickness = 0.0;  // over segments and nodes
 };
 
 // Uniform-grid bucket sort of a surface's segments. Each segment is listed in every cell that
@@ -89,6 +101,12 @@ struct ContactPass {
   SegmentGrid grid;
   std::vector<NodeContact> results;      // parallel to the slave side's nodes
   std::vector<double> tangential_force;  // 3 per slave node: the friction spring (state)
+  // The side memory of two-sided (shell) segments (docs/contact.md section 1.1): per slave node
+  // the unit contact normal (3 per node, zero: not in contact) and the master segment (-1) of
+  // the last evaluation. A node in contact keeps its side on that segment and the segments that
+  // share a node with it. State: written to restart dumps.
+  std::vector<double> contact_normal;
+  std::vector<std::int32_t> contact_segment;
 };
 
 struct ContactInterface {
@@ -98,7 +116,6 @@ struct ContactInterface {
   model::ContactKind kind = model::ContactKind::SurfaceToSurface;
   double fs = 0.0, fd = 0.0, dc = 0.0, vdc = 0.0, fsf = 1.0;
   double birth = 0.0, death = 1e20;
-  double offset = 0.0;  // (SST + MST) / 2: the surfaces touch at this distance
   int soft = 0;
   double sofscl = 0.1;
   double soft_dt = 0.0;  // SOFT = 1: the time step of the first evaluation with a step
@@ -122,8 +139,8 @@ struct ContactSystem {
 };
 
 // The contacts of the model with their surfaces (exterior faces of solid parts, higher-order
-// faces split into the linear sub-quads of their node grid). Throws rf::InputError for a
-// segment that bounds no solid element.
+// faces split into the linear sub-quads of their node grid; shell elements). Throws
+// rf::InputError for a segment that is neither a solid face nor a shell, and for beam parts.
 ContactSystem build_contacts(const model::Model& model, const solver::NodeIndex& node_index,
                              const solver::State& state);
 

@@ -682,8 +682,10 @@ struct Contact {
   double death = 1e20;
   double sfs = 1.0;     // penalty scale, slave side
   double sfm = 1.0;     // penalty scale, master side
-  double sst = 0.0;     // contact thickness of the slave surface (solids: 0)
+  double sst = 0.0;     // contact thickness of the slave surface (0: shells their thickness)
   double mst = 0.0;     // contact thickness of the master surface
+  double sfst = 1.0;    // scale of the slave side's shell thickness (SST = 0)
+  double sfmt = 1.0;    // scale of the master side's shell thickness (MST = 0)
   double fsf = 1.0;     // friction coefficient scale
   int soft = 0;         // 0 segment-based (bulk modulus) stiffness, 1 mass/time-step based
   double sofscl = 0.1;  // SOFT = 1 scale

@@ -203,14 +203,16 @@ void read_walls(contact::RigidWallSystem& walls, const Group& g) {
   }
 }
 
-// Contacts: per interface soft_dt, slave force x y z, active nodes; the friction springs of
-// every pass (3 per slave node, passes in order); the nodal contact forces of the last
+// Contacts: per interface soft_dt, slave force x y z, active nodes; per pass (in order) the
+// friction springs (3 per slave node) and the side memory of shell segments (the contact normal,
+// 3 per slave node, and the segment, 1 per slave node); the nodal contact forces of the last
 // evaluation (3 per contact node), which the first cycle after the restart applies and counts.
 // The search grids are rebuilt: the contact found does not depend on them (docs/contact.md).
 constexpr int kContactNumbers = 5;
 
 void write_contacts(const contact::ContactSystem& contacts, const Group& g) {
-  std::vector<double> numbers, springs, forces;
+  std::vector<double> numbers, springs, normals, forces;
+  std::vector<std::int32_t> segments;
   for (const auto& c : contacts.interfaces) {
     for (const double v : {c.soft_dt, c.slave_force[0], c.slave_force[1], c.slave_force[2],
                            static_cast<double>(c.active_nodes)}) {
@@ -218,6 +220,8 @@ void write_contacts(const contact::ContactSystem& contacts, const Group& g) {
     }
     for (const auto& pass : c.passes) {
       springs.insert(springs.end(), pass.tangential_force.begin(), pass.tangential_force.end());
+      normals.insert(normals.end(), pass.contact_normal.begin(), pass.contact_normal.end());
+      segments.insert(segments.end(), pass.contact_segment.begin(), pass.contact_segment.end());
     }
   }
   for (const auto i : contacts.nodes) {
@@ -228,6 +232,8 @@ void write_contacts(const contact::ContactSystem& contacts, const Group& g) {
   g.set("count", static_cast<std::int64_t>(contacts.interfaces.size()));
   g.write("numbers", span_of(numbers));
   g.write("friction_springs", span_of(springs));
+  g.write("contact_normals", span_of(normals));
+  g.write("contact_segments", span_of(segments));
   g.write("nodal_forces", span_of(forces));
 }
 
@@ -236,6 +242,8 @@ void read_contacts(contact::ContactSystem& contacts, const Group& g) {
                contacts.interfaces.size());
   const auto numbers = g.read_doubles("numbers");
   const auto springs = g.read_doubles("friction_springs");
+  const auto normals = g.read_doubles("contact_normals");
+  const auto segments = g.read_int32("contact_segments");
   const auto forces = g.read_doubles("nodal_forces");
   expect_count(g, "numbers", numbers.size(), kContactNumbers * contacts.interfaces.size());
   expect_count(g, "nodal_forces", forces.size(), 3 * contacts.nodes.size());
@@ -244,6 +252,8 @@ void read_contacts(contact::ContactSystem& contacts, const Group& g) {
     for (const auto& pass : c.passes) spring_count += pass.tangential_force.size();
   }
   expect_count(g, "friction_springs", springs.size(), spring_count);
+  expect_count(g, "contact_normals", normals.size(), spring_count);
+  expect_count(g, "contact_segments", segments.size(), spring_count / 3);
   std::size_t at = 0;
   for (std::size_t k = 0; k < contacts.interfaces.size(); ++k) {
     auto& c = contacts.interfaces[k];
@@ -255,6 +265,12 @@ void read_contacts(contact::ContactSystem& contacts, const Group& g) {
       std::copy(springs.begin() + static_cast<long>(at),
                 springs.begin() + static_cast<long>(at + pass.tangential_force.size()),
                 pass.tangential_force.begin());
+      std::copy(normals.begin() + static_cast<long>(at),
+                normals.begin() + static_cast<long>(at + pass.contact_normal.size()),
+                pass.contact_normal.begin());
+      std::copy(segments.begin() + static_cast<long>(at / 3),
+                segments.begin() + static_cast<long>(at / 3 + pass.contact_segment.size()),
+                pass.contact_segment.begin());
       at += pass.tangential_force.size();
       pass.grid.built = false;
     }

@@ -337,12 +337,8 @@ namespace rf::solver {
 void check_structural_support(const model::Model& model, const State& state) {
   if (state.shell_blocks.empty() && state.beam_blocks.empty()) return;
   const char* what = !state.shell_blocks.empty() ? "shell" : "beam";
-  if (!model.contacts.empty()) {
-    throw InputError(model::context_of(model.contacts.front().where, "SSID"),
-                     fmt::format("contacts in a model with {} elements are not supported yet "
-                                 "(contact surfaces are built from solid faces only)",
-                                 what));
-  }
+  // Contacts know shell segments (docs/contact.md); beam parts on a contact side are refused
+  // by contact::build_contacts, which names the part.
   if (model.switching.flagged) {
     const model::SourceLocation where =
         !model.switching.at_start.empty()    ? model.switching.at_start.front().where

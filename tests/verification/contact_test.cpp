@@ -318,21 +318,7 @@ TEST(Contact, SwitchingPairTurnsBarDeformableBeforeImpactAndRigidAfter) {
 
 // The same drop gives bit-identical results on 1 and 2 threads.
 TEST(Contact, ResultsDoNotDependOnThreadCount) {
-  std::vector<std::vector<double>> finals;
-  const int saved = omp_get_max_threads();
-  for (const int threads : {1, 2}) {
-    omp_set_num_threads(threads);
-    solver::Simulation sim(read(bar_drop_deck(20)), {});
-    sim.mutable_contacts().parallel_minimum = 0;  // the parallel loops even on this small model
-    while (!sim.finished()) sim.cycle();
-    const auto& n = sim.state().nodes;
-    std::vector<double> values(n.x.z);
-    values.insert(values.end(), n.v.z.begin(), n.v.z.end());
-    values.insert(values.end(), n.v.x.begin(), n.v.x.end());
-    values.push_back(sim.energy().contact_energy);
-    finals.push_back(values);
-  }
-  omp_set_num_threads(saved);
+  const auto finals = contact_runs_on_1_and_2_threads([] { return read(bar_drop_deck(20)); });
   ASSERT_EQ(finals[0].size(), finals[1].size());
   for (std::size_t i = 0; i < finals[0].size(); ++i) ASSERT_EQ(finals[0][i], finals[1][i]) << i;
 }

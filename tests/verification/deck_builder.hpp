@@ -3,6 +3,7 @@
 #pragma once
 
 #include <fmt/format.h>
+#include <omp.h>
 
 #include <Eigen/Dense>
 #include <cmath>
@@ -10,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "contact/contact.hpp"
 #include "io/keyword/reader.hpp"
 #include "solver/simulation.hpp"
 
@@ -162,6 +164,29 @@ inline double elastic_strain_energy(const solver::State& state) {
     }
   }
   return energy;
+}
+
+// Contact determinism: runs `make()` on 1 and then 2 threads with the contacts' parallel loops
+// forced on (ContactSystem::parallel_minimum = 0) and returns, per run, the final z positions,
+// z and x velocities and the contact energy: equal vectors mean bit-identical runs.
+inline std::vector<std::vector<double>> contact_runs_on_1_and_2_threads(
+    const std::function<model::Model()>& make) {
+  std::vector<std::vector<double>> finals;
+  const int saved = omp_get_max_threads();
+  for (const int threads : {1, 2}) {
+    omp_set_num_threads(threads);
+    solver::Simulation sim(make(), {});
+    sim.mutable_contacts().parallel_minimum = 0;
+    while (!sim.finished()) sim.cycle();
+    const auto& n = sim.state().nodes;
+    std::vector<double> values(n.x.z);
+    values.insert(values.end(), n.v.z.begin(), n.v.z.end());
+    values.insert(values.end(), n.v.x.begin(), n.v.x.end());
+    values.push_back(sim.energy().contact_energy);
+    finals.push_back(values);
+  }
+  omp_set_num_threads(saved);
+  return finals;
 }
 
 }  // namespace rf::test

@@ -237,6 +237,10 @@ const Case kCases[] = {
     // Contact: friction springs, nodal contact forces and contact energy across the dump.
     {"contact", "", RIGIDFLEX_TEST_DECKS "/contact_sliding_block.k", {}, 0.004, 1},
     {"contact", "", RIGIDFLEX_TEST_DECKS "/contact_sliding_block.k", {}, 0.004, 2},
+    // Contact with shells: a block and a thin plate on a plate (two-sided segments; the side
+    // memory, contact normal and segment per slave node, across the dumps, taken in contact).
+    {"contact_shells", "", RIGIDFLEX_TEST_DECKS "/contact_shell_plate.k", {}, 0.0004, 1},
+    {"contact_shells", "", RIGIDFLEX_TEST_DECKS "/contact_shell_plate.k", {}, 0.0004, 2},
     // Spot welds: deleted (NCSF 1) before the dump restarted from, activated (NCSF 2) and
     // failed (TF) after it; swforc.csv continued.
     {"spot_welds", "", RIGIDFLEX_TEST_DECKS "/spot_weld_switching.k", {}, 0.2, 1},

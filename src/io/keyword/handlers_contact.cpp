@@ -139,7 +139,11 @@ void contact_automatic(const Block& block, ReaderContext& context) {
   if (contact.sfm == 0.0) contact.sfm = 1.0;
   contact.sst = non_negative_real(c3, 2, "SST", 0.0);
   contact.mst = non_negative_real(c3, 3, "MST", 0.0);
-  // SFST/SFMT scale the shell thickness; solids have none, so they do not act here.
+  // SFST/SFMT scale the shell thickness when SST/MST is 0 (0 means 1, as in LS-DYNA).
+  contact.sfst = non_negative_real(c3, 4, "SFST", 1.0);
+  contact.sfmt = non_negative_real(c3, 5, "SFMT", 1.0);
+  if (contact.sfst == 0.0) contact.sfst = 1.0;
+  if (contact.sfmt == 0.0) contact.sfmt = 1.0;
   contact.fsf = non_negative_real(c3, 6, "FSF", 1.0);
   if (contact.fsf == 0.0) contact.fsf = 1.0;
 
