@@ -80,9 +80,11 @@ if [ ! -d "$seeds/fuzz_restart" ]; then
   mkdir -p "$seeds/fuzz_restart" "$seeds/fuzz_modes"
   tmp=$(mktemp -d)
   # Solids, contact, a rigid wall, switching and a sensor: decks that `run` accepts as they are
-  # (tests/decks/block_free.k and rigid_free.k, used before, are refused by `run`: no dump).
+  # (tests/decks/block_free.k and rigid_free.k, used before, are refused by `run`: no dump);
+  # shells in contact (shell, rotation and contact-memory groups of the dump).
   for deck in tests/decks/contact_sliding_block.k tests/decks/rigidwall_switching_block.k \
-      examples/switching_spinning_block.k examples/sensor_def2rig.k; do
+      examples/switching_spinning_block.k examples/sensor_def2rig.k \
+      tests/decks/contact_shell_plate.k; do
     name=$(basename "$deck" .k)
     OMP_NUM_THREADS=1 "$runner" run "$deck" -o "$tmp/$name" --quiet --dump-every 1e9 \
       >/dev/null 2>&1 || true
@@ -90,9 +92,14 @@ if [ ! -d "$seeds/fuzz_restart" ]; then
       [ -e "$d" ] && cp "$d" "$seeds/fuzz_restart/${name}_$(basename "$d")"
     done
   done
-  OMP_NUM_THREADS=1 "$runner" eigen examples/flexible_beam_eigen.k -o "$tmp/eigen" \
-    --quiet >/dev/null 2>&1 || true
-  find "$tmp" -name '*.h5' -path '*eigen*' -exec cp {} "$seeds/fuzz_modes/" \;
+  # Mode databases of a solid beam (version 1) and of a shell strip (version 2, rotations).
+  for deck in examples/flexible_beam_eigen.k tests/decks/eigen_free_strip_shells.k; do
+    name=$(basename "$deck" .k)
+    OMP_NUM_THREADS=1 "$runner" eigen "$deck" -o "$tmp/eigen_$name" --quiet >/dev/null 2>&1 || true
+    for m in "$tmp/eigen_$name"/*.h5; do
+      [ -e "$m" ] && cp "$m" "$seeds/fuzz_modes/${name}_$(basename "$m")"
+    done
+  done
   rm -rf "$tmp"
   echo "fuzz: $(ls "$seeds/fuzz_restart" | wc -l) dump seeds, $(ls "$seeds/fuzz_modes" | wc -l) mode database seeds"
 fi
