@@ -19,6 +19,17 @@ Eigen::Vector3d FlexibleBody::displacement(std::size_t node, const std::vector<d
   return u;
 }
 
+Eigen::Vector3d FlexibleBody::rotation(std::size_t row, const std::vector<double>& a) const {
+  Eigen::Vector3d theta = Eigen::Vector3d::Zero();
+  for (int d = 0; d < 3; ++d) {
+    const double* psi = rotation_row(row, d);
+    double sum = 0.0;
+    for (std::size_t k = 0; k < mode_count; ++k) sum += psi[k] * a[k];
+    theta[d] = sum;
+  }
+  return theta;
+}
+
 double FlexibleBody::kinetic_energy() const {
   double e = 0.0;
   for (const double v : s) e += 0.5 * v * v;
@@ -148,11 +159,16 @@ void compute_stiffening_invariants(FlexibleBody& body, const ModeInput& input) {
 FlexibleBody prepare_flexible_body(const ModeInput& input) {
   const std::size_t nodes = input.mass.size();
   const std::size_t n = input.eigenvalues.size();
-  const Eigen::Index dofs = static_cast<Eigen::Index>(3 * nodes);
-  if (input.body_coords.size() != 3 * nodes || input.shapes_global.size() != n * 3 * nodes) {
+  const std::size_t rotations = input.rotation_position.size();
+  // Translational rows 3 i + d, then rotational rows 3 N + 3 j + d.
+  const Eigen::Index tdofs = static_cast<Eigen::Index>(3 * nodes);
+  const Eigen::Index dofs = static_cast<Eigen::Index>(3 * (nodes + rotations));
+  if (input.body_coords.size() != 3 * nodes || input.shapes_global.size() != n * 3 * nodes ||
+      input.rotational_inertia.size() != rotations ||
+      input.rotation_shapes_global.size() != n * 3 * rotations) {
     throw std::invalid_argument("mode input sizes do not match the body's nodes");
   }
-  // Phi in body axes, 3N x n.
+  // Phi in body axes, (3N + 3r) x n.
   Eigen::MatrixXd phi(dofs, static_cast<Eigen::Index>(n));
   const Eigen::Matrix3d rt = input.initial_rotation.transpose();
   for (std::size_t k = 0; k < n; ++k) {
@@ -161,13 +177,24 @@ FlexibleBody prepare_flexible_body(const ModeInput& input) {
       const Eigen::Vector3d b = rt * Eigen::Vector3d(g[3 * i], g[3 * i + 1], g[3 * i + 2]);
       for (int d = 0; d < 3; ++d) phi(static_cast<Eigen::Index>(3 * i + d), k) = b[d];
     }
+    const double* gr = input.rotation_shapes_global.data() + k * 3 * rotations;
+    for (std::size_t j = 0; j < rotations; ++j) {
+      const Eigen::Vector3d b = rt * Eigen::Vector3d(gr[3 * j], gr[3 * j + 1], gr[3 * j + 2]);
+      for (int d = 0; d < 3; ++d) phi(tdofs + static_cast<Eigen::Index>(3 * j + d), k) = b[d];
+    }
   }
   Eigen::VectorXd m(dofs);
   for (std::size_t i = 0; i < nodes; ++i) {
     for (int d = 0; d < 3; ++d) m[static_cast<Eigen::Index>(3 * i + d)] = input.mass[i];
   }
+  for (std::size_t j = 0; j < rotations; ++j) {
+    for (int d = 0; d < 3; ++d) {
+      m[tdofs + static_cast<Eigen::Index>(3 * j + d)] = input.rotational_inertia[j];
+    }
+  }
   // The six rigid modes, mass-orthonormalised by modified Gram-Schmidt (no assumption on the
-  // centre: X need not have its mass centre exactly at 0).
+  // centre: X need not have its mass centre exactly at 0). A rigid rotation about axis a turns
+  // every node with rotations by e_a as well: its rotational rows are e_a.
   Eigen::MatrixXd rigid(dofs, 6);
   rigid.setZero();
   for (std::size_t i = 0; i < nodes; ++i) {
@@ -178,6 +205,9 @@ FlexibleBody prepare_flexible_body(const ModeInput& input) {
       const Eigen::Vector3d r = Eigen::Vector3d::Unit(a).cross(x);
       for (int d = 0; d < 3; ++d) rigid(static_cast<Eigen::Index>(3 * i + d), 3 + a) = r[d];
     }
+  }
+  for (std::size_t j = 0; j < rotations; ++j) {
+    for (int a = 0; a < 3; ++a) rigid(tdofs + static_cast<Eigen::Index>(3 * j + a), 3 + a) = 1.0;
   }
   std::vector<Eigen::Index> kept_rigid;
   for (Eigen::Index r = 0; r < 6; ++r) {
@@ -250,6 +280,21 @@ FlexibleBody prepare_flexible_body(const ModeInput& input) {
   for (std::size_t r = 0; r < 3 * nodes; ++r) {
     for (std::size_t k = 0; k < n; ++k) {
       body.shapes[r * n + k] = phi_new(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(k));
+    }
+  }
+  body.rotation_count = rotations;
+  body.rotation_position = input.rotation_position;
+  body.rotation_of.assign(nodes, -1);
+  for (std::size_t j = 0; j < rotations; ++j) {
+    body.rotation_of[static_cast<std::size_t>(input.rotation_position[j])] =
+        static_cast<std::int32_t>(j);
+  }
+  body.rotational_inertia = input.rotational_inertia;
+  body.rotation_shapes.resize(3 * rotations * n);
+  for (std::size_t r = 0; r < 3 * rotations; ++r) {
+    for (std::size_t k = 0; k < n; ++k) {
+      body.rotation_shapes[r * n + k] =
+          phi_new(tdofs + static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(k));
     }
   }
   // Invariants.
@@ -349,7 +394,11 @@ void advance_modes(FlexibleBody& body, const Eigen::Vector3d& omega_body,
         const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> b(
             &body.inv_b[9 * (k * n + l)]);
         const Eigen::Map<const Eigen::Vector3d> slk(&body.inv_s[3 * (l * n + k)]);
-        h -= body.q[l] * (w.dot(b * w) - (k == l ? w2 : 0.0));
+        // tr B_kl = delta_kl when the modes are mass-orthonormal with the translational masses
+        // alone; with nodal rotational inertia, tr B_kl = delta_kl - sum_j J_j psi_jk . psi_jl.
+        const double trace_b =
+            body.rotation_count == 0 ? (k == l ? 1.0 : 0.0) : b(0, 0) + b(1, 1) + b(2, 2);
+        h -= body.q[l] * (w.dot(b * w) - w2 * trace_b);
         h -= body.q[l] * alpha_body.dot(slk);
       }
       body.inertia[k] = h;

@@ -24,6 +24,16 @@ struct FlexibleBody {
   // free of rigid content (docs/flexible_bodies.md section 1).
   std::vector<double> shapes;
   std::vector<double> mass;         // lumped mass per node (the solver's)
+  // Nodes with rotations (shells, beams): r of them. rotation_position[j] is the position in
+  // the node list of rotation row j, rotation_of[k] the row of node position k (-1: none).
+  // Rotational mode shapes psi, body axes, row-major like `shapes`: psi[(3 j + d) n + k], with
+  // the solver's isotropic lumped rotational inertia J_j. Mass-orthonormality and the rigid
+  // content (section 1 of docs/flexible_bodies.md) include them: Phi^T M Phi + Psi^T J Psi = I.
+  std::size_t rotation_count = 0;
+  std::vector<std::int32_t> rotation_position;
+  std::vector<std::int32_t> rotation_of;
+  std::vector<double> rotation_shapes;
+  std::vector<double> rotational_inertia;
   std::vector<double> body_coords;  // X_i, 3 per node, body axes
   // Inertia invariants (FORM 0): A_k (9 per mode, row-major), B_kl (9 per pair, index k n + l),
   // s_lk (3 per pair, index l n + k).
@@ -58,6 +68,11 @@ struct FlexibleBody {
   const double* shape_row(std::size_t node, int d) const {
     return shapes.data() + (3 * node + d) * mode_count;
   }
+  const double* rotation_row(std::size_t row, int d) const {
+    return rotation_shapes.data() + (3 * row + d) * mode_count;
+  }
+  // theta_j = sum_k psi_jk a_k (body axes) for rotation row j.
+  Eigen::Vector3d rotation(std::size_t row, const std::vector<double>& a) const;
   // u_i = sum_k phi_ik a_k (body axes) for amplitudes a.
   Eigen::Vector3d displacement(std::size_t node, const std::vector<double>& a) const;
   double kinetic_energy() const;  // 1/2 sum s_k^2
@@ -74,6 +89,12 @@ struct ModeInput {
   std::vector<double> shapes_global;  // mode k node i direction d at [k 3N + 3 i + d]
   std::vector<double> eigenvalues;    // per selected mode
   std::vector<double> damping;        // per selected mode (fraction of critical)
+  // Nodes with rotations (optional): positions in the node list, their lumped rotational
+  // inertia, and the modes' rotational components (global axes), mode k row j axis d at
+  // [k 3r + 3 j + d].
+  std::vector<std::int32_t> rotation_position;
+  std::vector<double> rotational_inertia;
+  std::vector<double> rotation_shapes_global;
   ModalForm form = ModalForm::kExact;
   // Optional (FORM 0): the body's 8-node hexahedra as positions in its node list, and its
   // material's Lame constants, for the geometric-stiffening invariants. Empty: none.

@@ -349,12 +349,6 @@ void check_structural_support(const model::Model& model, const State& state) {
                                  "yet",
                                  what));
   }
-  if (!model.part_modes.empty()) {
-    throw InputError(model::context_of(model.part_modes.begin()->second.where, "PID"),
-                     fmt::format("flexible bodies (*PART_MODES) in a model with {} elements "
-                                 "are not supported yet",
-                                 what));
-  }
 }
 
 }  // namespace rf::solver

@@ -28,7 +28,8 @@ Eigen::Vector3d body_position(const modal::FlexibleBody& f, std::size_t k,
 
 SelectedModes select_part_modes(const model::PartModes& card, const std::string& owner,
                                 const std::vector<std::int32_t>& body_nodes,
-                                const NodalState& nodes, const ModeLoader& loader) {
+                                const NodalState& nodes, const ModeLoader& loader,
+                                const RotationalState* rotations) {
   modal::ModeSet set;
   try {
     set = loader(card.path);
@@ -54,14 +55,14 @@ SelectedModes select_part_modes(const model::PartModes& card, const std::string&
                                  card.path));
   }
   // A database with rotational components comes from a model with shells or beams: its shapes
-  // are mass-normalised with the rotational inertia included, and the flexible-body kinematics
-  // carry no nodal rotations yet (docs/eigen.md, Limits).
-  if (set.rotation_count() > 0) {
+  // are mass-normalised with the rotational inertia included. Bodies that cannot carry nodal
+  // rotations (a deformable part switched rigid) refuse it.
+  if (set.rotation_count() > 0 && rotations == nullptr) {
     throw InputError(context_of(card.where, "FILENAME"),
                      fmt::format("mode database '{}' has rotational components ({} nodes of "
                                  "shells or beams): flexible bodies made of shells or beams are "
-                                 "not supported yet; compute the modes of the solid part alone "
-                                 "(rigidflex eigen --parts)",
+                                 "not supported for a part that becomes a flexible body by "
+                                 "switching; compute the modes of a solid part",
                                  card.path, set.rotation_count()));
   }
   // Node matching by ID.
@@ -176,6 +177,50 @@ SelectedModes select_part_modes(const model::PartModes& card, const std::string&
     }
     selected.eigenvalues.push_back(set.eigenvalues[m]);
   }
+  // Rotational components: every body node with rotations in the model gets a row (zero where
+  // the database node has none: a solid part's node shared with a shell); a database node
+  // with rotations must have them in the model.
+  if (rotations != nullptr) {
+    std::vector<std::int64_t> db_rotation(dn, -1);
+    for (std::size_t j = 0; j < set.rotation_count(); ++j) {
+      const auto row = set.rotation_nodes[j];
+      if (row < 0 || static_cast<std::size_t>(row) >= dn) {
+        throw InputError(context_of(card.where, "FILENAME"),
+                         fmt::format("mode database '{}' is inconsistent (rotation node {} out "
+                                     "of range)",
+                                     card.path, row));
+      }
+      db_rotation[static_cast<std::size_t>(row)] = static_cast<std::int64_t>(j);
+    }
+    for (std::size_t k = 0; k < bn; ++k) {
+      const std::int32_t i = body_nodes[k];
+      if (rotations->index(i) >= 0) {
+        selected.rotation_position.push_back(static_cast<std::int32_t>(k));
+      } else if (db_rotation[rows[k]] >= 0) {
+        throw InputError(context_of(card.where, "FILENAME"),
+                         fmt::format("node {} has rotations in mode database '{}' but none in "
+                                     "the model (no shell or beam of the model uses it): the "
+                                     "modes belong to another model",
+                                     nodes.id[i], card.path));
+      }
+    }
+    const std::size_t r = selected.rotation_position.size();
+    const std::size_t dr = set.rotation_count();
+    selected.rotation_shapes.assign(chosen.size() * 3 * r, 0.0);
+    for (std::size_t c = 0; c < chosen.size(); ++c) {
+      const std::size_t m = static_cast<std::size_t>(chosen[c] - 1);
+      if (dr == 0) continue;
+      const double* shape = set.rotation_shape(m);
+      for (std::size_t j = 0; j < r; ++j) {
+        const auto row = db_rotation[rows[static_cast<std::size_t>(selected.rotation_position[j])]];
+        if (row < 0) continue;
+        for (int d = 0; d < 3; ++d) {
+          selected.rotation_shapes[c * 3 * r + 3 * j + d] =
+              shape[3 * static_cast<std::size_t>(row) + d];
+        }
+      }
+    }
+  }
   for (const auto& d : card.damping) {
     for (int m = d.mstart; m <= d.mstop; ++m) selected.damping[m - 1] = d.dampf;
   }
@@ -189,8 +234,21 @@ void attach_flexible_bodies(const model::Model& model, const NodeIndex& node_ind
   if (model.part_modes.empty()) return;
   const NodalState& nodes = state.nodes;
   std::vector<std::uint8_t> deformable_node(nodes.size(), 0);
+  // Every family's deformable elements (and springs, dampers) act on the nodes they share with
+  // a body: those nodes are reconstructed every cycle.
   for (const auto& block : state.hex_blocks) {
     if (block.rigid) continue;
+    for (const std::int32_t i : block.conn) deformable_node[i] = 1;
+  }
+  for (const auto& block : state.shell_blocks) {
+    if (block.rigid) continue;
+    for (const std::int32_t i : block.conn) deformable_node[i] = 1;
+  }
+  for (const auto& block : state.beam_blocks) {
+    if (block.rigid) continue;
+    for (const std::int32_t i : block.conn) deformable_node[i] = 1;
+  }
+  for (const auto& block : state.discrete_blocks) {
     for (const std::int32_t i : block.conn) deformable_node[i] = 1;
   }
   std::vector<std::uint8_t> needed(nodes.size(), 0);  // reconstructed every cycle
@@ -224,8 +282,8 @@ void attach_flexible_bodies(const model::Model& model, const NodeIndex& node_ind
                                    "needs the nodal masses its modes are normalised with",
                                    pid));
     }
-    const SelectedModes selected =
-        select_part_modes(card, fmt::format("flexible body {}", pid), body.nodes, nodes, loader);
+    const SelectedModes selected = select_part_modes(card, fmt::format("flexible body {}", pid),
+                                                     body.nodes, nodes, loader, &state.rotations);
     modal::ModeInput input;
     input.form = card.form == 1 ? modal::ModalForm::kFast : modal::ModalForm::kExact;
     input.initial_rotation = body.initial_rotation;
@@ -241,6 +299,12 @@ void attach_flexible_bodies(const model::Model& model, const NodeIndex& node_ind
     input.shapes_global = selected.shapes;
     input.eigenvalues = selected.eigenvalues;
     input.damping = selected.damping;
+    input.rotation_position = selected.rotation_position;
+    input.rotation_shapes_global = selected.rotation_shapes;
+    for (const std::int32_t k : selected.rotation_position) {
+      input.rotational_inertia.push_back(
+          state.rotations.inertia[static_cast<std::size_t>(state.rotations.index(body.nodes[k]))]);
+    }
     // Geometric stiffening (FORM 0): the body's 8-node hexahedra and its material. The cubic
     // invariants cost n^3 per step and n^3 x (Gauss points) once: above kMaxStiffeningModes
     // modes they are left out (with a notice).
@@ -252,6 +316,24 @@ void attach_flexible_bodies(const model::Model& model, const NodeIndex& node_ind
                                      "is computed for at most {} modes and is left out",
                                      pid, selected.file_modes.size(), kMaxStiffeningModes)});
       } else {
+        // The cubic invariants come from the body's 8-node hexahedra; shells and beams of the
+        // body add none (docs/flexible_bodies.md, What is left).
+        bool structural = false;
+        for (const auto& block : state.shell_blocks) {
+          structural = structural || std::find(body.parts.begin(), body.parts.end(),
+                                               block.part_id) != body.parts.end();
+        }
+        for (const auto& block : state.beam_blocks) {
+          structural = structural || std::find(body.parts.begin(), body.parts.end(),
+                                               block.part_id) != body.parts.end();
+        }
+        if (structural) {
+          rigid.warnings.push_back(
+              {card.where, fmt::format("flexible body {}: geometric stiffening (FORM 0) is "
+                                       "computed from hexahedra only; its shells and beams "
+                                       "add none",
+                                       pid)});
+        }
         std::unordered_map<std::int32_t, std::int32_t> position;
         for (std::size_t k = 0; k < bn; ++k) {
           position.emplace(body.nodes[k], static_cast<std::int32_t>(k));
@@ -299,9 +381,14 @@ void attach_flexible_bodies(const model::Model& model, const NodeIndex& node_ind
     rigid.flexible.push_back(std::move(flexible));
   }
   rigid.modal_work_velocity.assign(3 * nodes.size(), 0.0);
+  if (!state.rotations.empty()) {
+    rigid.modal_rotation_velocity.assign(3 * state.rotations.size(), 0.0);
+    rigid.modal_rotation_work_velocity.assign(3 * state.rotations.size(), 0.0);
+  }
 }
 
-void gather_modal_forces(const RigidBody& body, modal::FlexibleBody& f, const NodalState& nodes) {
+void gather_modal_forces(const RigidBody& body, modal::FlexibleBody& f, const NodalState& nodes,
+                         const RotationalState& rotations) {
   const std::size_t n = f.mode_count;
   std::fill(f.force.begin(), f.force.end(), 0.0);
   const Eigen::Matrix3d rt = body.state.rotation.transpose();
@@ -319,10 +406,29 @@ void gather_modal_forces(const RigidBody& body, modal::FlexibleBody& f, const No
       for (std::size_t m = 0; m < n; ++m) f.force[m] += row[m] * fd;
     }
   }
+  if (f.rotation_count == 0) return;
+  for (std::size_t a = 0; a < f.active.size(); ++a) {  // nodal moments through Psi
+    const std::int32_t j = f.rotation_of[static_cast<std::size_t>(f.active[a])];
+    if (j < 0) continue;
+    const std::int32_t r = rotations.index(f.active_nodes[a]);
+    const Eigen::Vector3d global(rotations.m_ext.x[r] - rotations.m_int.x[r],
+                                 rotations.m_ext.y[r] - rotations.m_int.y[r],
+                                 rotations.m_ext.z[r] - rotations.m_int.z[r]);
+    if (global.x() == 0.0 && global.y() == 0.0 && global.z() == 0.0) continue;
+    const Eigen::Vector3d local = rt * global;
+    for (int d = 0; d < 3; ++d) {
+      const double* row = f.rotation_row(static_cast<std::size_t>(j), d);
+      const double md = local[d];
+      for (std::size_t m = 0; m < n; ++m) f.force[m] += row[m] * md;
+    }
+  }
 }
 
 void set_flexible_node_velocities(const RigidBody& body, const modal::FlexibleBody& f, double dt,
-                                  NodalState& nodes, std::vector<double>& work_velocity) {
+                                  NodalState& nodes, std::vector<double>& work_velocity,
+                                  const RotationalState& rotations,
+                                  std::vector<double>& rotation_velocity,
+                                  std::vector<double>& rotation_work_velocity) {
   const rigid::RigidBodyState& s = body.state;
   const double inv_dt = dt > 0.0 ? 1.0 / dt : 0.0;
   const Eigen::Matrix3d& r_old = s.previous_rotation;
@@ -339,6 +445,25 @@ void set_flexible_node_velocities(const RigidBody& body, const modal::FlexibleBo
     work_velocity[3 * i] = w.x();
     work_velocity[3 * i + 1] = w.y();
     work_velocity[3 * i + 2] = w.z();
+  }
+  if (f.rotation_count == 0) return;
+  // Rotations are velocities only (the kernels integrate no nodal orientation): the node turns
+  // with the body (Simulation::update_rotations) plus the modal rotation increment of the step,
+  // R^{n+1} Psi_j (q^{n+1} - q^n) / dt; its work velocity R^n Psi_j s_mid as for translations.
+  std::vector<double> dq(f.mode_count);
+  for (std::size_t k = 0; k < f.mode_count; ++k) {
+    dq[k] = dt > 0.0 ? (f.q[k] - f.q_previous[k]) * inv_dt : 0.0;
+  }
+  for (std::size_t a = 0; a < f.active.size(); ++a) {
+    const std::int32_t j = f.rotation_of[static_cast<std::size_t>(f.active[a])];
+    if (j < 0) continue;
+    const std::size_t r = static_cast<std::size_t>(rotations.index(f.active_nodes[a]));
+    const Eigen::Vector3d w = s.rotation * f.rotation(static_cast<std::size_t>(j), dq);
+    const Eigen::Vector3d work = r_old * f.rotation(static_cast<std::size_t>(j), f.s_mid);
+    for (int d = 0; d < 3; ++d) {
+      rotation_velocity[3 * r + d] = w[d];
+      rotation_work_velocity[3 * r + d] = work[d];
+    }
   }
 }
 
@@ -378,7 +503,8 @@ void reconstruct_passive_nodes(const RigidSystem& rigid, State& state) {
 }
 
 void initialize_modal_velocities(const RigidBody& body, modal::FlexibleBody& f,
-                                 const std::vector<double>& initial_velocities, NodalState& nodes) {
+                                 const std::vector<double>& initial_velocities, NodalState& nodes,
+                                 const RotationalState* rotations) {
   const rigid::RigidBodyState& s = body.state;
   const Eigen::Matrix3d rt = s.rotation.transpose();
   std::fill(f.s.begin(), f.s.end(), 0.0);
@@ -392,6 +518,20 @@ void initialize_modal_velocities(const RigidBody& body, modal::FlexibleBody& f,
     for (int d = 0; d < 3; ++d) {
       const double* row = f.shape_row(k, d);
       for (std::size_t m = 0; m < f.mode_count; ++m) f.s[m] += row[m] * relative[d];
+    }
+  }
+  // Nodes with rotations: s_k += sum_j J_j psi_jk . R^T (omega_j - w), from their initial
+  // angular velocities (the nodes turn with the body from the first update on).
+  if (rotations != nullptr) {
+    for (std::size_t j = 0; j < f.rotation_count; ++j) {
+      const std::int32_t i = body.nodes[static_cast<std::size_t>(f.rotation_position[j])];
+      const std::int32_t r = rotations->index(i);
+      const Eigen::Vector3d w(rotations->w.x[r], rotations->w.y[r], rotations->w.z[r]);
+      const Eigen::Vector3d relative = rt * (w - s.angular_velocity) * f.rotational_inertia[j];
+      for (int d = 0; d < 3; ++d) {
+        const double* row = f.rotation_row(j, d);
+        for (std::size_t m = 0; m < f.mode_count; ++m) f.s[m] += row[m] * relative[d];
+      }
     }
   }
   for (std::size_t k = 0; k < body.nodes.size(); ++k) {

@@ -467,6 +467,19 @@ void initialize_rigid_velocities(const model::Model& model, const NodeIndex& nod
         spin += weight(i) * r.cross(u);
         inertia += weight(i) * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
       }
+      // Nodes with rotations (shells, beams) add their spin I w and rotary inertia I, so that
+      // the body gets the angular momentum of the whole initial field (a rigid rotation of the
+      // field gives back its w exactly, as without them).
+      if (!unit_weights && !state.rotations.empty()) {
+        for (const auto i : body.nodes) {
+          const std::int32_t r = state.rotations.index(i);
+          if (r < 0) continue;
+          const double j = state.rotations.inertia[static_cast<std::size_t>(r)];
+          spin += j * Eigen::Vector3d(state.rotations.w.x[r], state.rotations.w.y[r],
+                                      state.rotations.w.z[r]);
+          inertia += j * Eigen::Matrix3d::Identity();
+        }
+      }
       // Pseudo-inverse: a line of nodes says nothing about spin about the line.
       w = inertia.completeOrthogonalDecomposition().solve(spin);
       // The fit is about the nodes' centre; the body turns about its own centre.
@@ -501,7 +514,8 @@ void initialize_rigid_velocities(const model::Model& model, const NodeIndex& nod
                                  nodes.x.z.data(), nodes.v.x.data(), nodes.v.y.data(),
                                  nodes.v.z.data());
     if (body.flexible >= 0) {
-      initialize_modal_velocities(body, rigid.flexible[body.flexible], given, nodes);
+      initialize_modal_velocities(body, rigid.flexible[body.flexible], given, nodes,
+                                  &state.rotations);
     }
   }
 }
@@ -530,7 +544,7 @@ RigidStepSums advance_rigid_bodies(RigidSystem& rigid, const Boundary& boundary,
     rigid::ForceAndTorque ft = rigid::gather_force_and_torque(
         s.centre, loaded, nodes.f_ext.x.data(), nodes.f_ext.y.data(), nodes.f_ext.z.data(),
         nodes.x.x.data(), nodes.x.y.data(), nodes.x.z.data());
-    if (flexible) gather_modal_forces(body, *flexible, nodes);
+    if (flexible) gather_modal_forces(body, *flexible, nodes, state.rotations);
     ft -= rigid::gather_force_and_torque(s.centre, loaded, nodes.f_int.x.data(),
                                          nodes.f_int.y.data(), nodes.f_int.z.data(),
                                          nodes.x.x.data(), nodes.x.y.data(), nodes.x.z.data());
@@ -633,7 +647,9 @@ RigidStepSums advance_rigid_bodies(RigidSystem& rigid, const Boundary& boundary,
                                          dt_avg)
                        : Eigen::Vector3d::Zero();
       modal::advance_modes(*flexible, omega_body, alpha_body, dt_avg, dt);
-      set_flexible_node_velocities(body, *flexible, dt, nodes, rigid.modal_work_velocity);
+      set_flexible_node_velocities(body, *flexible, dt, nodes, rigid.modal_work_velocity,
+                                   state.rotations, rigid.modal_rotation_velocity,
+                                   rigid.modal_rotation_work_velocity);
       sums.modal_damping_loss += flexible->damping_loss;
       sums.modal_inertia_work += flexible->inertia_work;
       sums.modal_stiffening_work += flexible->stiffening_work;

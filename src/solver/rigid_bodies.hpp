@@ -89,6 +89,10 @@ struct RigidSystem {
   // with which the work of the nodal forces is summed (empty without flexible bodies).
   std::vector<modal::FlexibleBody> flexible;
   std::vector<double> modal_work_velocity;
+  // The same for nodes with rotations (3 per rotational index; empty without rotations): the
+  // modal angular velocity added to the body's, and its work velocity.
+  std::vector<double> modal_rotation_velocity;
+  std::vector<double> modal_rotation_work_velocity;
 
   bool empty() const { return bodies.empty(); }
   bool is_rigid(std::int32_t node) const {

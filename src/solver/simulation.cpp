@@ -996,6 +996,13 @@ std::array<double, 6> Simulation::update_rotations(double dt_avg) {
   const std::int64_t count = static_cast<std::int64_t>(rot.size());
   const std::int32_t* body_of = rigid_.empty() ? nullptr : rigid_.body_of_node.data();
   const std::uint8_t* fixed = boundary_.rotation_fixed.data();
+  // Flexible bodies (*PART_MODES of shells, beams): the modal angular velocity of their nodes
+  // and its work velocity (solver/flexible_bodies.hpp), zero at other body nodes.
+  const double* modal_w =
+      rigid_.modal_rotation_velocity.empty() ? nullptr : rigid_.modal_rotation_velocity.data();
+  const double* modal_work = rigid_.modal_rotation_work_velocity.empty()
+                                 ? nullptr
+                                 : rigid_.modal_rotation_work_velocity.data();
 #pragma omp parallel for schedule(static)
   for (std::int64_t r = 0; r < count; ++r) {
     rot.w_previous.x[r] = rot.w.x[r];
@@ -1007,6 +1014,11 @@ std::array<double, 6> Simulation::update_rotations(double dt_avg) {
       rot.w.x[r] = w.x();
       rot.w.y[r] = w.y();
       rot.w.z[r] = w.z();
+      if (modal_w) {
+        rot.w.x[r] += modal_w[3 * r];
+        rot.w.y[r] += modal_w[3 * r + 1];
+        rot.w.z[r] += modal_w[3 * r + 2];
+      }
       continue;
     }
     const double I = rot.inertia[r];
@@ -1022,12 +1034,20 @@ std::array<double, 6> Simulation::update_rotations(double dt_avg) {
   out = deterministic_sum<6>(count, reduction_scratch_rotations_,
                              [&](std::int64_t r, std::array<double, 6>& acc) {
     const double wx = rot.w.x[r], wy = rot.w.y[r], wz = rot.w.z[r];
-    const double dx = 0.5 * dt_avg * (rot.w_previous.x[r] + wx);
-    const double dy = 0.5 * dt_avg * (rot.w_previous.y[r] + wy);
-    const double dz = 0.5 * dt_avg * (rot.w_previous.z[r] + wz);
+    double dx = 0.5 * dt_avg * (rot.w_previous.x[r] + wx);
+    double dy = 0.5 * dt_avg * (rot.w_previous.y[r] + wy);
+    double dz = 0.5 * dt_avg * (rot.w_previous.z[r] + wz);
+    const std::int32_t i = rot.node[r];
+    if (modal_work && body_of && body_of[i] >= 0) {
+      // As for translations: the body's turn dt_avg w_mid plus the modes' R^n Psi_j s_mid, so
+      // the moments' work equals what the body and its modes received.
+      const Eigen::Vector3d& w_mid = rigid_.bodies[body_of[i]].mid_angular_velocity;
+      dx = dt_avg * (w_mid.x() + modal_work[3 * r]);
+      dy = dt_avg * (w_mid.y() + modal_work[3 * r + 1]);
+      dz = dt_avg * (w_mid.z() + modal_work[3 * r + 2]);
+    }
     acc[1] += rot.m_int.x[r] * dx + rot.m_int.y[r] * dy + rot.m_int.z[r] * dz;
     acc[2] += rot.m_ext.x[r] * dx + rot.m_ext.y[r] * dy + rot.m_ext.z[r] * dz;
-    const std::int32_t i = rot.node[r];
     if (body_of && body_of[i] >= 0) return;  // the body holds its kinetic energy and momentum
     const double I = rot.inertia[r];
     acc[0] += 0.5 * I * (wx * wx + wy * wy + wz * wz);

@@ -251,9 +251,9 @@ TEST(FlexibleBody, ModalDampingDecaysAtTheGivenRatio) {
   EXPECT_NEAR(sim.energy().ratio(), 1.0, 1e-12);
 }
 
-// A mode database with rotational components (made from a model with shells or beams) is
-// refused at FILENAME: flexible bodies carry no nodal rotations yet.
-TEST(FlexibleBodyDeck, DatabaseWithRotationsIsRefused) {
+// A mode database with rotational components at a node that has no rotations in the model (a
+// solid part's node: the modes were computed for shells or beams) is refused at FILENAME.
+TEST(FlexibleBodyDeck, DatabaseWithRotationsAtASolidNodeIsRefused) {
   solver::SimulationOptions options = with_modes();
   options.mode_loader = [](const std::filesystem::path&) {
     modal::ModeSet modes = beam_modes();
@@ -267,7 +267,8 @@ TEST(FlexibleBodyDeck, DatabaseWithRotationsIsRefused) {
     ADD_FAILURE() << "no error for a database with rotations";
   } catch (const InputError& e) {
     const std::string message = e.what();
-    EXPECT_NE(message.find("rotational components"), std::string::npos) << message;
+    EXPECT_NE(message.find("has rotations in mode database"), std::string::npos) << message;
+    EXPECT_NE(message.find("none in the model"), std::string::npos) << message;
     EXPECT_NE(message.find("FILENAME"), std::string::npos) << message;
   }
 }
