@@ -338,17 +338,8 @@ void check_structural_support(const model::Model& model, const State& state) {
   if (state.shell_blocks.empty() && state.beam_blocks.empty()) return;
   const char* what = !state.shell_blocks.empty() ? "shell" : "beam";
   // Contacts know shell segments (docs/contact.md); beam parts on a contact side are refused
-  // by contact::build_contacts, which names the part.
-  if (model.switching.flagged) {
-    const model::SourceLocation where =
-        !model.switching.at_start.empty()    ? model.switching.at_start.front().where
-        : !model.switching.automatic.empty() ? model.switching.automatic.front().where
-                                             : model::SourceLocation{};
-    throw InputError(model::context_of(where, "PID"),
-                     fmt::format("part switching in a model with {} elements is not supported "
-                                 "yet",
-                                 what));
-  }
+  // by contact::build_contacts, which names the part. Part switching knows every family
+  // (docs/switching.md, "Shells and beams").
   if (!model.part_modes.empty()) {
     throw InputError(model::context_of(model.part_modes.begin()->second.where, "PID"),
                      fmt::format("flexible bodies (*PART_MODES) in a model with {} elements "
