@@ -1338,7 +1338,7 @@ void Simulation::gather_internal_forces(bool book_work) {
     if (book_work)
       sum_partial_forces_across_ranks();
     else
-      distribution_->sum_partial_forces(state_, nullptr, false);
+      distribution_->sum_partial_forces(state_, nullptr, true);  // forces and shell/beam moments
   }
   compute_discrete_forces();
   if (!joints_.empty()) {  // penalty springs: their stiffness needs the first step
