@@ -93,6 +93,22 @@ rigid::MassProperties lumped_properties(const std::vector<std::int32_t>& nodes, 
   return props;
 }
 
+// Nodes on one line without rotary inertia (a straight chain of trusses) have no moment of
+// inertia about it, and J^-1 would not exist. As for spot welds (solver/rigid_bodies.cpp), the
+// body gets a moment of 1e-6 of the largest about that line only (the other principal moments
+// stay exact): the nodes' angular momentum has no component along it, so no motion changes.
+void regularise(rigid::MassProperties& props) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(props.inertia);
+  const double largest = eigen.eigenvalues().maxCoeff();
+  if (!(largest > 0.0)) return;
+  for (int k = 0; k < 3; ++k) {
+    if (eigen.eigenvalues()[k] < 1e-6 * largest) {
+      const Eigen::Vector3d axis = eigen.eigenvectors().col(k);
+      props.inertia += 1e-6 * largest * axis * axis.transpose();
+    }
+  }
+}
+
 // Nodes with rotations take the angular velocity w (a rigid body's nodes turn with it).
 void set_node_spins(const std::vector<std::int32_t>& nodes, const Eigen::Vector3d& w,
                     State& state) {
@@ -380,7 +396,8 @@ SwitchEvent PartSwitcher::to_rigid(const std::vector<model::PartSwitch>& cards, 
     }
     std::erase_if(lumped, [&](std::int32_t i) { return card_nodes.count(i) != 0; });
     if (!lead_card && !lumped.empty()) props.push_back(lumped_properties(lumped, state));
-    const rigid::MassProperties combined = rigid::combine(props);
+    rigid::MassProperties combined = rigid::combine(props);
+    regularise(combined);
     if (!(combined.mass > 0.0)) {
       throw SolverError(fmt::format("at time {:.6g}: part {} has no mass to make a rigid body of",
                                     time, group.parts.front()));
@@ -536,7 +553,8 @@ SwitchEvent PartSwitcher::to_deformable(const std::vector<model::PartSwitch>& ca
     Eigen::Vector3d v = s.velocity, c = s.centre;
     Eigen::Vector3d w = rigid::global_inertia(s).ldlt().solve(s.angular_momentum);
     if (!body.inertia_from_card) {
-      const rigid::MassProperties all = lumped_properties(body.nodes, state);
+      rigid::MassProperties all = lumped_properties(body.nodes, state);
+      regularise(all);
       if (all.mass > 0.0 && std::abs(all.mass - s.mass) <= 1e-12 * s.mass) {
         const Eigen::Vector3d p = s.mass * s.velocity;
         const Eigen::Vector3d h = s.centre.cross(p) + s.angular_momentum;
@@ -568,6 +586,7 @@ SwitchEvent PartSwitcher::to_deformable(const std::vector<model::PartSwitch>& ca
       props = body_properties(s);  // the card's properties stay with the lead
     } else {
       props = lumped_properties(kept, state);
+      regularise(props);
     }
     Momenta field;  // the velocity field carried by the remaining mass
     field.p = props.mass * (v + w.cross(props.centre - c));
