@@ -544,6 +544,48 @@ TEST(BeamSwitching, StraightTrussChainSwitchedRigidAndBack) {
               sim.energy().ratio() - 1.0);
 }
 
+// Two solid parts sharing a face, switched by one set (two D2R cards, no LRB): each part is a
+// group of its own and the second merges the body the first just made. The kinetic energy
+// removed must be the non-rigid energy of the nodes, counted once (the first body's momenta
+// were once counted twice: "before" exceeded the model's whole kinetic energy).
+TEST(PartSwitching, TwoPartsSharingNodesInOneSetCountTheirMomentaOnce) {
+  BoxMesh mesh;
+  mesh.nx = 4;
+  mesh.ny = 2;
+  mesh.nz = 2;
+  mesh.lx = 1.2;
+  mesh.ly = 0.8;
+  mesh.lz = 0.4;
+  std::string deck = "*KEYWORD\n" +
+                     mesh.keyword_text([](int i, int, int) { return i < 2 ? 1 : 2; }) +
+                     elastic(1, 1000.0, 1e7, 0.3, 4) + elastic(2, 1000.0, 1e7, 0.3, 4);
+  deck += "*INITIAL_VELOCITY_NODE\n";
+  for (int k = 0; k <= mesh.nz; ++k)
+    for (int j = 0; j <= mesh.ny; ++j)
+      for (int i = 0; i <= mesh.nx; ++i) {
+        double x, y, z;
+        mesh.coordinates(i, j, k, x, y, z);
+        deck += node_velocity(mesh.node_id(i, j, k), Vector3d(x - 0.6, y - 0.4, z - 0.2), false);
+      }
+  deck +=
+      "*DEFORMABLE_TO_RIGID_AUTOMATIC\n10,0,0.05\n0,0,0,0.01,2,0\n1\n2\n"
+      "*CONTROL_TERMINATION\n0.1\n*END\n";
+  solver::Simulation sim(read(deck), {});
+  while (sim.state().time < 0.05) sim.cycle();
+  const Momenta before = momenta_of(sim.state());
+  sim.cycle();
+  ASSERT_EQ(sim.switch_events().size(), 1u);
+  ASSERT_EQ(sim.rigid_bodies().bodies.size(), 1u);
+  const auto& event = sim.switch_events()[0];
+  EXPECT_NEAR(event.kinetic_energy_before, before.kinetic, 1e-12 * before.kinetic);
+  EXPECT_NEAR(event.kinetic_energy_before - event.kinetic_energy_after,
+              before.kinetic - before.rigid_kinetic, 1e-10 * before.kinetic);
+  EXPECT_NEAR((event.momentum - before.p).norm(), 0.0, 1e-13 * before.p.norm());
+  EXPECT_NEAR((event.angular_momentum - before.h).norm(), 0.0, 1e-13 * before.h.norm());
+  // After one rigid step: the rigid body's L . w^{n+1/2} / 2 measure.
+  EXPECT_NEAR(sim.energy().ratio(), 1.0, 1e-5);
+}
+
 // The restart tests' switching deck (restart_decks.hpp): shells and beams of parts 2 and 4, which
 // share nodes with the deformable parts 1 and 3, become one body and are released again; the run
 // with loads, plasticity and the attached deformable parts keeps its energy balance.
