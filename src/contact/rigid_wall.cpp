@@ -658,18 +658,21 @@ bool wall_within_offset(const RigidWallSystem& system, int number, double offset
   if (number < 1 || number > static_cast<int>(system.walls.size())) return false;
   const RigidWall& wall = system.walls[number - 1];
   const Vector3d position = wall_position(wall);
-  for (const auto& block : state.hex_blocks) {
-    if (std::find(parts.begin(), parts.end(), block.part_id) == parts.end()) continue;
-    for (const std::int32_t i : block.conn) {
-      const Vector3d x = node_position(state.nodes, i);
-      // Closed shapes: measured from the side the wall keeps nodes on by default.
-      const bool inside = wall.shape == WallShape::Cylinder && !wall.kept_inside.empty() &&
-                          wall.kept_inside.front() != 0;
-      const SurfacePoint sp = surface_point(wall, position, x, inside);
-      if (sp.distance >= -system.tolerance && sp.distance <= offset && sp.over) return true;
+  auto near = [&](const auto& blocks) {  // every element family
+    for (const auto& block : blocks) {
+      if (std::find(parts.begin(), parts.end(), block.part_id) == parts.end()) continue;
+      for (const std::int32_t i : block.conn) {
+        const Vector3d x = node_position(state.nodes, i);
+        // Closed shapes: measured from the side the wall keeps nodes on by default.
+        const bool inside = wall.shape == WallShape::Cylinder && !wall.kept_inside.empty() &&
+                            wall.kept_inside.front() != 0;
+        const SurfacePoint sp = surface_point(wall, position, x, inside);
+        if (sp.distance >= -system.tolerance && sp.distance <= offset && sp.over) return true;
+      }
     }
-  }
-  return false;
+    return false;
+  };
+  return near(state.hex_blocks) || near(state.shell_blocks) || near(state.beam_blocks);
 }
 
 void set_wall_active(RigidWallSystem& system, int number, bool active) {

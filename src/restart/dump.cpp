@@ -671,13 +671,15 @@ void read_structural_blocks(const Group& g, std::vector<Block>& blocks, const ch
                                         "rebuilt model",
                                         family, block.part_id));
     }
-    if ((bg.get_int("rigid") != 0) != block.rigid) {
-      // Shell and beam parts do not switch (solver::check_structural_support): the flag is the
-      // deck's (*MAT_RIGID) in both runs.
-      bg.fail("rigid", fmt::format("says {} part {} was {}, the rebuilt model has it {}", family,
-                                   block.part_id, bg.get_int("rigid") != 0 ? "rigid" : "deformable",
-                                   block.rigid ? "rigid" : "deformable"));
+    const bool dumped_rigid = bg.get_int("rigid") != 0;
+    if (block.rigid && !dumped_rigid) {
+      // *MAT_RIGID blocks have no force slots and never become deformable.
+      bg.fail("rigid", fmt::format("says *MAT_RIGID {} part {} was deformable (the dump is "
+                                   "damaged or from another deck)",
+                                   family, block.part_id));
     }
+    // A part rigid by switching keeps its (zeroed) force slots: only the flag changes.
+    block.rigid = dumped_rigid;
     visit_state(block, [&](const std::string& dataset, std::vector<double>& array) {
       if (!bg.has(dataset)) {
         bg.fail(dataset, fmt::format("is missing: {} part {} of the rebuilt model has this state "

@@ -336,18 +336,31 @@ namespace rf::solver {
 // than run it with part of the physics missing (docs/elements.md lists what works).
 void check_structural_support(const model::Model& model, const State& state) {
   if (state.shell_blocks.empty() && state.beam_blocks.empty()) return;
-  const char* what = !state.shell_blocks.empty() ? "shell" : "beam";
   // Contacts know shell segments (docs/contact.md); beam parts on a contact side are refused
-  // by contact::build_contacts, which names the part.
-  if (model.switching.flagged) {
-    const model::SourceLocation where =
-        !model.switching.at_start.empty()    ? model.switching.at_start.front().where
-        : !model.switching.automatic.empty() ? model.switching.automatic.front().where
-                                             : model::SourceLocation{};
-    throw InputError(model::context_of(where, "PID"),
-                     fmt::format("part switching in a model with {} elements is not supported "
-                                 "yet",
-                                 what));
+  // by contact::build_contacts, which names the part. Part switching knows every family
+  // (docs/switching.md, "Shells and beams"); flexible bodies of *MAT_RIGID shell and beam parts
+  // carry the modes' rotations (docs/flexible_bodies.md section 9). A deformable shell or beam
+  // part with *PART_MODES (a flexible body by switching) does not: its switch would freeze
+  // shell stresses and restore them with a translational modal increment only.
+  for (const auto& [pid, card] : model.part_modes) {
+    const auto part = model.parts.find(pid);
+    if (part == model.parts.end()) continue;
+    const auto material = model.materials.find(part->second.mid);
+    if (material == model.materials.end() ||
+        material->second.kind == model::MaterialKind::Rigid) {
+      continue;
+    }
+    bool structural = false;
+    for (const auto& block : state.shell_blocks) structural = structural || block.part_id == pid;
+    for (const auto& block : state.beam_blocks) structural = structural || block.part_id == pid;
+    if (structural) {
+      throw InputError(model::context_of(card.where, "PID"),
+                       fmt::format("part {} is a deformable shell or beam part: *PART_MODES on "
+                                   "it (a flexible body made by switching) is not supported; "
+                                   "flexible bodies of shells and beams must be *MAT_RIGID "
+                                   "parts",
+                                   pid));
+    }
   }
 }
 

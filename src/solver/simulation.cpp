@@ -542,12 +542,6 @@ void Simulation::enable_restart_dumps(std::unique_ptr<restart::Dumper> dumper) {
 // first run need not have flagged switching: the switcher is made here if it is missing.
 void Simulation::apply_restart_switches(const std::vector<model::RestartSwitch>& switches) {
   if (switches.empty()) return;
-  // As in the first run (check_structural_support): switching does not know shells and beams yet.
-  if (!state_.shell_blocks.empty() || !state_.beam_blocks.empty()) {
-    throw InputError(model::context_of(switches.front().where, "PID"),
-                     fmt::format("part switching in a model with {} elements is not supported yet",
-                                 !state_.shell_blocks.empty() ? "shell" : "beam"));
-  }
   if (!switcher_) {
     switcher_ = std::make_unique<switching::PartSwitcher>(model_, state_);
     switcher_->enable_flexible_bodies(mode_loader(), state_);
@@ -558,14 +552,16 @@ void Simulation::apply_restart_switches(const std::vector<model::RestartSwitch>&
   }
   for (const auto& request : switches) {
     for (const model::Id pid : request.parts) {
-      const auto block = std::find_if(state_.hex_blocks.begin(), state_.hex_blocks.end(),
-                                      [&](const auto& b) { return b.part_id == pid; });
-      if (block == state_.hex_blocks.end()) {
+      // Any element family (hexahedra, shells, beams).
+      const switching::PartBlock* where = switcher_->block_of_part(pid);
+      if (!where) {
         throw InputError(model::context_of(request.where, "PID"),
                          fmt::format("part {} has no elements in the restarted model", pid));
       }
       // *MAT_RIGID blocks are the ones without force slots.
-      if (!block->has_force_slots &&
+      const bool has_force_slots =
+          switching::with_block(state_, *where, [](const auto& b) { return b.has_force_slots; });
+      if (!has_force_slots &&
           request.direction == model::RestartSwitch::Direction::kRigidToDeformable) {
         throw InputError(model::context_of(request.where, "PID"),
                          fmt::format("part {} is *MAT_RIGID: parts defined rigid in the input "
@@ -700,8 +696,13 @@ void Simulation::apply_switch(model::Id swset, const std::vector<model::PartSwit
   if (!to_rigid.empty()) {
     events.push_back(switcher_->to_rigid(to_rigid, state_.time, state_, rigid_));
   }
+  // Rigid flags of every family's blocks (hexahedra, then shells, then beams) before the release.
   std::vector<bool> was_rigid;
   for (const auto& block : state_.hex_blocks) was_rigid.push_back(block.rigid);
+  for (const auto& block : state_.shell_blocks) was_rigid.push_back(block.rigid);
+  for (const auto& block : state_.beam_blocks) was_rigid.push_back(block.rigid);
+  const std::size_t first_shell = state_.hex_blocks.size();
+  const std::size_t first_beam = first_shell + state_.shell_blocks.size();
   // Constraints on nodes that now move with a body do not act (docs/switching.md): say so.
   if (!to_rigid.empty() && !events.empty()) {
     std::int64_t held = 0;
@@ -725,11 +726,27 @@ void Simulation::apply_switch(model::Id swset, const std::vector<model::PartSwit
   // Internal forces of the elements that became deformable, at x^n with their restored
   // stresses (dt = 0: no increment), and the step they allow.
   const element::NodalView view = view_of(state_.nodes);
+  const RotationalState& rot = state_.rotations;
+  const element::RotationalView rotations{rot.w.x.data(), rot.w.y.data(), rot.w.z.data()};
   double released_dt = std::numeric_limits<double>::infinity();
   for (std::size_t b = 0; b < state_.hex_blocks.size(); ++b) {
     auto& block = state_.hex_blocks[b];
     if (!was_rigid[b] || block.rigid) continue;
     const element::KernelResult r = element::compute_block_forces(block, view, 0.0);
+    released_dt = std::min(released_dt, r.min_dt);
+  }
+  // Shells and beams: their restored stresses and resultants at x^n (dt = 0: no increment; the
+  // beam frames were turned with the body, element/switch_state.hpp).
+  for (std::size_t b = 0; b < state_.shell_blocks.size(); ++b) {
+    auto& block = state_.shell_blocks[b];
+    if (!was_rigid[first_shell + b] || block.rigid) continue;
+    const element::KernelResult r = element::compute_shell_forces(block, view, rotations, 0.0);
+    released_dt = std::min(released_dt, r.min_dt);
+  }
+  for (std::size_t b = 0; b < state_.beam_blocks.size(); ++b) {
+    auto& block = state_.beam_blocks[b];
+    if (!was_rigid[first_beam + b] || block.rigid) continue;
+    const element::KernelResult r = element::compute_beam_forces(block, view, rotations, 0.0);
     released_dt = std::min(released_dt, r.min_dt);
   }
   if (distribution_) released_dt = distribution_->communicator().min(released_dt);
@@ -738,6 +755,14 @@ void Simulation::apply_switch(model::Id swset, const std::vector<model::PartSwit
     if (block.rigid) continue;
     const element::KernelResult r = element::block_critical_timestep(block, view);
     element_dt_ = std::min(element_dt_, r.min_dt);
+  }
+  for (const auto& block : state_.shell_blocks) {
+    if (block.rigid) continue;
+    element_dt_ = std::min(element_dt_, element::shell_critical_timestep(block, view).min_dt);
+  }
+  for (const auto& block : state_.beam_blocks) {
+    if (block.rigid) continue;
+    element_dt_ = std::min(element_dt_, element::beam_critical_timestep(block, view).min_dt);
   }
   if (dtmax > 0.0 || swset != 0) switch_dt_cap_ = dtmax;
   const double tssfac = model_.timestep.tssfac > 0.0 ? model_.timestep.tssfac : 0.9;
@@ -753,11 +778,16 @@ void Simulation::apply_switch(model::Id swset, const std::vector<model::PartSwit
     // the true dt_avg, so external impulses still add up to the elapsed time, momentum is
     // unchanged and the work balance uses the same scaled forces.
     const double kick = 0.5 * (std::min(state_.dt_prev, cap) + cap) / dt_average_;
-    for (std::size_t b = 0; b < state_.hex_blocks.size(); ++b) {
-      auto& block = state_.hex_blocks[b];
-      if (!was_rigid[b] || block.rigid) continue;
-      for (double& f : block.force) f *= kick;
-    }
+    auto scale = [&](auto& blocks, std::size_t first) {
+      for (std::size_t b = 0; b < blocks.size(); ++b) {
+        auto& block = blocks[b];
+        if (!was_rigid[first + b] || block.rigid) continue;
+        for (double& f : block.force) f *= kick;
+      }
+    };
+    scale(state_.hex_blocks, 0);
+    scale(state_.shell_blocks, first_shell);
+    scale(state_.beam_blocks, first_beam);
   }
   // Every family's forces, not only the hexahedra's: shells, beams, springs and joints of the
   // parts that did not switch still act in this cycle.
@@ -1328,7 +1358,7 @@ void Simulation::gather_internal_forces(bool book_work) {
     if (book_work)
       sum_partial_forces_across_ranks();
     else
-      distribution_->sum_partial_forces(state_, nullptr, false);
+      distribution_->sum_partial_forces(state_, nullptr, true);  // forces and shell/beam moments
   }
   compute_discrete_forces();
   if (!joints_.empty()) {  // penalty springs: their stiffness needs the first step

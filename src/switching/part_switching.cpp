@@ -7,6 +7,7 @@
 #include <numeric>
 #include <set>
 
+#include "element/switch_state.hpp"
 #include "model/error.hpp"
 
 namespace rf::switching {
@@ -27,6 +28,8 @@ Eigen::Vector3d node_velocity(const State& s, std::int32_t i) {
 
 // Linear momentum, angular momentum about the origin and kinetic energy of a collection of
 // free nodes and bodies, at the levels x^n, v^{n-1/2} (bodies: x_c^n, v_c^{n-1/2}, L^{n-1/2}).
+// A node with rotations (shells, beams) adds its spin I w to the angular momentum and
+// I |w|^2 / 2 to the kinetic energy (isotropic lumped rotary inertia I).
 struct Momenta {
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
   Eigen::Vector3d h = Eigen::Vector3d::Zero();
@@ -37,12 +40,26 @@ struct Momenta {
     p += m * v;
     h += node_position(s, i).cross(m * v);
     kinetic += 0.5 * m * v.squaredNorm();
+    const std::int32_t r = s.rotations.index(i);
+    if (r >= 0) {
+      const double inertia = s.rotations.inertia[r];
+      const Eigen::Vector3d w(s.rotations.w.x[r], s.rotations.w.y[r], s.rotations.w.z[r]);
+      h += inertia * w;
+      kinetic += 0.5 * inertia * w.squaredNorm();
+    }
   }
+  // A body's kinetic energy at its present attitude R^n: M v^2 / 2 + L . J(R^n)^-1 L / 2, the
+  // energy of the rigid field its nodes get on release (and of the motion a merge takes over).
+  // rigid::kinetic_energy's L . w^{n+1/2} / 2 uses the step's angular velocity, which differs
+  // by O(w dt) when the body precesses (a spinning shell or beam part at DTMAX); booking that
+  // difference as switch energy would keep the rigid phase's measuring error for good.
   void add_body(const rigid::RigidBodyState& b) {
     const Eigen::Vector3d pb = b.mass * b.velocity;
     p += pb;
     h += b.centre.cross(pb) + b.angular_momentum;
-    kinetic += rigid::kinetic_energy(b);
+    kinetic +=
+        0.5 * b.mass * b.velocity.squaredNorm() +
+        0.5 * b.angular_momentum.dot(rigid::global_inertia(b).ldlt().solve(b.angular_momentum));
   }
 };
 
@@ -59,60 +76,50 @@ rigid::MassProperties card_properties(const model::SwitchInertia& in) {
   return p;
 }
 
-// Complementary strain energy of a block's frozen stresses, sum over stress points of
-// V_q [(1 + nu) s:s - nu (tr s)^2] / (2 E) (linear isotropic elasticity).
-double strain_energy(const element::HexBlock& block) {
-  const double young = block.material.young, nu = block.material.poisson;
-  if (!(young > 0.0)) return 0.0;
-  const int points = block.points_per_element();
-  double sum = 0.0;
-  for (std::size_t e = 0; e < block.size(); ++e) {
-    for (int q = 0; q < points; ++q) {
-      const double* s = &block.stress[(e * points + q) * 6];
-      const double trace = s[0] + s[1] + s[2];
-      const double ss =
-          s[0] * s[0] + s[1] * s[1] + s[2] * s[2] + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
-      double weight = block.volume[e] / points;
-      if (block.order > 1) weight = block.reference_weight[e * points + q];
-      sum += weight * ((1.0 + nu) * ss - nu * trace * trace) / (2.0 * young);
+// Mass properties of lumped nodes: their masses at x^n and, for nodes with rotations, their
+// isotropic rotary inertia I (a point of inertia I about every axis through itself), so that the
+// body carries exactly sum m r x v + sum I w (docs/switching.md, "Shells and beams").
+rigid::MassProperties lumped_properties(const std::vector<std::int32_t>& nodes, const State& s) {
+  rigid::MassProperties props = rigid::mass_properties(
+      nodes, s.nodes.mass.data(), s.nodes.x.x.data(), s.nodes.x.y.data(), s.nodes.x.z.data());
+  if (!s.rotations.empty()) {
+    double rotary = 0.0;
+    for (const auto i : nodes) {
+      const std::int32_t r = s.rotations.index(i);
+      if (r >= 0) rotary += s.rotations.inertia[r];
+    }
+    props.inertia += rotary * Eigen::Matrix3d::Identity();
+  }
+  return props;
+}
+
+// Nodes on one line without rotary inertia (a straight chain of trusses) have no moment of
+// inertia about it, and J^-1 would not exist. As for spot welds (solver/rigid_bodies.cpp), the
+// body gets a moment of 1e-6 of the largest about that line only (the other principal moments
+// stay exact): the nodes' angular momentum has no component along it, so no motion changes.
+void regularise(rigid::MassProperties& props) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(props.inertia);
+  const double largest = eigen.eigenvalues().maxCoeff();
+  if (!(largest > 0.0)) return;
+  for (int k = 0; k < 3; ++k) {
+    if (eigen.eigenvalues()[k] < 1e-6 * largest) {
+      const Eigen::Vector3d axis = eigen.eigenvectors().col(k);
+      props.inertia += 1e-6 * largest * axis * axis.transpose();
     }
   }
-  return sum;
 }
 
-// s -> Q s Q^T for a symmetric tensor in Voigt order xx yy zz xy yz zx.
-void rotate_symmetric(const Eigen::Matrix3d& q, double* s) {
-  Eigen::Matrix3d m;
-  m << s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2];
-  const Eigen::Matrix3d r = q * m * q.transpose();
-  s[0] = r(0, 0);
-  s[1] = r(1, 1);
-  s[2] = r(2, 2);
-  s[3] = r(0, 1);
-  s[4] = r(1, 2);
-  s[5] = r(2, 0);
-}
-
-// Rotates a block's stresses (s -> Q s Q^T) and stored hourglass forces (each mode's 3-vector
-// -> Q q): objective, so a body turned while rigid carries no spurious stress.
-void rotate_block_state(element::HexBlock& block, const Eigen::Matrix3d& q) {
-  const std::size_t points = block.stress.size() / 6;
-  for (std::size_t k = 0; k < points; ++k) rotate_symmetric(q, &block.stress[k * 6]);
-  // Material history that is a symmetric tensor (e.g. a back stress) turns like the stress.
-  for (auto& h : block.history) {
-    if (!h.field.symmetric_tensor) continue;
-    for (std::size_t k = 0; k + 5 < h.values.size(); k += 6) rotate_symmetric(q, &h.values[k]);
-  }
-  // hourglass_state, IHQ 4/5: 4 modes x (x, y, z) per element in global axes. IHQ 6 keeps
-  // them in the element's corotational frame, which turned with the body already.
-  if (block.hourglass.ihq != 4 && block.hourglass.ihq != 5) return;
-  for (std::size_t k = 0; k + 2 < block.hourglass_state.size(); k += 3) {
-    const Eigen::Vector3d h(block.hourglass_state[k], block.hourglass_state[k + 1],
-                            block.hourglass_state[k + 2]);
-    const Eigen::Vector3d r = q * h;
-    block.hourglass_state[k] = r.x();
-    block.hourglass_state[k + 1] = r.y();
-    block.hourglass_state[k + 2] = r.z();
+// Nodes with rotations take the angular velocity w (a rigid body's nodes turn with it).
+void set_node_spins(const std::vector<std::int32_t>& nodes, const Eigen::Vector3d& w,
+                    State& state) {
+  auto& rot = state.rotations;
+  if (rot.empty()) return;
+  for (const auto i : nodes) {
+    const std::int32_t r = rot.index(i);
+    if (r < 0) continue;
+    rot.w.x[r] = w.x();
+    rot.w.y[r] = w.y();
+    rot.w.z[r] = w.z();
   }
 }
 
@@ -124,10 +131,15 @@ void remove_bodies(RigidSystem& rigid, const std::set<int>& gone,
 
 std::vector<std::uint8_t> deformable_nodes(const State& state) {
   std::vector<std::uint8_t> flag(state.nodes.size(), 0);
-  for (const auto& block : state.hex_blocks) {
-    if (block.rigid) continue;
-    for (const std::int32_t i : block.conn) flag[i] = 1;
-  }
+  auto mark = [&](const auto& blocks) {  // every element family
+    for (const auto& block : blocks) {
+      if (block.rigid) continue;
+      for (const std::int32_t i : block.conn) flag[i] = 1;
+    }
+  };
+  mark(state.hex_blocks);
+  mark(state.shell_blocks);
+  mark(state.beam_blocks);
   return flag;
 }
 
@@ -164,6 +176,7 @@ void define_body(RigidBody& body, const rigid::MassProperties& props, const Mome
   rigid::rigid_node_velocities(v, w, body.state.centre, body.nodes, nodes.x.x.data(),
                                nodes.x.y.data(), nodes.x.z.data(), nodes.v.x.data(),
                                nodes.v.y.data(), nodes.v.z.data());
+  set_node_spins(body.nodes, w, state);
 }
 
 }  // namespace
@@ -173,8 +186,15 @@ Eigen::Matrix3d body_rotation(const RigidBody& body) {
 }
 
 PartSwitcher::PartSwitcher(const model::Model& model, const State& state) : model_(model) {
+  using Family = PartBlock::Family;
   for (std::size_t b = 0; b < state.hex_blocks.size(); ++b) {
-    block_of_part_[state.hex_blocks[b].part_id] = static_cast<int>(b);
+    block_of_part_[state.hex_blocks[b].part_id] = {Family::kHex, static_cast<int>(b)};
+  }
+  for (std::size_t b = 0; b < state.shell_blocks.size(); ++b) {
+    block_of_part_[state.shell_blocks[b].part_id] = {Family::kShell, static_cast<int>(b)};
+  }
+  for (std::size_t b = 0; b < state.beam_blocks.size(); ++b) {
+    block_of_part_[state.beam_blocks[b].part_id] = {Family::kBeam, static_cast<int>(b)};
   }
 }
 
@@ -221,7 +241,8 @@ SwitchEvent PartSwitcher::to_rigid(const std::vector<model::PartSwitch>& cards, 
       const bool already_rigid = switched_.count(pid) != 0;
       const auto blk = block_of_part_.find(pid);
       const bool mat_rigid =
-          blk != block_of_part_.end() && state.hex_blocks[blk->second].rigid && !already_rigid;
+          blk != block_of_part_.end() &&
+          with_block(state, blk->second, [](const auto& b) { return b.rigid; }) && !already_rigid;
       if ((already_rigid || mat_rigid) && card.lrb == 0) {
         notices.push_back(
             fmt::format("t = {:.6g}: part {} is rigid already; nothing to switch", time, pid));
@@ -255,14 +276,18 @@ SwitchEvent PartSwitcher::to_rigid(const std::vector<model::PartSwitch>& cards, 
   };
 
   Momenta total;  // everything this switch touches
+  // Bodies made or re-defined by an earlier group of this switch: a later group that shares
+  // nodes with one merges it, and its momenta are in `total` already.
+  std::set<int> defined;
   std::set<int> removed;
   std::map<int, int> moved_to;
   for (auto& group : groups) {
     // Nodes of the group's parts, and the bodies they touch (merged into the result).
     std::vector<std::int32_t> nodes;
     for (const Id pid : group.parts) {
-      const auto& block = state.hex_blocks[block_of_part_.at(pid)];
-      nodes.insert(nodes.end(), block.conn.begin(), block.conn.end());
+      with_block(state, block_of_part_.at(pid), [&](const auto& block) {
+        nodes.insert(nodes.end(), block.conn.begin(), block.conn.end());
+      });
     }
     std::sort(nodes.begin(), nodes.end());
     nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
@@ -349,6 +374,13 @@ SwitchEvent PartSwitcher::to_rigid(const std::vector<model::PartSwitch>& cards, 
     for (const int b : bodies) {
       const RigidBody& body = rigid.bodies[b];
       m.add_body(body.state);
+      if (defined.count(b)) {
+        Momenta counted;
+        counted.add_body(body.state);
+        total.p -= counted.p;
+        total.h -= counted.h;
+        total.kinetic -= counted.kinetic;
+      }
       if (!lead_card || b == keep) props.push_back(body_properties(body.state));
       all_nodes.insert(all_nodes.end(), body.nodes.begin(), body.nodes.end());
     }
@@ -358,16 +390,14 @@ SwitchEvent PartSwitcher::to_rigid(const std::vector<model::PartSwitch>& cards, 
       const auto card = model_.switching.inertia.find(pid);
       if (card == model_.switching.inertia.end()) continue;
       if (!lead_card) props.push_back(card_properties(card->second));
-      const auto& block = state.hex_blocks[block_of_part_.at(pid)];
-      card_nodes.insert(block.conn.begin(), block.conn.end());
+      with_block(state, block_of_part_.at(pid), [&](const auto& block) {
+        card_nodes.insert(block.conn.begin(), block.conn.end());
+      });
     }
     std::erase_if(lumped, [&](std::int32_t i) { return card_nodes.count(i) != 0; });
-    if (!lead_card && !lumped.empty()) {
-      props.push_back(rigid::mass_properties(lumped, state.nodes.mass.data(),
-                                             state.nodes.x.x.data(), state.nodes.x.y.data(),
-                                             state.nodes.x.z.data()));
-    }
-    const rigid::MassProperties combined = rigid::combine(props);
+    if (!lead_card && !lumped.empty()) props.push_back(lumped_properties(lumped, state));
+    rigid::MassProperties combined = rigid::combine(props);
+    regularise(combined);
     if (!(combined.mass > 0.0)) {
       throw SolverError(fmt::format("at time {:.6g}: part {} has no mass to make a rigid body of",
                                     time, group.parts.front()));
@@ -409,14 +439,16 @@ SwitchEvent PartSwitcher::to_rigid(const std::vector<model::PartSwitch>& cards, 
 
     // Freeze the elements: no kernel, no force, stresses kept. Q = Phi Phi_switch^T later.
     for (const Id pid : group.parts) {
-      auto& block = state.hex_blocks[block_of_part_.at(pid)];
-      if (!switched_.count(pid) && !block.rigid) {
-        switched_[pid] = {body->id, physical.transpose(), strain_energy(block)};
-        block.rigid = true;
-        std::fill(block.force.begin(), block.force.end(), 0.0);
-      }
+      with_block(state, block_of_part_.at(pid), [&](auto& block) {
+        if (!switched_.count(pid) && !block.rigid) {
+          switched_[pid] = {body->id, physical.transpose(), element::frozen_strain_energy(block)};
+          block.rigid = true;
+          std::fill(block.force.begin(), block.force.end(), 0.0);
+        }
+      });
     }
     define_body(*body, combined, m, physical, model_.rigid_body_update, state);
+    defined.insert(keep);
     if (modes_part != 0) flexible_->attach(modes_part, keep, given, state, rigid);
     total.p += m.p;
     total.h += m.h;
@@ -466,15 +498,20 @@ SwitchEvent PartSwitcher::to_deformable(const std::vector<model::PartSwitch>& ca
     touched.insert(b);
     event.parts.push_back(pid);
     RigidBody& body = rigid.bodies[b];
-    auto& block = state.hex_blocks[block_of_part_.at(pid)];
+    const PartBlock where = block_of_part_.at(pid);
     const Eigen::Matrix3d q = body_rotation(body) * sp->second.rotation_offset;
-    rotate_block_state(block, q);
+    with_block(state, where, [&](auto& block) { element::turn_frozen_state(block, q); });
     if (body.flexible >= 0) {  // + the modal displacement's stress (docs/flexible_bodies.md)
+      // Flexible bodies are made of hexahedra only (solver::check_structural_support).
+      if (where.family != PartBlock::Family::kHex) {
+        throw SolverError(fmt::format("part {}: a flexible body of shells or beams", pid));
+      }
       const auto& f = rigid.flexible[body.flexible];
       event.modal_elastic_released += f.elastic_energy();
-      event.strain_energy_restored += flexible_->restore_modal_stresses(body, f, block, state);
+      event.strain_energy_restored += flexible_->restore_modal_stresses(
+          body, f, state.hex_blocks[static_cast<std::size_t>(where.index)], state);
     }
-    block.rigid = false;
+    with_block(state, where, [](auto& block) { block.rigid = false; });
     std::erase(body.parts, pid);
     switched_.erase(sp);
   }
@@ -501,17 +538,38 @@ SwitchEvent PartSwitcher::to_deformable(const std::vector<model::PartSwitch>& ca
     for (const Id pid : body.parts) {
       const auto blk = block_of_part_.find(pid);
       if (blk != block_of_part_.end()) {
-        const auto& conn = state.hex_blocks[blk->second].conn;
-        keep.insert(conn.begin(), conn.end());
+        with_block(state, blk->second,
+                   [&](const auto& block) { keep.insert(block.conn.begin(), block.conn.end()); });
       }
     }
     const rigid::RigidBodyState s = body.state;
+    // The rigid field v + w x (x - c) the nodes get carries the body's momenta P and
+    // H = x_c x P + L exactly at the nodes' present positions x^n (what the next steps conserve:
+    // sum m x^n x v + I w): fitted to the nodes' masses and rotary inertias as at the switch to
+    // rigid. The body's own w^{n+1/2} (the free rotation from R^n to R^{n+1}) differs from
+    // J^-1 L by O(dt) when it precesses, and a body whose nodes move by the linear update drifts
+    // from its attitude by O((w dt)^2) per step: either would change H. A body with an inertia
+    // card (its mass is not its nodes') gives its own J(R^n)^-1 L about its centre.
+    Eigen::Vector3d v = s.velocity, c = s.centre;
+    Eigen::Vector3d w = rigid::global_inertia(s).ldlt().solve(s.angular_momentum);
+    if (!body.inertia_from_card) {
+      rigid::MassProperties all = lumped_properties(body.nodes, state);
+      regularise(all);
+      if (all.mass > 0.0 && std::abs(all.mass - s.mass) <= 1e-12 * s.mass) {
+        const Eigen::Vector3d p = s.mass * s.velocity;
+        const Eigen::Vector3d h = s.centre.cross(p) + s.angular_momentum;
+        v = p / all.mass;
+        c = all.centre;
+        w = all.inertia.ldlt().solve(h - c.cross(p));
+      }
+    }
     std::vector<std::int32_t> released, kept;
     for (const auto i : body.nodes) (keep.count(i) ? kept : released).push_back(i);
     auto& nodes = state.nodes;
-    rigid::rigid_node_velocities(s.velocity, s.angular_velocity, s.centre, released,
-                                 nodes.x.x.data(), nodes.x.y.data(), nodes.x.z.data(),
-                                 nodes.v.x.data(), nodes.v.y.data(), nodes.v.z.data());
+    rigid::rigid_node_velocities(v, w, c, released, nodes.x.x.data(), nodes.x.y.data(),
+                                 nodes.x.z.data(), nodes.v.x.data(), nodes.v.y.data(),
+                                 nodes.v.z.data());
+    set_node_spins(released, w, state);
     for (const auto i : released) {
       rigid.body_of_node[i] = -1;
       after_nodes.add_node(state, i);
@@ -527,12 +585,12 @@ SwitchEvent PartSwitcher::to_deformable(const std::vector<model::PartSwitch>& ca
     if (body.inertia_from_card) {
       props = body_properties(s);  // the card's properties stay with the lead
     } else {
-      props = rigid::mass_properties(kept, nodes.mass.data(), nodes.x.x.data(), nodes.x.y.data(),
-                                     nodes.x.z.data());
+      props = lumped_properties(kept, state);
+      regularise(props);
     }
     Momenta field;  // the velocity field carried by the remaining mass
-    field.p = props.mass * (s.velocity + s.angular_velocity.cross(props.centre - s.centre));
-    field.h = props.centre.cross(field.p) + props.inertia * s.angular_velocity;
+    field.p = props.mass * (v + w.cross(props.centre - c));
+    field.h = props.centre.cross(field.p) + props.inertia * w;
     define_body(body, props, field, physical, model_.rigid_body_update, state);
     after_bodies += rigid::kinetic_energy(body.state);
   }
@@ -588,8 +646,7 @@ double PartSwitcher::activate_nodal_rigid_bodies(double time, State& state, Rigi
       for (const auto i : body.nodes) centroid += node_position(state, i);
       props.centre = centroid / static_cast<double>(body.nodes.size());
     } else {
-      props = rigid::mass_properties(body.nodes, state.nodes.mass.data(), state.nodes.x.x.data(),
-                                     state.nodes.x.y.data(), state.nodes.x.z.data());
+      props = lumped_properties(body.nodes, state);
     }
     const int index = static_cast<int>(rigid.bodies.size());
     rigid.bodies.push_back(body);

@@ -3,12 +3,16 @@
 // lumped masses (or *DEFORMABLE_TO_RIGID_INERTIA) that carries exactly the linear and angular
 // momentum its nodes had; the kinetic energy of the non-rigid part of the motion is removed and
 // reported, the elements' stresses are frozen. Switched back, every node takes the body's
-// velocity and the stresses return rotated by the body's rotation since the switch. The
+// velocity and the stresses return rotated by the body's rotation since the switch. Every element
+// family switches (hexahedra, shells, beams: element/switch_state.hpp says what each family's
+// frozen state needs); nodes with rotations bring their rotary inertia into the body and their
+// spin I w into its angular momentum, and take the body's spin when released. The
 // automatic switch sets (CODE 0, 1, 3, 5, pairing, delays) decide when. Theory and choices:
 // docs/switching.md.
 #pragma once
 
 #include <Eigen/Dense>
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
@@ -41,6 +45,28 @@ struct SwitchEvent {
   double strain_energy_restored = 0.0;
 };
 
+// The block of a part, in its element family's list of solver::State.
+struct PartBlock {
+  enum class Family : std::uint8_t { kHex, kShell, kBeam };
+  Family family = Family::kHex;
+  int index = 0;
+};
+
+// Calls f with the part's block (element::HexBlock, ShellBlock or BeamBlock; const if the state
+// is): the per-family dispatch of the switcher, once per part and switch.
+template <class S, class F>
+decltype(auto) with_block(S& state, PartBlock b, F&& f) {
+  switch (b.family) {
+    case PartBlock::Family::kShell:
+      return f(state.shell_blocks[static_cast<std::size_t>(b.index)]);
+    case PartBlock::Family::kBeam:
+      return f(state.beam_blocks[static_cast<std::size_t>(b.index)]);
+    case PartBlock::Family::kHex:
+    default:
+      return f(state.hex_blocks[static_cast<std::size_t>(b.index)]);
+  }
+}
+
 // Runtime part switching on the solver's state and rigid system.
 class PartSwitcher {
  public:
@@ -66,6 +92,11 @@ class PartSwitcher {
   // their frozen stresses, linear elasticity).
   double frozen_energy() const;
   bool is_switched_rigid(model::Id pid) const { return switched_.count(pid) != 0; }
+  // The block of a part (any family), or null when the part has no elements.
+  const PartBlock* block_of_part(model::Id pid) const {
+    const auto it = block_of_part_.find(pid);
+    return it == block_of_part_.end() ? nullptr : &it->second;
+  }
   // Notices met while switching (parts already in the requested state, constraints that do
   // not act on rigid nodes); the solver shows them.
   std::vector<std::string> notices;
@@ -88,7 +119,7 @@ class PartSwitcher {
  private:
   std::vector<model::Id> expand(const std::vector<model::PartSwitch>& cards) const;
   const model::Model& model_;
-  std::map<model::Id, int> block_of_part_;
+  std::map<model::Id, PartBlock> block_of_part_;
   std::map<model::Id, SwitchedPart> switched_;
   std::vector<solver::RigidBody> deleted_nodal_;  // NRBF = 1, for NRBF = 2
   std::unique_ptr<FlexibleSwitching> flexible_;

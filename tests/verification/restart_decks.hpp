@@ -213,4 +213,18 @@ inline std::string shells_and_beams(double end_time, double dt2ms = 0.0) {
   return s;
 }
 
+// The shells-and-beams deck with part switching: part 2 (shells, NIP 5, IHQ 5, *MAT_003 with a
+// back stress) and part 4 (resultant beams, sharing nodes with part 2) become one rigid body at
+// 8 us (paired CODE 0 sets) and deformable again at 26 us, while part 1 (shells) and part 3
+// (beams) stay deformable and attached to the body's nodes: the switching state, the frozen
+// shell stresses and beam frames, and the body with its rotary inertia cross the dump taken in
+// the rigid phase (12 us).
+inline std::string shells_and_beams_switching(double end_time) {
+  std::string s = shells_and_beams(end_time);
+  s.insert(s.rfind("*END"),
+           "*DEFORMABLE_TO_RIGID_AUTOMATIC\n10,0,8.0e-6,0,0,0,20,1\n0,0,0,0,2,0\n2\n4\n"
+           "*DEFORMABLE_TO_RIGID_AUTOMATIC\n20,0,2.6e-5,0,0,0,10,-1\n0,0,0,0,0,2\n2\n4\n");
+  return s;
+}
+
 }  // namespace rf::test::restart_decks

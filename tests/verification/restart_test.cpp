@@ -262,6 +262,10 @@ const Case kCases[] = {
     // and the scaled rotational inertias.
     {"shells_beams_mass_scaled", restart_decks::shells_and_beams(4e-5, -2.0e-7), "", {}, 6e-6, 1},
     {"shells_beams_mass_scaled", restart_decks::shells_and_beams(4e-5, -2.0e-7), "", {}, 6e-6, 2},
+    // Shell and beam parts switched rigid at 8 us and back at 26 us: restarted from the dump in
+    // the rigid phase (12 us), through the release.
+    {"shells_beams_switching", restart_decks::shells_and_beams_switching(4e-5), "", {}, 6e-6, 1},
+    {"shells_beams_switching", restart_decks::shells_and_beams_switching(4e-5), "", {}, 6e-6, 2},
 };
 
 INSTANTIATE_TEST_SUITE_P(Restart, RestartBitwise, testing::ValuesIn(kCases), case_name);
@@ -660,16 +664,21 @@ TEST_F(ShellRestartInput, DumpRefusesAModelWithAnotherShellCount) {
       << message;
 }
 
-// Switching shell and beam parts is not supported yet (solver::check_structural_support refuses
-// it in the first run): a restart deck's *DEFORMABLE_TO_RIGID in a shell model is refused too,
-// naming the card.
-TEST_F(ShellRestartInput, SwitchingOnRestartIsRefused) {
+// A restart deck's *DEFORMABLE_TO_RIGID switches a shell part (any element family,
+// docs/switching.md "Shells and beams"): part 1 (shells) becomes one rigid body at the restart
+// time and the run goes on to the end with it rigid.
+TEST_F(ShellRestartInput, SwitchingOnRestartMakesAShellPartRigid) {
   write_file(base_ / "switch.k", "*KEYWORD\n*DEFORMABLE_TO_RIGID\n1\n*END\n");
-  const std::string message = restart_error_of(dump(), base_ / "switch.k", base_ / "out");
-  EXPECT_NE(message.find("switch.k:3"), std::string::npos) << message;
-  EXPECT_NE(message.find("part switching in a model with shell elements is not supported yet"),
-            std::string::npos)
-      << message;
+  const restart::Restarted r = restart_and_run(dump(), base_ / "switch.k", base_ / "switch_out");
+  const solver::State& state = r.simulation->state();
+  EXPECT_DOUBLE_EQ(state.time, 4e-5);
+  ASSERT_EQ(state.shell_blocks.size(), 2u);
+  EXPECT_TRUE(state.shell_blocks[0].rigid);
+  EXPECT_FALSE(state.shell_blocks[1].rigid);
+  ASSERT_EQ(r.simulation->rigid_bodies().bodies.size(), 1u);
+  EXPECT_EQ(r.simulation->rigid_bodies().bodies[0].parts, std::vector<model::Id>{1});
+  ASSERT_EQ(r.simulation->switch_events().size(), 1u);
+  EXPECT_NEAR(r.simulation->energy().ratio(), 1.0, 1e-3);
 }
 
 // A small restart that switches part 2 (ELFORM 2) of the deformable block to rigid half way and
