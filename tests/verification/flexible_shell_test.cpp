@@ -141,9 +141,9 @@ TEST(FlexibleShell, FreeStripBendingModeOscillatesAtItsEigenfrequency) {
       if (static_cast<std::size_t>(modes.rotation_nodes[j]) != i) continue;
       for (int d = 0; d < 3; ++d) w[d] = modes.rotation_shape(bending)[3 * j + d];
     }
-    velocities += fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n",
-                              modes.node_ids[i], a * phi[0], a * phi[1], a * phi[2], a * w[0],
-                              a * w[1], a * w[2]);
+    velocities +=
+        fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", modes.node_ids[i],
+                    a * phi[0], a * phi[1], a * phi[2], a * w[0], a * w[1], a * w[2]);
   }
   const double period = 2.0 * kPi / omega;
   // A step of a tenth of the period (the element step is about 4e-6 s, 50 times smaller): the
@@ -185,15 +185,16 @@ TEST(FlexibleShell, FreeStripBendingModeOscillatesAtItsEigenfrequency) {
     worst = std::max(worst, std::abs(q - a / omega * std::sin(omega * t)));
     for (int d = 0; d < 3; ++d) {
       drift = std::max(drift, std::abs(sim.energy().momentum[d] - p0[d]) / p_scale);
-      drift = std::max(drift, std::abs(sim.energy().angular_momentum[d] - h0[d]) /
-                                  (p_scale * 200.0));
+      drift =
+          std::max(drift, std::abs(sim.energy().angular_momentum[d] - h0[d]) / (p_scale * 200.0));
     }
   }
   std::printf("strip: momentum and angular momentum drift %.2e of a sqrt(M) (and x L)\n", drift);
   EXPECT_LT(drift, 1e-13);
-  std::printf("strip: q vs a/w sin(w t) over %.2f periods: %.2e of the amplitude; energy ratio "
-              "- 1 = %.2e\n",
-              sim.state().time / period, worst * omega / a, sim.energy().ratio() - 1.0);
+  std::printf(
+      "strip: q vs a/w sin(w t) over %.2f periods: %.2e of the amplitude; energy ratio "
+      "- 1 = %.2e\n",
+      sim.state().time / period, worst * omega / a, sim.energy().ratio() - 1.0);
   EXPECT_LT(worst * omega / a, 1e-9);
   EXPECT_NEAR(sim.energy().ratio(), 1.0, 1e-12);
 }
@@ -220,8 +221,8 @@ struct PlateDeck {
     for (int j = 0; j < kN; ++j) {
       for (int i = 0; i < kN; ++i) {
         const bool corner = (i == 0 || i == kN - 1) && (j == 0 || j == kN - 1);
-        d += fmt::format("{},{},{},{},{},{}\n", eid++, corner ? 2 : 1, node(i, j),
-                         node(i + 1, j), node(i + 1, j + 1), node(i, j + 1));
+        d += fmt::format("{},{},{},{},{},{}\n", eid++, corner ? 2 : 1, node(i, j), node(i + 1, j),
+                         node(i + 1, j + 1), node(i, j + 1));
       }
     }
     d += "*PART\nplate\n1,1,1,0,1\n" + shell_section(1, 2.0) +
@@ -281,9 +282,10 @@ TEST(FlexibleShell, SeedPlateWithDeformableCornersConvergesToTheDeformableRun) {
   const modal::ModeSet modes = dense_shell_modes(plate.text(true, 10, 1, 1e-3));
   const int elastic = static_cast<int>(modes.mode_count()) - 6;
   const PlateRun reference = run_plate(plate, false, 0, 0, nullptr);
-  std::printf("plate: deformable peak centre deflection %.6f mm over %zu cycles, energy ratio "
-              "- 1 = %.2e\n",
-              reference.peak, reference.deflection.size(), reference.energy_ratio - 1.0);
+  std::printf(
+      "plate: deformable peak centre deflection %.6f mm over %zu cycles, energy ratio "
+      "- 1 = %.2e\n",
+      reference.peak, reference.deflection.size(), reference.energy_ratio - 1.0);
   ASSERT_GT(reference.peak, 0.01);
   double previous_error = 1e30;
   for (const int count : {10, 40, 100, elastic}) {
@@ -295,10 +297,10 @@ TEST(FlexibleShell, SeedPlateWithDeformableCornersConvergesToTheDeformableRun) {
     }
     rms = std::sqrt(rms / static_cast<double>(run.deflection.size())) / reference.peak;
     const double peak_error = std::abs(run.peak / reference.peak - 1.0);
-    std::printf("plate: %3d modes: peak %.6f mm (%+.3f %%), RMS error of the history %.3e of the "
-                "peak, energy ratio - 1 = %.2e\n",
-                count, run.peak, 100.0 * (run.peak / reference.peak - 1.0), rms,
-                run.energy_ratio - 1.0);
+    std::printf(
+        "plate: %3d modes: peak %.6f mm (%+.3f %%), RMS error of the history %.3e of the "
+        "peak, energy ratio - 1 = %.2e\n",
+        count, run.peak, 100.0 * (run.peak / reference.peak - 1.0), rms, run.energy_ratio - 1.0);
     EXPECT_NEAR(run.energy_ratio, 1.0, 1e-6) << count << " modes";
     // Modes 41 to 100 of this flat plate are in-plane and drilling modes that a transverse
     // pulse does not excite: 100 modes give the 40-mode error (docs/flexible_bodies.md).
