@@ -450,16 +450,14 @@ void set_flexible_node_velocities(const RigidBody& body, const modal::FlexibleBo
   // Rotations are velocities only (the kernels integrate no nodal orientation): the node turns
   // with the body (Simulation::update_rotations) plus the modal rotation increment of the step,
   // R^{n+1} Psi_j (q^{n+1} - q^n) / dt; its work velocity R^n Psi_j s_mid as for translations.
-  std::vector<double> dq(f.mode_count);
-  for (std::size_t k = 0; k < f.mode_count; ++k) {
-    dq[k] = dt > 0.0 ? (f.q[k] - f.q_previous[k]) * inv_dt : 0.0;
-  }
   for (std::size_t a = 0; a < f.active.size(); ++a) {
     const std::int32_t j = f.rotation_of[static_cast<std::size_t>(f.active[a])];
     if (j < 0) continue;
     const std::size_t r = static_cast<std::size_t>(rotations.index(f.active_nodes[a]));
-    const Eigen::Vector3d w = s.rotation * f.rotation(static_cast<std::size_t>(j), dq);
-    const Eigen::Vector3d work = r_old * f.rotation(static_cast<std::size_t>(j), f.s_mid);
+    const std::size_t row = static_cast<std::size_t>(j);
+    const Eigen::Vector3d w =
+        s.rotation * ((f.rotation(row, f.q) - f.rotation(row, f.q_previous)) * inv_dt);
+    const Eigen::Vector3d work = r_old * f.rotation(row, f.s_mid);
     for (int d = 0; d < 3; ++d) {
       rotation_velocity[3 * r + d] = w[d];
       rotation_work_velocity[3 * r + d] = work[d];
