@@ -702,17 +702,24 @@ void place_curvilinear_nodes(const RigidSystem& rigid, State& state) {
   }
 }
 
-rigid::MassProperties spot_weld_properties(std::int32_t a, std::int32_t b, const State& state) {
-  const NodalState& nodes = state.nodes;
-  const std::vector<std::int32_t> pair{std::min(a, b), std::max(a, b)};
-  rigid::MassProperties props = rigid::mass_properties(pair, nodes.mass.data(), nodes.x.x.data(),
-                                                       nodes.x.y.data(), nodes.x.z.data());
+rigid::MassProperties lumped_mass_properties(const std::vector<std::int32_t>& nodes,
+                                             const State& state) {
+  const NodalState& n = state.nodes;
+  rigid::MassProperties props =
+      rigid::mass_properties(nodes, n.mass.data(), n.x.x.data(), n.x.y.data(), n.x.z.data());
   if (!state.rotations.empty()) {
-    for (const std::int32_t i : {a, b}) {
+    double rotary = 0.0;
+    for (const std::int32_t i : nodes) {
       const std::int32_t r = state.rotations.index(i);
-      if (r >= 0) props.inertia += state.rotations.inertia[r] * Eigen::Matrix3d::Identity();
+      if (r >= 0) rotary += state.rotations.inertia[static_cast<std::size_t>(r)];
     }
+    props.inertia += rotary * Eigen::Matrix3d::Identity();
   }
+  return props;
+}
+
+rigid::MassProperties spot_weld_properties(std::int32_t a, std::int32_t b, const State& state) {
+  rigid::MassProperties props = lumped_mass_properties({std::min(a, b), std::max(a, b)}, state);
   // Without rotations the two points have no moment about their line; no nodal force has one
   // either, so a small moment there (1e-6 of the others) changes no motion and makes J^-1 exist.
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(props.inertia);

@@ -142,6 +142,12 @@ void place_curvilinear_nodes(const RigidSystem& rigid, State& state);
 // body's time t^n (previous_rotation once advanced).
 Eigen::Matrix3d output_rotation(const RigidBody& body);
 
+// Mass properties of lumped nodes (dense indices) at their current places: their masses and,
+// for nodes with rotations (shells, beams), their isotropic rotary inertia I, a point of inertia
+// I about every axis through itself, so that a body of them carries sum m r x v + sum I w.
+rigid::MassProperties lumped_mass_properties(const std::vector<std::int32_t>& nodes,
+                                             const State& state);
+
 // Mass properties of the body of a spot weld between dense nodes a and b (at their current
 // places): their lumped masses, the rotary inertia of nodes with rotations, and a small moment
 // about the line between them where nothing else gives one (docs/theory.md "Spot welds").

@@ -76,23 +76,6 @@ rigid::MassProperties card_properties(const model::SwitchInertia& in) {
   return p;
 }
 
-// Mass properties of lumped nodes: their masses at x^n and, for nodes with rotations, their
-// isotropic rotary inertia I (a point of inertia I about every axis through itself), so that the
-// body carries exactly sum m r x v + sum I w (docs/switching.md, "Shells and beams").
-rigid::MassProperties lumped_properties(const std::vector<std::int32_t>& nodes, const State& s) {
-  rigid::MassProperties props = rigid::mass_properties(
-      nodes, s.nodes.mass.data(), s.nodes.x.x.data(), s.nodes.x.y.data(), s.nodes.x.z.data());
-  if (!s.rotations.empty()) {
-    double rotary = 0.0;
-    for (const auto i : nodes) {
-      const std::int32_t r = s.rotations.index(i);
-      if (r >= 0) rotary += s.rotations.inertia[r];
-    }
-    props.inertia += rotary * Eigen::Matrix3d::Identity();
-  }
-  return props;
-}
-
 // Nodes on one line without rotary inertia (a straight chain of trusses) have no moment of
 // inertia about it, and J^-1 would not exist. As for spot welds (solver/rigid_bodies.cpp), the
 // body gets a moment of 1e-6 of the largest about that line only (the other principal moments
@@ -395,7 +378,9 @@ SwitchEvent PartSwitcher::to_rigid(const std::vector<model::PartSwitch>& cards, 
       });
     }
     std::erase_if(lumped, [&](std::int32_t i) { return card_nodes.count(i) != 0; });
-    if (!lead_card && !lumped.empty()) props.push_back(lumped_properties(lumped, state));
+    if (!lead_card && !lumped.empty()) {
+      props.push_back(solver::lumped_mass_properties(lumped, state));
+    }
     rigid::MassProperties combined = rigid::combine(props);
     regularise(combined);
     if (!(combined.mass > 0.0)) {
@@ -553,7 +538,7 @@ SwitchEvent PartSwitcher::to_deformable(const std::vector<model::PartSwitch>& ca
     Eigen::Vector3d v = s.velocity, c = s.centre;
     Eigen::Vector3d w = rigid::global_inertia(s).ldlt().solve(s.angular_momentum);
     if (!body.inertia_from_card) {
-      rigid::MassProperties all = lumped_properties(body.nodes, state);
+      rigid::MassProperties all = solver::lumped_mass_properties(body.nodes, state);
       regularise(all);
       if (all.mass > 0.0 && std::abs(all.mass - s.mass) <= 1e-12 * s.mass) {
         const Eigen::Vector3d p = s.mass * s.velocity;
@@ -585,7 +570,7 @@ SwitchEvent PartSwitcher::to_deformable(const std::vector<model::PartSwitch>& ca
     if (body.inertia_from_card) {
       props = body_properties(s);  // the card's properties stay with the lead
     } else {
-      props = lumped_properties(kept, state);
+      props = solver::lumped_mass_properties(kept, state);
       regularise(props);
     }
     Momenta field;  // the velocity field carried by the remaining mass
@@ -646,7 +631,7 @@ double PartSwitcher::activate_nodal_rigid_bodies(double time, State& state, Rigi
       for (const auto i : body.nodes) centroid += node_position(state, i);
       props.centre = centroid / static_cast<double>(body.nodes.size());
     } else {
-      props = lumped_properties(body.nodes, state);
+      props = solver::lumped_mass_properties(body.nodes, state);
     }
     const int index = static_cast<int>(rigid.bodies.size());
     rigid.bodies.push_back(body);
