@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "element/element_ownership.hpp"
+#include "element/erosion_state.hpp"
 #include "element/hex_block.hpp"    // NodalView, KernelResult
 #include "element/shell_block.hpp"  // RotationalView
 #include "material/elastic.hpp"
@@ -39,6 +40,8 @@ struct BeamBlock {
   bool rigid = false;
   // The elements this process computes (element_ownership.hpp; all of them in one process).
   ElementOwnership owned;
+  // Failed elements (element/erosion_state.hpp); disabled for blocks without a failure criterion.
+  ErosionState erosion;
   bool has_force_slots = true;
 
   // Section (*SECTION_BEAM). Resultant and truss: A, ISS, ITT, J (IRR), SA (shear area).

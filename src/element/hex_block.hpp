@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "element/element_ownership.hpp"
+#include "element/erosion_state.hpp"
 #include "material/elastic.hpp"
 #include "material/history.hpp"
 #include "material/hyperelastic.hpp"
@@ -82,6 +83,8 @@ struct HexBlock {
   bool has_force_slots = true;
   // The elements this process computes (element_ownership.hpp; all of them in one process).
   ElementOwnership owned;
+  // Failed elements (element/erosion_state.hpp); disabled for blocks without a failure criterion.
+  ErosionState erosion;
   // Polynomial order of the element's interpolation. 1: the 8-node hexahedron (elform applies);
   // 2 or 3: tensor-product Lagrange hexahedron on Gauss-Lobatto-Legendre points with (p+1)^3
   // nodes and GLL quadrature, total-Lagrangian (element/lagrange_hex.hpp; elform is ignored).

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "element/element_ownership.hpp"
+#include "element/erosion_state.hpp"
 #include "element/hex_block.hpp"  // NodalView, HourglassSettings, KernelResult
 #include "material/barlat.hpp"
 #include "material/elastic.hpp"
@@ -52,6 +53,8 @@ struct ShellBlock {
   bool rigid = false;
   // The elements this process computes (element_ownership.hpp; all of them in one process).
   ElementOwnership owned;
+  // Failed elements (element/erosion_state.hpp); disabled for blocks without a failure criterion.
+  ErosionState erosion;
   bool has_force_slots = true;
 
   // Section (*SECTION_SHELL): transverse shear factor SHRF, NIP points through the thickness

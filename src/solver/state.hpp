@@ -34,6 +34,11 @@ struct NodalState {
   Vec3Array f_int;            // assembled internal force (elements, incl. hourglass)
   Vec3Array f_ext;            // assembled external force (loads, body forces)
   std::vector<double> mass;   // lumped mass
+  // Per node, 1 once erosion has deleted every element of the node (LS-DYNA's ENMASS 0): its
+  // mass, velocity and (rotational) inertia are zero from then on, its kinetic energy and
+  // momentum went to the eroded ledger, and contact ignores it. Empty when nothing can erode.
+  std::vector<std::uint8_t> removed;
+  bool is_removed(std::size_t i) const { return !removed.empty() && removed[i] != 0; }
   std::size_t size() const { return id.size(); }
 };
 
