@@ -125,8 +125,8 @@
 // with K = 6 k0 (ELFORM 2) or kappa G A L / 2 (ELFORM 1). For slender elements the axial value
 // governs (dt = L / c, as LS-DYNA's beam step); stubby shear-stiff elements get a smaller step
 // from the symmetric bending-shear mode (tested against a numerical eigen-analysis).
-#include "element/kernel_partials.hpp"
 #include "element/beam_block.hpp"
+#include "element/kernel_partials.hpp"
 
 #include <fmt/format.h>
 #include <omp.h>
@@ -149,7 +149,9 @@ KernelResult combine(const KernelPartials& partials, int threads) {
   return combine_partials(partials, threads);
 }
 
-inline int thread_count() { return kernel_thread_count(); }
+inline int thread_count() {
+  return kernel_thread_count();
+}
 
 inline double dot(const double a[3], const double b[3]) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -273,6 +275,11 @@ struct Uniaxial {
 
 inline void uniaxial_update(const Uniaxial& m, double de, double dt, double& sigma, double* eps_p,
                             double* back) {
+  // A point past its failure strain (FS, FAIL) carries no stress (solver/erosion.cpp).
+  if (m.plastic && m.plastic->failure_strain > 0.0 && *eps_p >= m.plastic->failure_strain) {
+    sigma = 0.0;
+    return;
+  }
   sigma += m.young * de;
   if (!m.plastic) return;
   const material::PlasticParameters& p = *m.plastic;
@@ -300,6 +307,7 @@ inline void uniaxial_update(const Uniaxial& m, double de, double dt, double& sig
   sigma -= m.young * dl * sign;
   *back += p.kinematic_modulus * dl * sign;
   *eps_p += dl;
+  if (p.failure_strain > 0.0 && *eps_p >= p.failure_strain) sigma = 0.0;
 }
 
 inline bool finite3(const double a[3]) {
@@ -476,8 +484,6 @@ void initialize_beam_block(BeamBlock& block, const NodalView& nodes) {
           "*MAT_PIECEWISE_LINEAR_PLASTICITY only");
     if (plastic && (block.plastic.vp == 1 || block.plastic.additive_overstress))
       throw part_error("viscoplastic rate form VP = 1 is not implemented for beams");
-    if (plastic && block.plastic.failure_strain > 0.0)
-      throw part_error("failure strain (element deletion) is not implemented for beams");
   }
   if (block.elform == 1) {
     // Section points and properties, header comment (ELFORM 1).
@@ -675,6 +681,7 @@ KernelResult beam_critical_timestep(const BeamBlock& block, const NodalView& nod
 #pragma omp for schedule(static)
     for (std::int64_t e = 0; e < n; ++e) {
       const std::size_t ue = static_cast<std::size_t>(e);
+      if (block.erosion.is_eroded(ue)) continue;  // left the model
       const std::int32_t n1 = block.conn[2 * ue], n2 = block.conn[2 * ue + 1];
       const double ch[3] = {nodes.x[n2] - nodes.x[n1], nodes.y[n2] - nodes.y[n1],
                             nodes.z[n2] - nodes.z[n1]};

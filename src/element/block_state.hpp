@@ -23,6 +23,15 @@ void visit_history(Block& block, Visit& visit) {
   for (auto& h : block.history) visit("history_" + std::string(h.field.name), h.values);
 }
 
+// Erosion (element/erosion_state.hpp), in blocks that can erode: when each element left and the
+// work it had done (the ownership and the removed nodes follow from these, solver/erosion.hpp).
+template <class Block, class Visit>
+void visit_erosion(Block& block, Visit& visit) {
+  if (!block.erosion.enabled) return;
+  visit(std::string("erosion_time"), block.erosion.time);
+  visit(std::string("erosion_work"), block.erosion.work);
+}
+
 // Hexahedra: stresses at every stress point, the stiffness forms' hourglass forces, volumes and
 // reference volumes, the last element forces. Not visited: the order > 1 reference Jacobians,
 // weights, steps and lengths, set up from x0 and never changed (a third of a p = 3 dump; the
@@ -36,6 +45,7 @@ void visit_hex_state(Block& block, Visit&& visit) {
   visit(std::string("volume"), block.volume);
   visit(std::string("force"), block.force);
   visit_history(block, visit);
+  visit_erosion(block, visit);
 }
 
 // Shells: co-rotational stresses at every integration point, hourglass forces (accumulated for
@@ -53,6 +63,7 @@ void visit_shell_state(Block& block, Visit&& visit) {
   visit(std::string("element_thickness"), block.element_thickness);
   visit(std::string("force"), block.force);
   visit_history(block, visit);
+  visit_erosion(block, visit);
 }
 
 // Beams and trusses: the co-rotational frames, resultants, axial stresses per point, reference
@@ -66,6 +77,7 @@ void visit_beam_state(Block& block, Visit&& visit) {
   visit(std::string("length"), block.length);
   visit(std::string("force"), block.force);
   visit_history(block, visit);
+  visit_erosion(block, visit);
 }
 
 }  // namespace rf::element

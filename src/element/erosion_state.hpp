@@ -14,10 +14,32 @@
 
 namespace rf::element {
 
+// The failure criteria of a block, resolved from its material and *MAT_ADD_EROSION
+// (solver/erosion.cpp). A point fails by the material's own criterion (plastic strain FS/FAIL,
+// Johnson-Cook damage) or by NCS of the *MAT_ADD_EROSION criteria at once; the element erodes
+// when enough of its points have failed, or its step fell below TDEL.
+struct ErosionCriteria {
+  double plastic_strain = 0.0;  // FS (003), FAIL (024): a point fails at this plastic strain
+  bool damage = false;          // Johnson-Cook D1-D5: a point fails at damage 1
+  double tdel = 0.0;            // TDEL (024): the element erodes when its step is below this
+  // *MAT_ADD_EROSION (each off unless `has_*`): p = -tr(sigma)/3.
+  bool has_max_pressure = false, has_min_pressure = false, has_principal_stress = false,
+       has_von_mises = false, has_volumetric_strain = false, has_failure_time = false;
+  double max_pressure = 0.0, min_pressure = 0.0, principal_stress = 0.0, von_mises = 0.0,
+         volumetric_strain = 0.0, failure_time = 0.0;
+  int criteria_at_once = 1;    // NCS
+  double failed_points = 1.0;  // NUMFIP (< 0: percentage of the element's points, shells)
+  bool add_erosion() const {
+    return has_max_pressure || has_min_pressure || has_principal_stress || has_von_mises ||
+           has_volumetric_strain || has_failure_time;
+  }
+};
+
 struct ErosionState {
   // The block has a criterion that deletes elements (FS, FAIL, TDEL, Johnson-Cook damage,
   // *MAT_ADD_EROSION). False: every array below is empty and the block never erodes.
   bool enabled = false;
+  ErosionCriteria criteria;
   // Per element: the time it eroded, -1 while it is in the model (a double so that the restart
   // dump carries it like every other element array).
   std::vector<double> time;

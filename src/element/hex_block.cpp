@@ -900,6 +900,7 @@ KernelResult hex_critical_timestep(const HexBlock& block, const NodalView& nodes
     for (std::int64_t e = 0; e < n; ++e) {
       double x[3][8];
       const std::size_t ue = static_cast<std::size_t>(e);
+      if (block.erosion.is_eroded(ue)) continue;  // left the model
       gather_coordinates(&block.conn[8 * ue], slot_map(block, ue), nodes, x);
       const double v = hex::hex_volume(x);
       if (!(v > 0.0)) {

@@ -876,6 +876,7 @@ KernelResult shell_critical_timestep(const ShellBlock& block, const NodalView& n
     Partial local;
 #pragma omp for schedule(static)
     for (std::int64_t e = 0; e < n; ++e) {
+      if (block.erosion.is_eroded(static_cast<std::size_t>(e))) continue;  // left the model
       const std::int32_t* cn = &block.conn[4 * static_cast<std::size_t>(e)];
       double p[4][3];
       for (int I = 0; I < 4; ++I) {

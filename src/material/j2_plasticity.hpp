@@ -274,6 +274,14 @@ inline void j2_update(const ElasticConstants& m, const PlasticParameters& p, con
     for (int c = 0; c < 6; ++c) alpha[c] += da * xi[c];
   }
   eps += dl;
+  // A point whose plastic strain reached the failure strain (FS, FAIL) carries no stress from
+  // then on; the erosion phase deletes the element once enough of its points have failed
+  // (solver/erosion.cpp: at once for solids, with the last layer through the thickness of a
+  // shell), so a shell loses its stiffness layer by layer as in LS-DYNA.
+  if (p.failure_strain > 0.0) {
+    const T alive = eps < p.failure_strain ? T{} + 1.0 : T{};
+    for (int c = 0; c < 6; ++c) s[c] *= alive;
+  }
 }
 
 }  // namespace rf::material

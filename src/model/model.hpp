@@ -79,7 +79,7 @@ struct Part {
 struct SectionSolid {
   Id id = 0;
   int elform = 1;  // 1: one-point reduced + hourglass control; 2: selective-reduced 2x2x2
-                  // 10: one-point 4-node tetrahedron (constant strain)
+                   // 10: one-point 4-node tetrahedron (constant strain)
   SourceLocation where;
 };
 
@@ -95,12 +95,12 @@ struct ShellElement {
 // *SECTION_SHELL as far as it is supported (docs/keywords.md lists the accepted values).
 struct SectionShell {
   Id id = 0;
-  int elform = 2;        // 2: Belytschko-Lin-Tsay; 16: fully integrated
-  double shrf = 1.0;     // transverse shear factor (LS-DYNA default 1; 5/6 is the usual choice)
-  int nip = 2;           // points through the thickness, 1..10
-  int quadrature = -1;   // QR as written; -1 blank (then *CONTROL_SHELL INTGRD decides)
+  int elform = 2;       // 2: Belytschko-Lin-Tsay; 16: fully integrated
+  double shrf = 1.0;    // transverse shear factor (LS-DYNA default 1; 5/6 is the usual choice)
+  int nip = 2;          // points through the thickness, 1..10
+  int quadrature = -1;  // QR as written; -1 blank (then *CONTROL_SHELL INTGRD decides)
   std::array<double, 4> t{};  // T1..T4
-  double nloc = 0.0;     // reference surface: 1 top, 0 mid, -1 bottom (only 0 supported)
+  double nloc = 0.0;          // reference surface: 1 top, 0 mid, -1 bottom (only 0 supported)
   SourceLocation where;
 };
 
@@ -108,7 +108,7 @@ struct SectionShell {
 struct BeamElement {
   Id id = 0;
   Id pid = 0;
-  std::array<Id, 3> nodes{};               // N1 N2 N3 (N3 0: default orientation)
+  std::array<Id, 3> nodes{};                         // N1 N2 N3 (N3 0: default orientation)
   std::optional<std::array<double, 3>> orientation;  // _ORIENTATION VX VY VZ
   SourceLocation where;
 };
@@ -116,10 +116,10 @@ struct BeamElement {
 // *SECTION_BEAM as far as it is supported.
 struct SectionBeam {
   Id id = 0;
-  int elform = 1;     // 1 Hughes-Liu, 2 Belytschko-Schwer resultant, 3 truss
+  int elform = 1;  // 1 Hughes-Liu, 2 Belytschko-Schwer resultant, 3 truss
   double shrf = 1.0;
-  int cst = 0;        // 0 rectangular, 1 tubular (ELFORM 1)
-  double ts1 = 0.0, ts2 = 0.0, tt1 = 0.0, tt2 = 0.0;  // ELFORM 1
+  int cst = 0;                                              // 0 rectangular, 1 tubular (ELFORM 1)
+  double ts1 = 0.0, ts2 = 0.0, tt1 = 0.0, tt2 = 0.0;        // ELFORM 1
   double a = 0.0, iss = 0.0, itt = 0.0, j = 0.0, sa = 0.0;  // ELFORM 2 (and A for 3)
   SourceLocation where;
 };
@@ -144,13 +144,13 @@ struct SectionDiscrete {
 
 // *CONTROL_SHELL fields that change the physics (the others are accepted at their defaults).
 struct ShellControl {
-  int theory = 2;           // default ELFORM of *SECTION_SHELL ELFORM 0
-  int bwc = 2;              // 1: Belytschko-Wong-Chiang warping correction on
-  int istupd = 0;           // thickness update (0 only)
-  int intgrd = 0;           // 0 Gauss, 1 Lobatto (NIP 3..10)
-  int miter = 1;            // plane-stress plasticity: 1, 2 iterative
+  int theory = 2;  // default ELFORM of *SECTION_SHELL ELFORM 0
+  int bwc = 2;     // 1: Belytschko-Wong-Chiang warping correction on
+  int istupd = 0;  // thickness update (0 only)
+  int intgrd = 0;  // 0 Gauss, 1 Lobatto (NIP 3..10)
+  int miter = 1;   // plane-stress plasticity: 1, 2 iterative
   int proj = 0;
-  double rotascl = 1.0;     // rotary inertia scale
+  double rotascl = 1.0;  // rotary inertia scale
   SourceLocation where;
 };
 
@@ -187,6 +187,8 @@ struct PlasticCard {
   double c = 0.0;     // SRC (003) / C (024)
   double p = 0.0;     // SRP (003) / P (024)
   double fail = 0.0;  // FS (003) / FAIL (024); 0: no failure
+  double tdel = 0.0;  // TDEL (024): element step below which the element is deleted; 0: never
+  SourceLocation fail_where;  // the card of FS / FAIL (for errors of the failure criterion)
   int vp = 0;
   Id lcss = 0;              // 024
   Id lcsr = 0;              // 024
@@ -194,6 +196,23 @@ struct PlasticCard {
   std::vector<double> es;
   SourceLocation card2;  // where the second card is (C, P, LCSS, LCSR, VP)
   SourceLocation card3;  // EPS card (024)
+};
+
+// *MAT_ADD_EROSION (cards 1-2; the damage, forming-limit and later cards are refused when set):
+// failure criteria evaluated at every integration point after its stress update. A criterion
+// is on when its value is nonzero and differs from EXCL (LS-DYNA's rule). Signs as LS-DYNA:
+// pressure p = -tr(sigma)/3 (positive in compression).
+struct AddErosion {
+  Id mid = 0;
+  std::optional<double> mxpres;  // fail when p >= MXPRES
+  std::optional<double> mnpres;  // fail when p <= MNPRES
+  std::optional<double> sigp1;   // fail when the largest principal stress >= SIGP1
+  std::optional<double> sigvm;   // fail when the von Mises stress >= SIGVM
+  std::optional<double> voleps;  // fail when ln(V/V0) >= VOLEPS (> 0) or <= VOLEPS (< 0)
+  std::optional<double> failtm;  // fail when the time >= FAILTM
+  double numfip = 1.0;           // failed points before deletion (< 0 shells: percentage)
+  int ncs = 1;                   // criteria a point must meet at once
+  SourceLocation where;
 };
 
 // The rubber constants of *MAT_MOONEY-RIVLIN_RUBBER (027) and *MAT_OGDEN_RUBBER (077_O) as read
@@ -259,9 +278,9 @@ struct Material {
   bool has_output_vectors = false;
   std::array<double, 3> output_a{};
   std::array<double, 3> output_v{};
-  PlasticCard plastic;  // PlasticKinematic and PiecewiseLinearPlasticity
-  RubberCard rubber;    // MooneyRivlinRubber and OgdenRubber
-  BarlatCard barlat;    // ThreeParameterBarlat
+  PlasticCard plastic;           // PlasticKinematic and PiecewiseLinearPlasticity
+  RubberCard rubber;             // MooneyRivlinRubber and OgdenRubber
+  BarlatCard barlat;             // ThreeParameterBarlat
   JohnsonCookCard johnson_cook;  // JohnsonCook
   // Discrete materials: K (S01, force per elongation), DC (S02, force per elongation rate),
   // LCD (S04, force vs elongation curve).
@@ -563,13 +582,13 @@ struct PartModesDamping {
 struct PartModes {
   Id pid = 0;
   int nmfb = 0;
-  int form = 0;   // 0 exact (inertia coupling kept), 1 fast
-  Id ansid = 0;   // attachment node set: nodes reconstructed every cycle (optional)
+  int form = 0;  // 0 exact (inertia coupling kept), 1 fast
+  Id ansid = 0;  // attachment node set: nodes reconstructed every cycle (optional)
   int format = 3;
   int kmflag = 0;
-  std::string filename;      // as given on card 2
-  std::string path;          // resolved against the directory of the file that gave it
-  std::vector<int> modes;    // KMFLAG 1: kept modes, 1-based numbers in the file
+  std::string filename;    // as given on card 2
+  std::string path;        // resolved against the directory of the file that gave it
+  std::vector<int> modes;  // KMFLAG 1: kept modes, 1-based numbers in the file
   std::vector<PartModesDamping> damping;
   SourceLocation where;
 };
@@ -814,7 +833,7 @@ struct PointMass {
   Id id = 0;    // EID
   Id node = 0;  // NID
   double mass = 0.0;
-  Id part = 0;               // PID (optional; only for bookkeeping)
+  Id part = 0;  // PID (optional; only for bookkeeping)
   SourceLocation where;
 };
 
@@ -835,9 +854,9 @@ struct MassDamping {
   bool global = true;
   Id id = 0;  // PID or PSID (part damping)
   bool part_set = false;
-  Id lcid = 0;          // curve d(t); global: 0 means the constant VALDMP
-  double valdmp = 0.0;  // global: constant d when LCID is 0
-  double sf = 1.0;      // part damping: scale factor on the curve
+  Id lcid = 0;                              // curve d(t); global: 0 means the constant VALDMP
+  double valdmp = 0.0;                      // global: constant d when LCID is 0
+  double sf = 1.0;                          // part damping: scale factor on the curve
   std::array<double, 3> st{1.0, 1.0, 1.0};  // STX STY STZ
   std::array<double, 3> sr{1.0, 1.0, 1.0};  // SRX SRY SRZ
   SourceLocation where;
@@ -868,7 +887,7 @@ struct TimestepControl {
   double dt2ms = 0.0;    // mass scaling target (docs/keywords.md); 0: none
   int ms1st = 0;         // 1: mass scaling at the first step only
   SourceLocation where;  // the *CONTROL_TIMESTEP card (errors found at set-up)
-  int isdo = 0;  // shell step option (0 only)
+  int isdo = 0;          // shell step option (0 only)
   Id lctm = 0;
   double dt_max = 0.0;  // IMPETUS *TIME dt_max; 0: no cap
 };
@@ -1011,6 +1030,7 @@ struct Model {
   ShellControl shell_control;
   std::map<Id, Material> materials;
   std::map<Id, EquationOfState> equations_of_state;  // *EOS_, by EOSID
+  std::map<Id, AddErosion> add_erosions;             // *MAT_ADD_EROSION, by MID
   std::map<Id, Hourglass> hourglass;
   std::map<Id, Curve> curves;
   std::map<Id, Table> tables;  // *DEFINE_TABLE; IDs distinct from the curves'
@@ -1020,7 +1040,7 @@ struct Model {
   std::map<Id, SolidSet> solid_sets;
   std::map<Id, SolidSet> shell_sets;  // *SET_SHELL
   std::map<Id, SolidSet> beam_sets;   // *SET_BEAM
-  std::map<Id, Function> functions;  // IMPETUS *FUNCTION
+  std::map<Id, Function> functions;   // IMPETUS *FUNCTION
   std::map<Id, GeometrySeed> geometry_seeds;
   std::vector<POrderChange> p_order_changes;
   std::vector<CylinderSurface> cylinder_surfaces;
@@ -1037,7 +1057,7 @@ struct Model {
   std::vector<RigidBodyMerge> rigid_body_merges;
   std::vector<ExtraNodes> extra_nodes;
   std::map<Id, NodalRigidBody> nodal_rigid_bodies;  // by PID
-  std::map<Id, PartModes> part_modes;  // by PID
+  std::map<Id, PartModes> part_modes;               // by PID
   std::vector<RigidPrescribedMotion> rigid_prescribed_motions;
   std::vector<RigidLoad> rigid_loads;
   int rigid_body_update = 0;  // *RIGID_BODY_UPDATE type (0, 1, 2)
@@ -1051,12 +1071,12 @@ struct Model {
   std::vector<RigidWall> rigid_walls;  // in deck order: rigid_walls[k].number == k + 1
   std::vector<Contact> contacts;       // in deck order: contacts[k].number == k + 1
 
-  std::vector<PointMass> point_masses;                   // *ELEMENT_MASS
-  std::vector<PartMassAddition> part_mass_additions;     // *ELEMENT_MASS_PART
-  std::vector<MassDamping> mass_damping;                 // *DAMPING_GLOBAL, *DAMPING_PART_MASS
-  std::vector<Joint> joints;                             // *CONSTRAINED_JOINT_..., deck order
-  std::vector<SpotWeld> spot_welds;                      // *CONSTRAINED_SPOTWELD, deck order
-  std::vector<NodeSetConstraint> node_set_constraints;   // *CONSTRAINED_NODE_SET, deck order
+  std::vector<PointMass> point_masses;                  // *ELEMENT_MASS
+  std::vector<PartMassAddition> part_mass_additions;    // *ELEMENT_MASS_PART
+  std::vector<MassDamping> mass_damping;                // *DAMPING_GLOBAL, *DAMPING_PART_MASS
+  std::vector<Joint> joints;                            // *CONSTRAINED_JOINT_..., deck order
+  std::vector<SpotWeld> spot_welds;                     // *CONSTRAINED_SPOTWELD, deck order
+  std::vector<NodeSetConstraint> node_set_constraints;  // *CONSTRAINED_NODE_SET, deck order
 
   Termination termination;
   TimestepControl timestep;

@@ -140,15 +140,32 @@ void GlstatWriter::write(const GlstatRow& row) {
   line.push_back(',');
   append_number(line, row.dt);
   fmt::format_to(std::back_inserter(line), ",{},", row.cycle);
-  const double rest[] = {
-      row.kinetic_energy,      row.internal_energy,     row.hourglass_energy,
-      row.external_work,       row.total_energy,        row.energy_ratio,
-      row.momentum[0],         row.momentum[1],         row.momentum[2],
-      row.angular_momentum[0], row.angular_momentum[1], row.angular_momentum[2],
-      row.switch_energy,       row.frozen_energy,       row.rigidwall_work,
-      row.contact_energy,      row.modal_energy,        row.damping_work,
-      row.added_mass,          row.mass_scaling_work,   row.bulk_viscosity_energy,
-      row.spring_energy,       row.damper_energy};
+  const double rest[] = {row.kinetic_energy,
+                         row.internal_energy,
+                         row.hourglass_energy,
+                         row.external_work,
+                         row.total_energy,
+                         row.energy_ratio,
+                         row.momentum[0],
+                         row.momentum[1],
+                         row.momentum[2],
+                         row.angular_momentum[0],
+                         row.angular_momentum[1],
+                         row.angular_momentum[2],
+                         row.switch_energy,
+                         row.frozen_energy,
+                         row.rigidwall_work,
+                         row.contact_energy,
+                         row.modal_energy,
+                         row.damping_work,
+                         row.added_mass,
+                         row.mass_scaling_work,
+                         row.bulk_viscosity_energy,
+                         row.spring_energy,
+                         row.damper_energy,
+                         row.eroded_internal_energy,
+                         row.eroded_kinetic_energy,
+                         row.eroded_elements};
   bool first = true;
   for (double value : rest) {
     if (!first) line.push_back(',');

@@ -432,10 +432,18 @@ void D3plotWriter::write_state(const solver::State& state, const D3plotGlobals& 
   if (beams != beam_count_ || shells != shell_count_) {
     throw std::runtime_error("d3plot: the number of beams or shells changed during the run");
   }
-  // Deletion flags (MDLOPT 2), 1 = active, in the manual's order: solids, (thick shells),
-  // shells, beams. No element is eroded yet.
-  buffer_.insert(buffer_.end(),
-                 static_cast<std::size_t>(element_count_ + shell_count_ + beam_count_), 1.0f);
+  // Deletion flags (MDLOPT 2), 1 = active, 0 = eroded (solver/erosion.hpp), in the manual's
+  // order: solids, (thick shells), shells, beams.
+  for_each_written_solid(state,
+                         [&](const element::HexBlock& block, std::size_t e, const std::int32_t*) {
+                           buffer_.push_back(block.erosion.is_eroded(e) ? 0.0f : 1.0f);
+                         });
+  for (const element::ShellBlock& block : state.shell_blocks)
+    for (std::size_t e = 0; e < block.size(); ++e)
+      buffer_.push_back(block.erosion.is_eroded(e) ? 0.0f : 1.0f);
+  for (const element::BeamBlock& block : state.beam_blocks)
+    for (std::size_t e = 0; e < block.size(); ++e)
+      buffer_.push_back(block.erosion.is_eroded(e) ? 0.0f : 1.0f);
   if (static_cast<std::int64_t>(buffer_.size()) != layout_.state_words) {
     throw std::logic_error("d3plot: state size differs from the layout");
   }

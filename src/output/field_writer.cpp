@@ -132,7 +132,7 @@ void write_atomically(const std::filesystem::path& path, WriteBody&& body) {
 // cross product of the diagonals, e1 along side 1-2 made normal to e3 (Belytschko, Lin and Tsay
 // 1984), the frame the kernel keeps the stresses in.
 std::array<std::array<double, 3>, 3> shell_frame(const solver::NodalState& nodes,
-                                                const std::int32_t* c) {
+                                                 const std::int32_t* c) {
   auto at = [&](int k) {
     return std::array<double, 3>{nodes.x.x[c[k]], nodes.x.y[c[k]], nodes.x.z[c[k]]};
   };
@@ -165,9 +165,8 @@ std::array<std::array<double, 3>, 3> shell_frame(const solver::NodalState& nodes
 // (sigma_zz = 0), returned in Voigt order xx yy zz xy yz zx.
 void shell_stress_to_global(const double* local, const std::array<std::array<double, 3>, 3>& e,
                             double out[6]) {
-  const double s[3][3] = {{local[0], local[2], local[4]},
-                          {local[2], local[1], local[3]},
-                          {local[4], local[3], 0.0}};
+  const double s[3][3] = {
+      {local[0], local[2], local[4]}, {local[2], local[1], local[3]}, {local[4], local[3], 0.0}};
   static constexpr int kI[6] = {0, 1, 2, 0, 1, 2}, kJ[6] = {0, 1, 2, 1, 2, 0};
   for (int v = 0; v < 6; ++v) {
     double sum = 0.0;
@@ -584,14 +583,48 @@ void FieldWriter::write_frame(const solver::State& state, const FrameOptions& op
   const bool has_shells = !state.shell_blocks.empty(), has_beams = !state.beam_blocks.empty();
   if (has_shells) {
     arrays.push_back({"thickness", "Float64", 1, thickness.data(), bytes_of(thickness)});
-    arrays.push_back({"stress_bottom", "Float64", 6, stress_bottom.data(), bytes_of(stress_bottom),
-                      0, {"xx", "yy", "zz", "xy", "yz", "zx"}});
-    arrays.push_back({"stress_top", "Float64", 6, stress_top.data(), bytes_of(stress_top), 0,
+    arrays.push_back({"stress_bottom",
+                      "Float64",
+                      6,
+                      stress_bottom.data(),
+                      bytes_of(stress_bottom),
+                      0,
+                      {"xx", "yy", "zz", "xy", "yz", "zx"}});
+    arrays.push_back({"stress_top",
+                      "Float64",
+                      6,
+                      stress_top.data(),
+                      bytes_of(stress_top),
+                      0,
                       {"xx", "yy", "zz", "xy", "yz", "zx"}});
   }
   if (has_beams) {
-    arrays.push_back({"beam_resultant", "Float64", 6, beam_resultant.data(),
-                      bytes_of(beam_resultant), 0, {"N", "Qs", "Qt", "T", "Ms", "Mt"}});
+    arrays.push_back({"beam_resultant",
+                      "Float64",
+                      6,
+                      beam_resultant.data(),
+                      bytes_of(beam_resultant),
+                      0,
+                      {"N", "Qs", "Qt", "T", "Ms", "Mt"}});
+  }
+  // Eroded elements (solver/erosion.hpp), in models that can erode: VTK's ghost-cell array with
+  // HIDDENCELL (32), which ParaView does not draw, so deleted elements vanish as in LS-PrePost;
+  // the cells stay in the file (the same cells in every frame) with their last values.
+  std::vector<std::uint8_t> ghost;
+  bool can_erode = false;
+  for (const auto& b : state.hex_blocks) can_erode |= b.erosion.enabled;
+  for (const auto& b : state.shell_blocks) can_erode |= b.erosion.enabled;
+  for (const auto& b : state.beam_blocks) can_erode |= b.erosion.enabled;
+  if (can_erode) {
+    ghost.reserve(cell_count);
+    auto mark = [&](const auto& block) {
+      for (std::size_t e = 0; e < block.size(); ++e)
+        ghost.push_back(block.erosion.is_eroded(e) ? std::uint8_t{32} : std::uint8_t{0});
+    };
+    for (const auto& b : state.hex_blocks) mark(b);
+    for (const auto& b : state.shell_blocks) mark(b);
+    for (const auto& b : state.beam_blocks) mark(b);
+    arrays.push_back({"vtkGhostType", "UInt8", 1, ghost.data(), bytes_of(ghost)});
   }
   std::uint64_t offset = 0;
   for (AppendedArray& a : arrays) {

@@ -33,15 +33,21 @@ struct GlstatRow {
   double rigidwall_work = 0.0;
   // Minus the work of the contact forces (stored penalty energy + dissipation).
   double contact_energy = 0.0;
-  double modal_energy = 0.0;  // elastic energy of flexible bodies' modes (in internal_energy)
-  double damping_work = 0.0;  // the part of external_work done by *DAMPING_* (negative)
-  double added_mass = 0.0;    // mass scaling: mass added to the deformable nodes so far
+  double modal_energy = 0.0;       // elastic energy of flexible bodies' modes (in internal_energy)
+  double damping_work = 0.0;       // the part of external_work done by *DAMPING_* (negative)
+  double added_mass = 0.0;         // mass scaling: mass added to the deformable nodes so far
   double mass_scaling_work = 0.0;  // the part of external_work: 1/2 dm v^2 of mass added in the run
   double bulk_viscosity_energy = 0.0;  // dissipated by the bulk viscosity (not in internal)
   // Discrete elements (both in internal_energy): the energy springs hold relative to time zero
   // and the energy dampers have dissipated so far.
   double spring_energy = 0.0;
   double damper_energy = 0.0;
+  // Element erosion (docs/materials.md): the work the deleted elements' forces did before they
+  // left (not in internal_energy any more), the kinetic energy of the nodes removed with them
+  // (not in kinetic_energy any more), and how many elements have eroded.
+  double eroded_internal_energy = 0.0;
+  double eroded_kinetic_energy = 0.0;
+  double eroded_elements = 0.0;
 };
 
 // Plain CSV file with a fixed header; rows are buffered and reach the file whole (never a
@@ -84,18 +90,19 @@ struct CsvContinuation {
   std::int64_t glstat = -1;
   std::int64_t nodout = -1;
   std::int64_t rbdout = -1;
-  std::int64_t switches = -1;  // switch.csv
-  std::int64_t sensor = -1;    // sensor.csv
-  std::int64_t rwforc = -1;    // rwforc.csv
-  std::int64_t rcforc = -1;    // rcforc.csv
-  std::int64_t modal = -1;     // modal.csv
-  std::int64_t matsum = -1;    // matsum.csv
-  std::int64_t spcforc = -1;   // spcforc.csv
-  std::int64_t elout = -1;     // elout.csv
-  std::int64_t secforc = -1;   // secforc.csv
+  std::int64_t switches = -1;     // switch.csv
+  std::int64_t sensor = -1;       // sensor.csv
+  std::int64_t rwforc = -1;       // rwforc.csv
+  std::int64_t rcforc = -1;       // rcforc.csv
+  std::int64_t modal = -1;        // modal.csv
+  std::int64_t matsum = -1;       // matsum.csv
+  std::int64_t spcforc = -1;      // spcforc.csv
+  std::int64_t elout = -1;        // elout.csv
+  std::int64_t secforc = -1;      // secforc.csv
   std::int64_t elout_shell = -1;  // elout_shell.csv
   std::int64_t jntforc = -1;      // jntforc.csv
   std::int64_t swforc = -1;       // swforc.csv
+  std::int64_t erosion = -1;      // erosion.csv
 };
 
 // Column headers, exactly as written (docs/output.md).
@@ -103,7 +110,10 @@ inline constexpr std::string_view kGlstatHeader =
     "time,dt,cycle,kinetic_energy,internal_energy,hourglass_energy,external_work,total_energy,"
     "energy_ratio,momentum_x,momentum_y,momentum_z,angular_momentum_x,angular_momentum_y,"
     "angular_momentum_z,switch_energy,frozen_energy,rigidwall_work,contact_energy,modal_energy,"
-    "damping_work,added_mass,mass_scaling_work,bulk_viscosity_energy,spring_energy,damper_energy";
+    "damping_work,added_mass,mass_scaling_work,bulk_viscosity_energy,spring_energy,damper_energy,"
+    "eroded_internal_energy,eroded_kinetic_energy,eroded_elements";
+// erosion.csv: one row per deleted element, in the order of deletion (docs/output.md).
+inline constexpr std::string_view kErosionHeader = "time,part,element,family,criterion";
 inline constexpr std::string_view kNodoutHeader = "time,node,x,y,z,vx,vy,vz,ax,ay,az";
 inline constexpr std::string_view kRbdoutHeader =
     "time,body,mass,x,y,z,vx,vy,vz,ax,ay,az,wx,wy,wz,r11,r12,r13,r21,r22,r23,r31,r32,r33";

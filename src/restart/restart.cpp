@@ -159,7 +159,8 @@ Restarted restart_from_dump(const RestartOptions& options) {
       {"secforc", &sim_options.continuation.secforc},
       {"elout_shell", &sim_options.continuation.elout_shell},
       {"jntforc", &sim_options.continuation.jntforc},
-      {"swforc", &sim_options.continuation.swforc}};
+      {"swforc", &sim_options.continuation.swforc},
+      {"erosion", &sim_options.continuation.erosion}};
   for (const auto& [name, target] : histories) {
     const std::string attribute = std::string(name) + "_bytes";
     if (!output.has_attribute(attribute)) continue;

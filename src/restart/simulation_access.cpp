@@ -55,6 +55,17 @@ void SimulationAccess::write_members(Simulation& s, const Group& g) {
   g.set("energy_rigidwall_work", e.rigidwall_work);
   g.set("energy_contact", e.contact_energy);
   g.set("energy_damping_work", e.damping_work);
+  if (s.erosion_.enabled()) {  // what has left the model (solver/erosion.hpp)
+    const solver::ErosionLedger& l = s.erosion_.ledger();
+    g.set("eroded_internal_energy", l.internal_energy);
+    g.set("eroded_kinetic_energy", l.kinetic_energy);
+    g.set("eroded_elements", l.elements);
+    g.set("eroded_nodes", l.nodes);
+    for (int k = 0; k < 3; ++k) {
+      g.set(fmt::format("eroded_momentum_{}", k), l.momentum[k]);
+      g.set(fmt::format("eroded_angular_momentum_{}", k), l.angular_momentum[k]);
+    }
+  }
   g.set("switch_dt_cap", s.switch_dt_cap_);
   if (!s.joints_.empty()) {  // the last joint forces, which jntforc.csv reports
     std::vector<double> joint_loads;
@@ -167,6 +178,22 @@ void SimulationAccess::read_members(Simulation& s, const Group& g) {
     e.momentum[k] = g.get_double(fmt::format("energy_momentum_{}", k));
     e.angular_momentum[k] = g.get_double(fmt::format("energy_angular_momentum_{}", k));
   }
+  if (s.erosion_.enabled()) {
+    // The blocks' erosion times came with their state: ownership, live counts and removed nodes
+    // follow from them (the ledger first: restore() keeps its node count).
+    solver::ErosionLedger& l = s.erosion_.ledger();
+    l.internal_energy = g.get_double("eroded_internal_energy");
+    l.kinetic_energy = g.get_double("eroded_kinetic_energy");
+    l.elements = g.get_int("eroded_elements");
+    l.nodes = g.get_int("eroded_nodes");
+    for (int k = 0; k < 3; ++k) {
+      l.momentum[k] = g.get_double(fmt::format("eroded_momentum_{}", k));
+      l.angular_momentum[k] = g.get_double(fmt::format("eroded_angular_momentum_{}", k));
+    }
+    s.erosion_.restore(st, s.rigid_.empty() ? nullptr : &s.rigid_.body_of_node);
+    e.eroded_internal = l.internal_energy;
+    e.eroded_kinetic = l.kinetic_energy;
+  }
 }
 
 void SimulationAccess::write_output(Simulation& s, const Group& g) {
@@ -202,6 +229,7 @@ void SimulationAccess::write_output(Simulation& s, const Group& g) {
   g.set("jntforc_bytes", s.jntforc_csv_ ? s.jntforc_csv_->flushed_size() : std::int64_t{-1});
   write_schedule(g, "jntforc", s.jntforc_schedule_.interval, s.jntforc_schedule_.next,
                  s.jntforc_schedule_.last_cycle);
+  if (s.erosion_csv_) g.set("erosion_bytes", s.erosion_csv_->flushed_size());
   if (s.swforc_csv_) {
     g.set("swforc_bytes", s.swforc_csv_->flushed_size());
     write_schedule(g, "swforc", s.swforc_schedule_.interval, s.swforc_schedule_.next,

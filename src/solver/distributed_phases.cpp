@@ -39,6 +39,19 @@ void Simulation::start_distributed_run() {
   if (!model.part_modes.empty()) {
     refuse(model.part_modes.begin()->second.where, "PID", "a flexible body (*PART_MODES)");
   }
+  // Erosion changes which elements a rank computes and which nodes exist: stage 1 keeps the
+  // element set fixed.
+  if (erosion_.enabled()) {
+    for (const auto& [pid, part] : model.parts) {
+      const auto& mat = model.materials.at(part.mid);
+      if (model.add_erosions.count(mat.id))
+        refuse(model.add_erosions.at(mat.id).where, "MID", "element erosion (*MAT_ADD_EROSION)");
+      if (mat.plastic.fail > 0.0 || mat.plastic.tdel > 0.0)
+        refuse(mat.plastic.fail_where, mat.plastic.fail > 0.0 ? "FAIL" : "TDEL",
+               fmt::format("element erosion (failure of material {})", mat.id));
+    }
+    refuse(model.timestep.where, "", "element erosion");
+  }
   // Measured: with the bulk viscosity on, the hourglass energy of a 3-rank run of
   // rigidwall_switching_block.k drifts 0.36 % from one process after the first switch (2 ranks
   // and runs without viscosity agree to 1e-14). Refused until found (docs/parallel.md).

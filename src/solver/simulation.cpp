@@ -72,6 +72,7 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
   for (const auto& block : state_.beam_blocks) element_count_ += block.size();
   for (const auto& block : state_.discrete_blocks) element_count_ += block.size();
   check_structural_support(model_, state_);
+  erosion_.setup(model_, state_);  // before the contacts: erodible solids expose inner faces
   end_time_ = model.termination.endtim;
   end_cycle_ = model.termination.endcyc;
   if (end_time_ <= 0.0 && end_cycle_ <= 0) {
@@ -262,6 +263,11 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
                                                        std::string(output::kJntforcHeader),
                                                        options_.continuation.jntforc);
     }
+    if (erosion_.enabled()) {
+      erosion_csv_ = std::make_unique<output::CsvFile>(options_.output_directory / "erosion.csv",
+                                                       std::string(output::kErosionHeader),
+                                                       options_.continuation.erosion);
+    }
     if (!nodal_constraints_.welds.empty()) {
       swforc_schedule_.interval = default_interval(model.output.swforc_dt, span, 1000.0);
       swforc_csv_ = std::make_unique<output::CsvFile>(options_.output_directory / "swforc.csv",
@@ -335,7 +341,8 @@ void Simulation::initialize() {
     for (std::size_t r = 0; r < rot.size(); ++r) {
       if (body_of && body_of[rot.node[r]] >= 0) continue;
       const double I = rot.inertia[r];
-      sums[0] += 0.5 * I * (rot.w.x[r] * rot.w.x[r] + rot.w.y[r] * rot.w.y[r] + rot.w.z[r] * rot.w.z[r]);
+      sums[0] +=
+          0.5 * I * (rot.w.x[r] * rot.w.x[r] + rot.w.y[r] * rot.w.y[r] + rot.w.z[r] * rot.w.z[r]);
       sums[4] += I * rot.w.x[r];
       sums[5] += I * rot.w.y[r];
       sums[6] += I * rot.w.z[r];
@@ -617,7 +624,7 @@ void Simulation::run(const std::function<void(const Simulation&)>& on_progress) 
 void Simulation::flush_csv_files() {
   for (output::CsvFile* file :
        {matsum_csv_.get(), spcforc_csv_.get(), elout_csv_.get(), elout_shell_csv_.get(),
-        secforc_csv_.get(), jntforc_csv_.get(), swforc_csv_.get()}) {
+        secforc_csv_.get(), jntforc_csv_.get(), swforc_csv_.get(), erosion_csv_.get()}) {
     if (file) file->flush();
   }
   if (glstat_) glstat_->flush();
@@ -954,6 +961,7 @@ void Simulation::update_velocities() {
   energy_.internal_work +=
       sums[1] + rigid_sums.modal_damping_loss - rigid_sums.modal_stiffening_work;
   if (part_histories_) part_histories_->add_step_work(state_, rigid_, vp, dt_avg);  // matsum
+  if (erosion_.enabled()) erosion_.add_step_work(state_, vp, dt_avg);               // eroded energy
   if (!state_.discrete_blocks.empty()) add_discrete_work(state_, vp, dt_avg);  // glstat columns
   energy_.external_work +=
       sums[2] - sums[9] + reaction_work + rigid_sums.external_work + rigid_sums.modal_inertia_work;
@@ -1061,30 +1069,30 @@ std::array<double, 6> Simulation::update_rotations(double dt_avg) {
     if (f & 2) rot.w.y[r] = 0.0;
     if (f & 4) rot.w.z[r] = 0.0;
   }
-  out = deterministic_sum<6>(count, reduction_scratch_rotations_,
-                             [&](std::int64_t r, std::array<double, 6>& acc) {
-    const double wx = rot.w.x[r], wy = rot.w.y[r], wz = rot.w.z[r];
-    double dx = 0.5 * dt_avg * (rot.w_previous.x[r] + wx);
-    double dy = 0.5 * dt_avg * (rot.w_previous.y[r] + wy);
-    double dz = 0.5 * dt_avg * (rot.w_previous.z[r] + wz);
-    const std::int32_t i = rot.node[r];
-    if (modal_work && body_of && body_of[i] >= 0) {
-      // As for translations: the body's turn dt_avg w_mid plus the modes' R^n Psi_j s_mid, so
-      // the moments' work equals what the body and its modes received.
-      const Eigen::Vector3d& w_mid = rigid_.bodies[body_of[i]].mid_angular_velocity;
-      dx = dt_avg * (w_mid.x() + modal_work[3 * r]);
-      dy = dt_avg * (w_mid.y() + modal_work[3 * r + 1]);
-      dz = dt_avg * (w_mid.z() + modal_work[3 * r + 2]);
-    }
-    acc[1] += rot.m_int.x[r] * dx + rot.m_int.y[r] * dy + rot.m_int.z[r] * dz;
-    acc[2] += rot.m_ext.x[r] * dx + rot.m_ext.y[r] * dy + rot.m_ext.z[r] * dz;
-    if (body_of && body_of[i] >= 0) return;  // the body holds its kinetic energy and momentum
-    const double I = rot.inertia[r];
-    acc[0] += 0.5 * I * (wx * wx + wy * wy + wz * wz);
-    acc[3] += I * wx;
-    acc[4] += I * wy;
-    acc[5] += I * wz;
-  });
+  out = deterministic_sum<6>(
+      count, reduction_scratch_rotations_, [&](std::int64_t r, std::array<double, 6>& acc) {
+        const double wx = rot.w.x[r], wy = rot.w.y[r], wz = rot.w.z[r];
+        double dx = 0.5 * dt_avg * (rot.w_previous.x[r] + wx);
+        double dy = 0.5 * dt_avg * (rot.w_previous.y[r] + wy);
+        double dz = 0.5 * dt_avg * (rot.w_previous.z[r] + wz);
+        const std::int32_t i = rot.node[r];
+        if (modal_work && body_of && body_of[i] >= 0) {
+          // As for translations: the body's turn dt_avg w_mid plus the modes' R^n Psi_j s_mid, so
+          // the moments' work equals what the body and its modes received.
+          const Eigen::Vector3d& w_mid = rigid_.bodies[body_of[i]].mid_angular_velocity;
+          dx = dt_avg * (w_mid.x() + modal_work[3 * r]);
+          dy = dt_avg * (w_mid.y() + modal_work[3 * r + 1]);
+          dz = dt_avg * (w_mid.z() + modal_work[3 * r + 2]);
+        }
+        acc[1] += rot.m_int.x[r] * dx + rot.m_int.y[r] * dy + rot.m_int.z[r] * dz;
+        acc[2] += rot.m_ext.x[r] * dx + rot.m_ext.y[r] * dy + rot.m_ext.z[r] * dz;
+        if (body_of && body_of[i] >= 0) return;  // the body holds its kinetic energy and momentum
+        const double I = rot.inertia[r];
+        acc[0] += 0.5 * I * (wx * wx + wy * wy + wz * wz);
+        acc[3] += I * wx;
+        acc[4] += I * wy;
+        acc[5] += I * wz;
+      });
   return out;
 }
 
@@ -1127,6 +1135,9 @@ void Simulation::write_output_if_due(bool force) {
     row.added_mass = mass_scaling_.added_mass;
     row.mass_scaling_work = mass_scaling_.mass_scaling_work;
     row.bulk_viscosity_energy = energy_.bulk_viscosity;
+    row.eroded_internal_energy = energy_.eroded_internal;
+    row.eroded_kinetic_energy = energy_.eroded_kinetic;
+    row.eroded_elements = static_cast<double>(erosion_.ledger().elements);
     for (const auto& block : state_.discrete_blocks) {
       row.spring_energy += block.spring_energy;
       row.damper_energy += block.damper_energy;
@@ -1345,7 +1356,52 @@ void Simulation::compute_internal_forces() {
     });
   }
   compute_structural_forces();
+  if (erosion_.enabled()) erode_failed_elements();
   gather_internal_forces(true);
+}
+
+// Failed elements leave the model before their forces are gathered (solver/erosion.hpp): the
+// step minimum is taken again without them, contact drops their segments and exposes what they
+// covered, and each deletion is a row of erosion.csv.
+void Simulation::erode_failed_elements() {
+  const std::int64_t eroded = erosion_.erode_failed_elements(
+      state_, state_.time, rigid_.empty() ? nullptr : &rigid_.body_of_node);
+  energy_.eroded_internal = erosion_.ledger().internal_energy;
+  energy_.eroded_kinetic = erosion_.ledger().kinetic_energy;
+  if (eroded == 0) return;
+  if (erosion_csv_) {
+    for (const ErosionEvent& event : erosion_.events()) {
+      erosion_csv_->write_text(fmt::format("{:.9g},{},{},{},\"{}\"\n", event.time, event.part,
+                                           event.element, event.family, event.criterion));
+    }
+  }
+  // The step the remaining elements allow (the kernels' minimum included the deleted ones).
+  const element::NodalView view = view_of(state_.nodes);
+  element_dt_ = std::numeric_limits<double>::infinity();
+  for (const auto& block : state_.hex_blocks) {
+    if (block.rigid) continue;
+    const element::KernelResult r = element::block_critical_timestep(block, view);
+    if (r.min_dt < element_dt_) {
+      element_dt_ = r.min_dt;
+      if (r.min_dt_element >= 0) controlling_element_ = block.element_id[r.min_dt_element];
+    }
+  }
+  for (const auto& block : state_.shell_blocks) {
+    if (block.rigid) continue;
+    const element::KernelResult r = element::shell_critical_timestep(block, view);
+    if (r.min_dt < element_dt_) {
+      element_dt_ = r.min_dt;
+      if (r.min_dt_element >= 0) controlling_element_ = block.element_id[r.min_dt_element];
+    }
+  }
+  for (const auto& block : state_.beam_blocks) {
+    if (block.rigid) continue;
+    const element::KernelResult r = element::beam_critical_timestep(block, view);
+    if (r.min_dt < element_dt_) {
+      element_dt_ = r.min_dt;
+      if (r.min_dt_element >= 0) controlling_element_ = block.element_id[r.min_dt_element];
+    }
+  }
 }
 
 // f_int from every family: the element blocks' force slots (summed over the ranks), then the

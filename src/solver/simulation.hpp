@@ -21,6 +21,7 @@
 #include "output/writers.hpp"
 #include "solver/boundary.hpp"
 #include "solver/build_state.hpp"
+#include "solver/erosion.hpp"
 #include "solver/flexible_bodies.hpp"
 #include "solver/joints.hpp"
 #include "solver/mass_scaling.hpp"
@@ -75,12 +76,20 @@ struct EnergyAccount {
   // Elastic energy 1/2 w^2 q^2 of the modes of flexible bodies now (their kinetic energy is in
   // `kinetic`, modal damping losses in internal_work).
   double modal_elastic = 0.0;
+  // Element erosion (solver/erosion.hpp): the work of the deleted elements' forces (part of
+  // internal_work, reported apart) and the kinetic energy of the removed nodes (no longer in
+  // `kinetic`, so added to the total).
+  double eroded_internal = 0.0;
+  double eroded_kinetic = 0.0;
   double momentum[3] = {0, 0, 0};
   double angular_momentum[3] = {0, 0, 0};
 
-  double internal() const { return internal_work - hourglass - bulk_viscosity + modal_elastic; }
+  double internal() const {
+    return internal_work - hourglass - bulk_viscosity + modal_elastic - eroded_internal;
+  }
   double total() const {
-    return kinetic + internal_work + modal_elastic + switch_energy + contact_energy;
+    return kinetic + internal_work + modal_elastic + switch_energy + contact_energy +
+           eroded_kinetic;
   }
   double ratio() const {
     const double reference = initial_total + external_work;
@@ -171,6 +180,8 @@ class Simulation {
   const PhaseTimes& phase_times() const { return phase_times_; }
 
   const State& state() const { return state_; }
+  // Element erosion: criteria, ledger, the last cycle's deletions (solver/erosion.hpp).
+  const Erosion& erosion() const { return erosion_; }
   State& mutable_state() { return state_; }
   const EnergyAccount& energy() const { return energy_; }
   double end_time() const { return end_time_; }
@@ -216,6 +227,8 @@ class Simulation {
   void write_output_if_due(bool force);
   void update_positions();         // x^{n+1} = x^n + dt v^{n+1/2}
   void compute_internal_forces();  // element kernels at n+1, assembly, element time step
+  // Deletes the elements that failed in this cycle's kernels (before their forces are gathered).
+  void erode_failed_elements();
   void compute_contact_forces();   // contact at x^{n+1} (contact/contact.hpp)
   void compute_external_forces();  // loads at t^{n+1}, plus the contact forces
   void scale_masses_if_needed();   // *CONTROL_TIMESTEP DT2MS (solver/mass_scaling.hpp)
@@ -263,6 +276,8 @@ class Simulation {
   JointSystem joints_;  // *CONSTRAINED_JOINT_... (penalty springs between node pairs)
   NodalConstraints nodal_constraints_;  // *CONSTRAINED_SPOTWELD, *CONSTRAINED_NODE_SET
   MassScaling mass_scaling_;  // *CONTROL_TIMESTEP DT2MS; inactive without it
+  Erosion erosion_;           // failure criteria and deleted elements; inert without them
+  std::unique_ptr<output::CsvFile> erosion_csv_;  // erosion.csv: one row per deleted element
   std::vector<model::Warning> warnings_;
   Boundary boundary_;
   contact::RigidWallSystem walls_;

@@ -73,6 +73,18 @@ inline std::string plastic(double end_time) {
   return s;
 }
 
+// The plastic deck with failure: part 1 FS 0.1, part 2 FAIL 0.12 (elements erode before and
+// after the dump the test restarts from; erosion times, element work, ledger, removed nodes).
+inline std::string eroding(double end_time) {
+  std::string s = plastic(end_time);
+  auto replace = [&s](const std::string& from, const std::string& to) {
+    s.replace(s.find(from), from.size(), to);
+  };
+  replace("40.4,5.0,0,1\n", "40.4,5.0,0.1,1\n");
+  replace("2,7.85e-9,210000.0,0.3,0,0\n", "2,7.85e-9,210000.0,0.3,0,0,0.12\n");
+  return s;
+}
+
 // The deformable deck with rubber: part 1 (ELFORM 1, IHQ 6) *MAT_MOONEY-RIVLIN_RUBBER, part 2
 // (ELFORM 2) a three-term *MAT_OGDEN_RUBBER, both about as stiff as steel in shear so that the
 // deck's loads keep the motion moderate; the history is b - I at every stress point.

@@ -218,6 +218,9 @@ const Case kCases[] = {
     {"rigid_curvilinear", restart_decks::spinning_rigid(4e-5, 2), "", {}, 6e-6, 2},
     {"plastic", restart_decks::plastic(4e-5), "", {}, 6e-6, 1},
     {"plastic", restart_decks::plastic(4e-5), "", {}, 6e-6, 2},
+    // Erosion: elements deleted before and after the dump (erosion.csv continued).
+    {"erosion", restart_decks::eroding(4e-5), "", {}, 6e-6, 1},
+    {"erosion", restart_decks::eroding(4e-5), "", {}, 6e-6, 2},
     {"rubber", restart_decks::rubber(4e-5), "", {}, 6e-6, 1},
     {"rubber", restart_decks::rubber(4e-5), "", {}, 6e-6, 2},
     {"johnson_cook", restart_decks::johnson_cook(4e-5), "", {}, 6e-6, 1},
@@ -288,6 +291,24 @@ TEST(Restart, MassScaledDeckAddsMassBeforeAndAfterTheDump) {
   EXPECT_GT(cycles_at_dump, 0);
   EXPECT_GT(sim.mass_scaling().rescaled_cycles, cycles_at_dump);
   EXPECT_GT(sim.mass_scaling().added_mass, at_dump);
+}
+
+// The erosion case deletes elements before the dump it restarts from (12 us) and after it.
+TEST(Restart, ErodingDeckDeletesElementsBeforeAndAfterTheDump) {
+  solver::Simulation sim(read(restart_decks::eroding(4e-5)), {});
+  while (sim.state().time < 1.2e-5) sim.cycle();
+  const auto at_dump = sim.erosion().ledger();
+  while (!sim.finished()) sim.cycle();
+  const auto& at_end = sim.erosion().ledger();
+  std::printf(
+      "eroding restart deck: %lld elements (%lld nodes) eroded by the dump, %lld (%lld) "
+      "at the end; energy ratio %.9f\n",
+      static_cast<long long>(at_dump.elements), static_cast<long long>(at_dump.nodes),
+      static_cast<long long>(at_end.elements), static_cast<long long>(at_end.nodes),
+      sim.energy().ratio());
+  EXPECT_GT(at_dump.elements, 0);
+  EXPECT_GT(at_end.elements, at_dump.elements);
+  EXPECT_NEAR(sim.energy().ratio(), 1.0, 1e-2);
 }
 
 // The plastic case flows plastically before the dump it restarts from (12 us) and after it,

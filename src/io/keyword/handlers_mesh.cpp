@@ -629,11 +629,7 @@ void mat_plastic_kinematic(const Block& block, ReaderContext& context) {
                       "Cowper-Symonds rate effects need both SRC and SRP (or neither)");
     if (p.fail < 0.0)
       throw c2->error("FS", fmt::format("failure strain {} must not be negative", p.fail));
-    // Element deletion is not implemented yet: a failure strain would change the physics.
-    if (p.fail > 0.0)
-      throw c2->error("FS", fmt::format("failure strain {} asks for element deletion, which is "
-                                        "not supported yet (leave FS blank or 0)",
-                                        p.fail));
+    p.fail_where = c2->location();
     if (vp != 0.0 && vp != 1.0)
       throw c2->error("VP",
                       fmt::format("VP {} is not 0 (scale yield stress) or 1 (viscoplastic)", vp));
@@ -665,15 +661,12 @@ void mat_piecewise_linear_plasticity(const Block& block, ReaderContext& context)
   if (p.fail < 0.0)
     throw card.error("FAIL",
                      "a negative FAIL calls a user failure subroutine, which is not supported");
-  // Element deletion is not implemented yet: a failure strain would change the physics.
-  if (p.fail > 0.0)
-    throw card.error("FAIL", fmt::format("plastic strain to failure {} asks for element deletion, "
-                                         "which is not supported yet (leave FAIL blank, 0 or "
-                                         "10^20)",
-                                         p.fail));
-  if (card.real(7, "TDEL", 0.0) != 0.0)
-    throw card.error("TDEL",
-                     "element deletion by time step (TDEL) is not supported (leave it blank)");
+  p.tdel = card.real(7, "TDEL", 0.0);
+  if (!(p.tdel >= 0.0) || !std::isfinite(p.tdel))
+    throw card.error("TDEL", fmt::format("minimum time step for element deletion {} must be a "
+                                         "non-negative number",
+                                         p.tdel));
+  p.fail_where = card.location();
   p.card2 = p.card3 = m.where;
   if (const auto c2 = cursor.next_optional(n + 1, kEightByTen)) {
     p.card2 = c2->location();

@@ -42,6 +42,7 @@ const std::vector<KeywordEntry>& table() {
       {"*MAT_036", mat_three_parameter_barlat, {"TITLE"}},
       {"*MAT_JOHNSON_COOK", mat_johnson_cook, {"TITLE"}},
       {"*MAT_015", mat_johnson_cook, {"TITLE"}},
+      {"*MAT_ADD_EROSION", mat_add_erosion, {"TITLE"}},
       {"*EOS_LINEAR_POLYNOMIAL", eos_linear_polynomial, {"TITLE"}},
       {"*EOS_001", eos_linear_polynomial, {"TITLE"}},
       {"*HOURGLASS", hourglass, {"TITLE"}},

@@ -1,0 +1,525 @@
+// Element erosion: criteria, deletion, node removal, ledger (erosion.hpp; docs/materials.md,
+// "Failure and erosion").
+#include "solver/erosion.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <string_view>
+
+#include "model/error.hpp"
+#include "model/error_context.hpp"
+
+namespace rf::solver {
+
+namespace {
+
+using model::context_of;
+
+const material::HistoryArray* history_named(const std::vector<material::HistoryArray>& history,
+                                            std::string_view name) {
+  for (const auto& h : history)
+    if (h.field.name == name) return &h;
+  return nullptr;
+}
+
+// Stress invariants at one point from the six Voigt components (xx, yy, zz, xy, yz, zx).
+struct PointStress {
+  double pressure;   // -tr(sigma)/3, positive in compression
+  double von_mises;  // sqrt(3/2 s:s), s the deviator
+  double s[6];
+};
+
+PointStress point_stress(const double s[6]) {
+  PointStress p{};
+  for (int c = 0; c < 6; ++c) p.s[c] = s[c];
+  const double mean = (s[0] + s[1] + s[2]) / 3.0;
+  p.pressure = -mean;
+  const double d0 = s[0] - mean, d1 = s[1] - mean, d2 = s[2] - mean;
+  p.von_mises = std::sqrt(
+      1.5 * (d0 * d0 + d1 * d1 + d2 * d2 + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5])));
+  return p;
+}
+
+double largest_principal(const double s[6]) {
+  Eigen::Matrix3d m;
+  m << s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2];
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(m, Eigen::EigenvaluesOnly);
+  return solver.eigenvalues()(2);
+}
+
+// How many *MAT_ADD_EROSION criteria a point meets (element-level ones, the volumetric strain
+// and the failure time, count at every point).
+int criteria_met(const element::ErosionCriteria& c, const double s[6], double log_volume_ratio,
+                 double time) {
+  int met = 0;
+  if (c.has_max_pressure || c.has_min_pressure || c.has_von_mises) {
+    const PointStress p = point_stress(s);
+    if (c.has_max_pressure && p.pressure >= c.max_pressure) ++met;
+    if (c.has_min_pressure && p.pressure <= c.min_pressure) ++met;
+    if (c.has_von_mises && p.von_mises >= c.von_mises) ++met;
+  }
+  if (c.has_principal_stress && largest_principal(s) >= c.principal_stress) ++met;
+  if (c.has_volumetric_strain) {
+    const double v = c.volumetric_strain;
+    if ((v > 0.0 && log_volume_ratio >= v) || (v < 0.0 && log_volume_ratio <= v)) ++met;
+  }
+  if (c.has_failure_time && time >= c.failure_time) ++met;
+  return met;
+}
+
+// Points that must fail before the element is deleted by *MAT_ADD_EROSION (NUMFIP).
+int required_points(const element::ErosionCriteria& c, int points) {
+  if (c.failed_points > 0.0)
+    return std::clamp(static_cast<int>(std::ceil(c.failed_points - 1e-9)), 1, points);
+  const double share = -c.failed_points / 100.0 * points;
+  return std::clamp(static_cast<int>(std::ceil(share - 1e-9)), 1, points);
+}
+
+// Per family: the stress of point q of element e as six Voigt components, the points, the
+// element's force slot size, and the rule of the material's own criterion.
+void voigt_of(const element::HexBlock& b, std::size_t e, int q, double s[6]) {
+  const double* p = &b.stress[6 * (static_cast<std::size_t>(b.points_per_element()) * e + q)];
+  for (int c = 0; c < 6; ++c) s[c] = p[c];
+}
+void voigt_of(const element::ShellBlock& b, std::size_t e, int q, double s[6]) {
+  // Co-rotational frame, plane stress: xx, yy, xy, yz, zx; sigma_zz = 0.
+  const double* p =
+      &b.stress[element::kShellStress * (static_cast<std::size_t>(b.points_per_element()) * e + q)];
+  s[0] = p[0];
+  s[1] = p[1];
+  s[2] = 0.0;
+  s[3] = p[2];
+  s[4] = p[3];
+  s[5] = p[4];
+}
+void voigt_of(const element::BeamBlock& b, std::size_t e, int q, double s[6]) {
+  const double sigma = b.stress[static_cast<std::size_t>(b.points_per_element()) * e + q];
+  s[0] = sigma;
+  s[1] = s[2] = s[3] = s[4] = s[5] = 0.0;
+}
+
+int slot_size(const element::HexBlock& b) {
+  return 3 * b.nodes_per_element();
+}
+int slot_size(const element::ShellBlock&) {
+  return element::kShellSlot;
+}
+int slot_size(const element::BeamBlock&) {
+  return element::kBeamSlot;
+}
+int nodes_per(const element::HexBlock& b) {
+  return b.nodes_per_element();
+}
+int nodes_per(const element::ShellBlock&) {
+  return 4;
+}
+int nodes_per(const element::BeamBlock&) {
+  return 2;
+}
+const char* family_of(const element::HexBlock&) {
+  return "solid";
+}
+const char* family_of(const element::ShellBlock&) {
+  return "shell";
+}
+const char* family_of(const element::BeamBlock&) {
+  return "beam";
+}
+
+// The plastic-strain rule: hexahedra and trusses fail with one point, shells when every point
+// through the thickness at one in-plane point has failed (failed layers carry no stress, so the
+// element goes when the last layer does, as LS-DYNA's *MAT_024 shells), Hughes-Liu beams when
+// every section point has.
+bool plastic_rule(const element::HexBlock&, const double* eps, int points, double limit) {
+  for (int q = 0; q < points; ++q)
+    if (eps[q] >= limit) return true;
+  return false;
+}
+bool plastic_rule(const element::ShellBlock& b, const double* eps, int, double limit) {
+  for (int i = 0; i < b.in_plane_points(); ++i) {
+    int failed = 0;
+    for (int k = 0; k < b.nip; ++k) failed += eps[i * b.nip + k] >= limit ? 1 : 0;
+    if (failed == b.nip) return true;
+  }
+  return false;
+}
+bool plastic_rule(const element::BeamBlock&, const double* eps, int points, double limit) {
+  for (int q = 0; q < points; ++q)
+    if (eps[q] < limit) return false;
+  return points > 0;
+}
+
+double log_volume_ratio(const element::HexBlock& b, std::size_t e) {
+  return b.volume0[e] > 0.0 && b.volume[e] > 0.0 ? std::log(b.volume[e] / b.volume0[e]) : 0.0;
+}
+double log_volume_ratio(const element::ShellBlock&, std::size_t) {
+  return 0.0;
+}
+double log_volume_ratio(const element::BeamBlock&, std::size_t) {
+  return 0.0;
+}
+
+enum FailureCode : std::uint8_t {
+  kAlive = 0,
+  kPlasticStrain = 1,
+  kDamage = 2,
+  kAddErosion = 3,
+  kTimeStep = 4,
+};
+
+template <class Block>
+std::uint8_t evaluate(const Block& b, std::size_t e, double time, const double* eps,
+                      const double* damage, const double* step) {
+  const element::ErosionCriteria& c = b.erosion.criteria;
+  const int points = b.points_per_element();
+  const std::size_t first = static_cast<std::size_t>(points) * e;
+  if (c.plastic_strain > 0.0 && eps && plastic_rule(b, eps + first, points, c.plastic_strain))
+    return kPlasticStrain;
+  if (c.damage && damage) {
+    for (int q = 0; q < points; ++q)
+      if (damage[first + static_cast<std::size_t>(q)] >= 1.0) return kDamage;
+  }
+  if (c.add_erosion() && points > 0) {
+    const double lv = log_volume_ratio(b, e);
+    int failed = 0;
+    for (int q = 0; q < points; ++q) {
+      double s[6];
+      voigt_of(b, e, q, s);
+      if (criteria_met(c, s, lv, time) >= c.criteria_at_once) ++failed;
+    }
+    if (failed >= required_points(c, points)) return kAddErosion;
+  }
+  if (c.tdel > 0.0 && step && step[e] > 0.0 && step[e] < c.tdel) return kTimeStep;
+  return kAlive;
+}
+
+template <class Block>
+std::string describe(const Block& b, std::size_t e, std::uint8_t code, double time,
+                     const double* eps, const double* damage, const double* step) {
+  const element::ErosionCriteria& c = b.erosion.criteria;
+  const int points = b.points_per_element();
+  const std::size_t first = static_cast<std::size_t>(points) * e;
+  switch (code) {
+    case kPlasticStrain: {
+      double largest = 0.0;
+      for (int q = 0; q < points; ++q) largest = std::max(largest, eps[first + q]);
+      return fmt::format("plastic strain {:.6g} >= {:.6g}", largest, c.plastic_strain);
+    }
+    case kDamage:
+      return "Johnson-Cook damage reached 1";
+    case kTimeStep:
+      return fmt::format("element step {:.6g} < TDEL {:.6g}", step[e], c.tdel);
+    case kAddErosion: {
+      double s[6];
+      voigt_of(b, e, 0, s);
+      const PointStress p = point_stress(s);
+      return fmt::format(
+          "*MAT_ADD_EROSION (point 1: pressure {:.6g}, von Mises {:.6g}, ln V/V0 "
+          "{:.6g}, time {:.6g})",
+          p.pressure, p.von_mises, log_volume_ratio(b, e), time);
+    }
+    default:
+      return "";
+  }
+}
+
+const model::Material& material_of(const model::Model& model, model::Id pid) {
+  return model.materials.at(model.parts.at(pid).mid);
+}
+
+}  // namespace
+
+void Erosion::setup(const model::Model& model, State& state) {
+  for (const auto& [mid, card] : model.add_erosions) {
+    if (!model.materials.count(mid))
+      throw InputError(context_of(card.where, "MID"),
+                       fmt::format("material {} is not defined (*MAT_ADD_EROSION adds failure "
+                                   "criteria to an existing *MAT_)",
+                                   mid));
+    if (model.materials.at(mid).kind == model::MaterialKind::Rigid)
+      throw InputError(context_of(card.where, "MID"),
+                       fmt::format("material {} is *MAT_RIGID: rigid parts cannot erode", mid));
+  }
+  auto resolve = [&](auto& block, const char* family) {
+    if (block.rigid) return;  // *MAT_RIGID (criteria on a rigid material are refused above)
+    const model::Material& mat = material_of(model, block.part_id);
+    element::ErosionCriteria c;
+    if (mat.kind == model::MaterialKind::PlasticKinematic ||
+        mat.kind == model::MaterialKind::PiecewiseLinearPlasticity) {
+      c.plastic_strain = mat.plastic.fail;
+      c.tdel = mat.plastic.tdel;
+    }
+    if (const auto it = model.add_erosions.find(mat.id); it != model.add_erosions.end()) {
+      const model::AddErosion& a = it->second;
+      auto take = [](const std::optional<double>& v, bool& has, double& value) {
+        has = v.has_value();
+        value = v.value_or(0.0);
+      };
+      take(a.mxpres, c.has_max_pressure, c.max_pressure);
+      take(a.mnpres, c.has_min_pressure, c.min_pressure);
+      take(a.sigp1, c.has_principal_stress, c.principal_stress);
+      take(a.sigvm, c.has_von_mises, c.von_mises);
+      take(a.voleps, c.has_volumetric_strain, c.volumetric_strain);
+      take(a.failtm, c.has_failure_time, c.failure_time);
+      c.criteria_at_once = a.ncs;
+      c.failed_points = a.numfip;
+      const std::string_view f = family;
+      if (c.has_volumetric_strain && f != "solid")
+        throw InputError(context_of(a.where, "VOLEPS"),
+                         fmt::format("part {} ({} elements) uses material {}: the volumetric "
+                                     "strain criterion needs solid elements (shells and beams "
+                                     "keep their thickness and section)",
+                                     block.part_id, family, mat.id));
+      if (c.failed_points < 0.0 && f != "shell")
+        throw InputError(context_of(a.where, "NUMFIP"),
+                         fmt::format("a negative NUMFIP (percentage of points) applies to shells "
+                                     "only; part {} has {} elements",
+                                     block.part_id, family));
+      if (c.add_erosion() && block.points_per_element() == 0)
+        throw InputError(context_of(a.where, "MID"),
+                         fmt::format("part {} (resultant beams, ELFORM 2) has no stress points "
+                                     "for the *MAT_ADD_EROSION criteria (use ELFORM 1 or 3)",
+                                     block.part_id));
+      if (c.criteria_at_once > 1) {
+        const int defined = c.has_max_pressure + c.has_min_pressure + c.has_principal_stress +
+                            c.has_von_mises + c.has_volumetric_strain + c.has_failure_time;
+        if (defined < c.criteria_at_once)
+          throw InputError(context_of(a.where, "NCS"),
+                           fmt::format("NCS {} asks for more criteria at once than the {} this "
+                                       "card defines: no element could ever fail",
+                                       c.criteria_at_once, defined));
+      }
+    }
+    block.erosion.criteria = c;
+    block.erosion.enabled = c.plastic_strain > 0.0 || c.damage || c.tdel > 0.0 || c.add_erosion();
+    if (block.erosion.enabled) {
+      block.erosion.allocate(block.size());
+      enabled_ = true;
+    }
+  };
+  for (auto& b : state.hex_blocks) {
+    if (!b.rigid && b.order > 1) {
+      const model::Material& mat = material_of(model, b.part_id);
+      if (const auto it = model.add_erosions.find(mat.id); it != model.add_erosions.end())
+        throw InputError(context_of(it->second.where, "MID"),
+                         fmt::format("part {} has order {} elements (*CHANGE_P-ORDER), which do "
+                                     "not erode",
+                                     b.part_id, b.order));
+      continue;
+    }
+    resolve(b, "solid");
+  }
+  for (auto& b : state.shell_blocks) resolve(b, "shell");
+  for (auto& b : state.beam_blocks) resolve(b, "beam");
+  if (!enabled_) return;
+
+  const std::size_t n = state.nodes.size();
+  live_elements_.assign(n, 0);
+  erodible_node_.assign(n, 0);
+  auto count = [&](const auto& block) {
+    for (const std::int32_t node : block.conn) {
+      if (node < 0) continue;
+      ++live_elements_[static_cast<std::size_t>(node)];
+      if (block.erosion.enabled) erodible_node_[static_cast<std::size_t>(node)] = 1;
+    }
+  };
+  for (const auto& b : state.hex_blocks) count(b);
+  for (const auto& b : state.shell_blocks) count(b);
+  for (const auto& b : state.beam_blocks) count(b);
+  for (const auto& b : state.discrete_blocks)
+    for (const std::int32_t node : b.conn)
+      if (node >= 0) ++live_elements_[static_cast<std::size_t>(node)];
+  state.nodes.removed.assign(n, 0);
+}
+
+void Erosion::add_step_work(State& state, const Vec3Array& vp, double dt_avg) {
+  if (!enabled_) return;
+  const NodalState& nodes = state.nodes;
+  const RotationalState& rot = state.rotations;
+  const double h = 0.5 * dt_avg;
+  auto run = [&](auto& block) {
+    if (!block.erosion.enabled || block.rigid || block.force.empty()) return;
+    const int npe = nodes_per(block);
+    const int slot = slot_size(block);
+    const int per_node = slot / npe;  // 3 (forces) or 6 (forces and moments)
+    const std::int64_t items = block.owned.count(static_cast<std::int64_t>(block.size()));
+#pragma omp parallel for schedule(static)
+    for (std::int64_t i = 0; i < items; ++i) {
+      const std::size_t e = static_cast<std::size_t>(block.owned.element(i));
+      const double* f = &block.force[static_cast<std::size_t>(slot) * e];
+      double work = 0.0;
+      for (int a = 0; a < npe; ++a) {
+        const std::size_t node =
+            static_cast<std::size_t>(block.conn[static_cast<std::size_t>(npe) * e + a]);
+        const double* fa = f + per_node * a;
+        work +=
+            h * (fa[0] * (vp.x[node] + nodes.v.x[node]) + fa[1] * (vp.y[node] + nodes.v.y[node]) +
+                 fa[2] * (vp.z[node] + nodes.v.z[node]));
+        if constexpr (!std::is_same_v<std::remove_cvref_t<decltype(block)>, element::HexBlock>) {
+          if (block.rotation_conn.empty()) continue;  // trusses of a model without rotations
+          const std::int32_t r = block.rotation_conn[static_cast<std::size_t>(npe) * e + a];
+          if (r < 0) continue;
+          const std::size_t ur = static_cast<std::size_t>(r);
+          work += h * (fa[3] * (rot.w_previous.x[ur] + rot.w.x[ur]) +
+                       fa[4] * (rot.w_previous.y[ur] + rot.w.y[ur]) +
+                       fa[5] * (rot.w_previous.z[ur] + rot.w.z[ur]));
+        }
+      }
+      block.erosion.work[e] += work;
+    }
+  };
+  for (auto& b : state.hex_blocks) run(b);
+  for (auto& b : state.shell_blocks) run(b);
+  for (auto& b : state.beam_blocks) run(b);
+}
+
+std::int64_t Erosion::erode_failed_elements(State& state, double time,
+                                            const std::vector<std::int32_t>* body_of) {
+  events_.clear();
+  if (!enabled_) return 0;
+  std::int64_t eroded_now = 0;
+  const element::NodalView view = view_of(state.nodes);
+  auto run = [&](auto& block) {
+    if (!block.erosion.enabled || block.rigid) return;
+    const element::ErosionCriteria& c = block.erosion.criteria;
+    const auto* eps_array = history_named(block.history, "effective_plastic_strain");
+    const auto* damage_array = history_named(block.history, "damage");
+    const double* eps = eps_array ? eps_array->values.data() : nullptr;
+    const double* damage = damage_array ? damage_array->values.data() : nullptr;
+    const double* step = nullptr;
+    if (c.tdel > 0.0) {
+      using B = std::remove_cvref_t<decltype(block)>;
+      if constexpr (std::is_same_v<B, element::HexBlock>)
+        element::hex_critical_timestep(block, view, &scratch_steps_);
+      else if constexpr (std::is_same_v<B, element::ShellBlock>)
+        element::shell_critical_timestep(block, view, &scratch_steps_);
+      else
+        element::beam_critical_timestep(block, view, &scratch_steps_);
+      step = scratch_steps_.data();
+    }
+    const std::int64_t items = block.owned.count(static_cast<std::int64_t>(block.size()));
+    // Failures are rare: each thread scans its share, the elements found are then deleted in
+    // ascending order on one thread (the same result for any thread count).
+    std::int64_t first_failed = items;
+#pragma omp parallel for schedule(static) reduction(min : first_failed)
+    for (std::int64_t i = 0; i < items; ++i) {
+      const std::size_t e = static_cast<std::size_t>(block.owned.element(i));
+      if (evaluate(block, e, time, eps, damage, step) != kAlive)
+        first_failed = std::min(first_failed, i);
+    }
+    if (first_failed == items) return;
+    std::vector<std::size_t> failed;
+    for (std::int64_t i = first_failed; i < items; ++i) {
+      const std::size_t e = static_cast<std::size_t>(block.owned.element(i));
+      const std::uint8_t code = evaluate(block, e, time, eps, damage, step);
+      if (code == kAlive) continue;
+      failed.push_back(e);
+      events_.push_back({time, block.part_id, block.element_id[e], family_of(block),
+                         describe(block, e, code, time, eps, damage, step)});
+    }
+    const int slot = slot_size(block);
+    const int npe = nodes_per(block);
+    for (const std::size_t e : failed) {
+      block.erosion.time[e] = time;
+      ++block.erosion.count;
+      ledger_.internal_energy += block.erosion.work[e];
+      ++ledger_.elements;
+      std::fill_n(block.force.begin() + static_cast<std::ptrdiff_t>(slot * e), slot, 0.0);
+      const std::size_t points = static_cast<std::size_t>(block.points_per_element());
+      using B = std::remove_cvref_t<decltype(block)>;
+      if constexpr (std::is_same_v<B, element::HexBlock>) {
+        std::fill_n(block.stress.begin() + static_cast<std::ptrdiff_t>(6 * points * e), 6 * points,
+                    0.0);
+        if (!block.hourglass_state.empty())
+          std::fill_n(block.hourglass_state.begin() + static_cast<std::ptrdiff_t>(12 * e), 12, 0.0);
+      } else if constexpr (std::is_same_v<B, element::ShellBlock>) {
+        std::fill_n(
+            block.stress.begin() + static_cast<std::ptrdiff_t>(element::kShellStress * points * e),
+            element::kShellStress * points, 0.0);
+        std::fill_n(block.hourglass_state.begin() + static_cast<std::ptrdiff_t>(5 * e), 5, 0.0);
+      } else {
+        if (points > 0)
+          std::fill_n(block.stress.begin() + static_cast<std::ptrdiff_t>(points * e), points, 0.0);
+        std::fill_n(block.resultant.begin() + static_cast<std::ptrdiff_t>(6 * e), 6, 0.0);
+      }
+      for (int a = 0; a < npe; ++a) {
+        const std::int32_t node = block.conn[static_cast<std::size_t>(npe) * e + a];
+        if (node >= 0) --live_elements_[static_cast<std::size_t>(node)];
+      }
+    }
+    eroded_now += static_cast<std::int64_t>(failed.size());
+    own_live_elements(block);
+  };
+  for (auto& b : state.hex_blocks) run(b);
+  for (auto& b : state.shell_blocks) run(b);
+  for (auto& b : state.beam_blocks) run(b);
+  if (eroded_now > 0) remove_orphan_nodes(state, body_of, true);
+  return eroded_now;
+}
+
+void Erosion::remove_orphan_nodes(State& state, const std::vector<std::int32_t>* body_of,
+                                  bool book) {
+  NodalState& nodes = state.nodes;
+  RotationalState& rot = state.rotations;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (!erodible_node_[i] || live_elements_[i] > 0 || nodes.removed[i]) continue;
+    if (body_of && !body_of->empty() && (*body_of)[i] >= 0) continue;  // moves with its body
+    nodes.removed[i] = 1;
+    ++ledger_.nodes;
+    const double m = nodes.mass[i];
+    const double v[3] = {nodes.v.x[i], nodes.v.y[i], nodes.v.z[i]};
+    const double x[3] = {nodes.x.x[i], nodes.x.y[i], nodes.x.z[i]};
+    const std::int32_t r = rot.index(static_cast<std::int32_t>(i));
+    if (book) {
+      ledger_.kinetic_energy += 0.5 * m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+      for (int k = 0; k < 3; ++k) ledger_.momentum[k] += m * v[k];
+      ledger_.angular_momentum[0] += m * (x[1] * v[2] - x[2] * v[1]);
+      ledger_.angular_momentum[1] += m * (x[2] * v[0] - x[0] * v[2]);
+      ledger_.angular_momentum[2] += m * (x[0] * v[1] - x[1] * v[0]);
+      if (r >= 0) {
+        const std::size_t ur = static_cast<std::size_t>(r);
+        const double inertia = rot.inertia[ur];
+        const double w[3] = {rot.w.x[ur], rot.w.y[ur], rot.w.z[ur]};
+        ledger_.kinetic_energy += 0.5 * inertia * (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+        for (int k = 0; k < 3; ++k) ledger_.angular_momentum[k] += inertia * w[k];
+      }
+    }
+    nodes.mass[i] = 0.0;
+    nodes.v.x[i] = nodes.v.y[i] = nodes.v.z[i] = 0.0;
+    nodes.a.x[i] = nodes.a.y[i] = nodes.a.z[i] = 0.0;
+    if (r >= 0) {
+      const std::size_t ur = static_cast<std::size_t>(r);
+      rot.inertia[ur] = 0.0;
+      rot.w.x[ur] = rot.w.y[ur] = rot.w.z[ur] = 0.0;
+    }
+  }
+}
+
+void Erosion::restore(State& state, const std::vector<std::int32_t>* body_of) {
+  if (!enabled_) return;
+  auto recount = [&](auto& block) {
+    if (!block.erosion.enabled) return;
+    block.erosion.count = 0;
+    const int npe = nodes_per(block);
+    for (std::size_t e = 0; e < block.size(); ++e) {
+      if (!block.erosion.is_eroded(e)) continue;
+      ++block.erosion.count;
+      for (int a = 0; a < npe; ++a) {
+        const std::int32_t node = block.conn[static_cast<std::size_t>(npe) * e + a];
+        if (node >= 0) --live_elements_[static_cast<std::size_t>(node)];
+      }
+    }
+    own_live_elements(block);
+  };
+  for (auto& b : state.hex_blocks) recount(b);
+  for (auto& b : state.shell_blocks) recount(b);
+  for (auto& b : state.beam_blocks) recount(b);
+  const std::int64_t booked = ledger_.nodes;
+  remove_orphan_nodes(state, body_of, false);
+  ledger_.nodes = booked;  // the dump's count already has them
+}
+
+}  // namespace rf::solver

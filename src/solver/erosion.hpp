@@ -1,0 +1,95 @@
+// Element erosion (issue 17): the failure criteria of every block (material FS / FAIL / TDEL,
+// Johnson-Cook damage, *MAT_ADD_EROSION), the cycle phase that deletes failed elements, the
+// removal of nodes left without elements, and the ledger of what left the model (eroded
+// internal and kinetic energy, momentum). docs/materials.md, "Failure and erosion".
+//
+// The erosion phase runs after the element kernels of a cycle (stresses and history at
+// t^{n+1}) and before the element forces are gathered: an element that fails there contributes
+// no force from this cycle on. It leaves its block's ElementOwnership, so the kernels, the
+// step minimum and the assembly never see it again; the block keeps its slot and its ID.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "model/model.hpp"
+#include "solver/state.hpp"
+
+namespace rf::solver {
+
+// What has left the model since t = 0.
+struct ErosionLedger {
+  double internal_energy = 0.0;      // work the eroded elements' forces did before they left
+  double kinetic_energy = 0.0;       // 1/2 m v^2 (+ 1/2 I w^2) of the removed nodes at removal
+  std::array<double, 3> momentum{};  // m v of the removed nodes at removal
+  std::array<double, 3> angular_momentum{};  // x x m v (+ I w) of the removed nodes
+  std::int64_t elements = 0;
+  std::int64_t nodes = 0;
+};
+
+// One deleted element, for erosion.csv and the log.
+struct ErosionEvent {
+  double time = 0.0;
+  model::Id part = 0;
+  model::Id element = 0;
+  const char* family = "";  // "solid", "shell", "beam"
+  std::string criterion;    // e.g. "plastic strain 0.3012 >= FAIL 0.3"
+};
+
+class Erosion {
+ public:
+  // Resolves the criteria of every block from the model (sets ErosionState::criteria, enabled,
+  // allocates) and the node bookkeeping. Throws rf::InputError for criteria on a part that
+  // cannot carry them (naming the card). Cheap and inert when nothing can erode.
+  void setup(const model::Model& model, State& state);
+  bool enabled() const { return enabled_; }
+
+  // Per-element work of the erodible blocks for the step just taken, with the displacement the
+  // global balance uses (d = dt_avg (v^{n-1/2} + v^{n+1/2}) / 2, rotations alike). Deformable
+  // nodes only: erodible blocks are deformable while they compute forces.
+  void add_step_work(State& state, const Vec3Array& v_previous, double dt_avg);
+
+  // Evaluates the criteria at t^{n+1} on every computed element of the erodible blocks, deletes
+  // the failed ones (force slots and stresses zeroed, ownership updated) and removes the nodes
+  // left without any element (not rigid-body nodes: `body_of` per node or null). Returns the
+  // number of elements deleted now; their events are in events() until the next call.
+  std::int64_t erode_failed_elements(State& state, double time,
+                                     const std::vector<std::int32_t>* body_of);
+
+  // After a restart dump was read (the blocks' erosion times and the ledger): ownership, live
+  // element counts and removed nodes (mass, inertia) as the interrupted run had them.
+  void restore(State& state, const std::vector<std::int32_t>* body_of);
+
+  const ErosionLedger& ledger() const { return ledger_; }
+  ErosionLedger& ledger() { return ledger_; }
+  const std::vector<ErosionEvent>& events() const { return events_; }
+
+ private:
+  void remove_orphan_nodes(State& state, const std::vector<std::int32_t>* body_of, bool book);
+  bool enabled_ = false;
+  ErosionLedger ledger_;
+  std::vector<ErosionEvent> events_;
+  // Per node: elements of any family (hexahedra, shells, beams, springs) that reference it and
+  // have not eroded; a node of at least one erodible element whose count reaches zero is
+  // removed.
+  std::vector<std::int32_t> live_elements_;
+  std::vector<std::uint8_t> erodible_node_;
+  std::vector<double> scratch_steps_;  // TDEL: element steps of one block
+};
+
+// Rebuilds a block's ownership from its erosion times: every element not eroded (one process).
+template <class Block>
+void own_live_elements(Block& block) {
+  if (!block.erosion.enabled) return;
+  block.owned.partitioned = block.erosion.count > 0;
+  block.owned.elements.clear();
+  block.owned.batches.clear();
+  block.owned.batch_lanes = 0;
+  if (!block.owned.partitioned) return;
+  for (std::size_t e = 0; e < block.size(); ++e)
+    if (!block.erosion.is_eroded(e)) block.owned.elements.push_back(static_cast<std::int64_t>(e));
+}
+
+}  // namespace rf::solver

@@ -1,0 +1,391 @@
+// Element erosion (issue 17): elements deleted by their material's failure strain (FS, FAIL),
+// by TDEL, and by *MAT_ADD_EROSION. References that do not come from the erosion code:
+//  - the time of failure of a bar in uniaxial tension, from the kinematics of the pull and the
+//    hardening law: the element goes when ln(L/L0) - sigma/E reaches FAIL with
+//    sigma = SIGY + Ep FAIL (solids, shells, trusses);
+//  - the work per volume of that path, sigma*^2/(2E) + SIGY FAIL + Ep FAIL^2/2 (the eroded
+//    internal energy, up to the elastic volume change);
+//  - stress criteria reached at sigma = E ln(L/L0) in elastic uniaxial stress;
+//  - the element step L/c of a cube squeezed along one axis (nu = 0) against TDEL;
+//  - conservation of momentum, angular momentum and energy when elements and nodes leave a
+//    free body (what left is in the ledger).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "deck_builder.hpp"
+#include "model/error.hpp"
+
+namespace rf::test {
+namespace {
+
+constexpr double kRho = 7800.0, kE = 2.0e11, kNu = 0.3, kSigy = 2.0e8, kEtan = 2.0e9;
+constexpr double kEp = kE * kEtan / (kE - kEtan);
+constexpr double kFail = 0.2;
+constexpr double kPull = 0.1, kRamp = 0.1;  // m/s after a linear ramp of kRamp s
+
+// Displacement of the pulled face at time t (the ramp of curve 1), and its inverse.
+double pulled(double t) {
+  return t < kRamp ? kPull * t * t / (2.0 * kRamp) : kPull * (t - 0.5 * kRamp);
+}
+double time_of_displacement(double u) {
+  const double at_ramp_end = pulled(kRamp);
+  return u < at_ramp_end ? std::sqrt(2.0 * kRamp * u / kPull) : u / kPull + 0.5 * kRamp;
+}
+
+// Analytic failure of a unit bar pulled in uniaxial stress: time and work per reference volume.
+// The work is int sigma (V/V0) d eps along the path (elastic to SIGY/E, then linear hardening,
+// d eps = (1 + Ep/E) d eps_p), with V/V0 = exp(volume_exponent(sigma, eps_p)): the element's
+// own volume law (solids: elastic dilatation only; shells: fixed thickness; trusses: fixed
+// area). Midpoint rule, 2 x 20000 points.
+struct BarFailure {
+  double time, work;
+};
+template <class VolumeExponent>
+BarFailure bar_failure(double length, VolumeExponent volume_exponent) {
+  const double stress = kSigy + kEp * kFail;
+  const double strain = kFail + stress / kE;  // ln(L/L0) at failure
+  const double time = time_of_displacement(length * (std::exp(strain) - 1.0));
+  double work = 0.0;
+  const int steps = 20000;
+  const double ey = kSigy / kE;
+  for (int i = 0; i < steps; ++i) {
+    const double sigma = kE * (i + 0.5) * ey / steps;
+    work += sigma * std::exp(volume_exponent(sigma, 0.0)) * ey / steps;
+  }
+  for (int i = 0; i < steps; ++i) {
+    const double ep = (i + 0.5) * kFail / steps;
+    const double sigma = kSigy + kEp * ep;
+    work += sigma * std::exp(volume_exponent(sigma, ep)) * (1.0 + kEp / kE) * kFail / steps;
+  }
+  return {time, work};
+}
+// Solids: plastic flow keeps the volume, the elastic strain changes it by (1 - 2 nu) sigma / E.
+BarFailure bar_failure(double length) {
+  return bar_failure(length, [](double sigma, double) { return (1.0 - 2.0 * kNu) * sigma / kE; });
+}
+
+std::string pull_curve(double end_time) {
+  return fmt::format("*DEFINE_CURVE\n1\n0,0\n{},{}\n1e9,{}\n*CONTROL_TERMINATION\n{}\n", kRamp,
+                     kPull, kPull, end_time);
+}
+
+// One unit cube on the symmetry planes x = 0, y = 0, z = 0, the face x = 1 pulled (lateral
+// faces free: uniaxial stress), material card `material` for part 1.
+std::string pulled_cube(const std::string& material, double end_time) {
+  BoxMesh mesh;
+  std::string deck = "*KEYWORD\n" + mesh.keyword_text();
+  deck += "*PART\nbar\n1,1,1,0,1\n*SECTION_SOLID\n1,1\n*HOURGLASS\n1,4,0.1\n" + material;
+  std::vector<int> y0, z0;
+  for (int k = 0; k <= 1; ++k)
+    for (int i = 0; i <= 1; ++i) y0.push_back(mesh.node_id(i, 0, k));
+  for (int j = 0; j <= 1; ++j)
+    for (int i = 0; i <= 1; ++i) z0.push_back(mesh.node_id(i, j, 0));
+  deck +=
+      node_set(1, mesh.face_x(0)) + node_set(2, mesh.face_x(1)) + node_set(3, y0) + node_set(4, z0);
+  deck += "*BOUNDARY_SPC_SET\n1,0,1,0,0\n3,0,0,1,0\n4,0,0,0,1\n";
+  deck += "*BOUNDARY_PRESCRIBED_MOTION_SET\n2,1,0,1,1.0\n";
+  return deck + pull_curve(end_time) + "*END\n";
+}
+
+// Runs until the first erosion (or the end); returns the time of the cycle that deleted.
+double run_to_erosion(solver::Simulation& sim) {
+  while (!sim.finished()) {
+    sim.cycle();
+    if (!sim.erosion().events().empty()) return sim.erosion().events().front().time;
+  }
+  return -1.0;
+}
+
+TEST(Erosion, SolidInUniaxialTensionErodesAtTheFailureStrainWithItsWork) {
+  const BarFailure expected = bar_failure(1.0);
+  solver::Simulation sim(
+      read(pulled_cube(fmt::format("*MAT_PIECEWISE_LINEAR_PLASTICITY\n1,{},{},{},{},{},{}\n", kRho,
+                                   kE, kNu, kSigy, kEtan, kFail),
+                       1.2 * expected.time)),
+      {});
+  const double step = sim.state().dt;
+  const double time = run_to_erosion(sim);
+  const auto& ledger = sim.erosion().ledger();
+  std::printf("solid: eroded at %.6f s (analytic %.6f, step %.2e), work %.6e (analytic %.6e)\n",
+              time, expected.time, step, ledger.internal_energy, expected.work);
+  ASSERT_GT(time, 0.0) << "the element never eroded";
+  EXPECT_NEAR(time, expected.time, 2e-3 * expected.time);
+  EXPECT_NEAR(ledger.internal_energy / expected.work, 1.0, 5e-4);
+  EXPECT_EQ(ledger.elements, 1);
+  EXPECT_EQ(ledger.nodes, 8);  // every node lost its only element
+  EXPECT_EQ(sim.state().hex_blocks[0].erosion.count, 1);
+  // Nothing resists the pull any more: no internal energy left, the balance still closes.
+  sim.run();
+  // Left: the hourglass share of the element's work, which the hourglass column keeps too.
+  EXPECT_LT(std::abs(sim.energy().internal()), 1e-7 * expected.work);
+  EXPECT_NEAR(sim.energy().ratio(), 1.0, 1e-3);
+  for (const double f : sim.state().nodes.f_int.x) EXPECT_EQ(f, 0.0);
+}
+
+// A shell in membrane tension: every layer reaches FAIL together; the element goes when the last
+// layer does. Same law, same analytic time (side 1 m, thickness 10 mm).
+TEST(Erosion, ShellInUniaxialTensionErodesWhenItsLayersHaveFailed) {
+  const double side = 1.0, thick = 0.01;
+  std::string deck = "*KEYWORD\n";
+  deck += fmt::format("*NODE\n1,0,0,0\n2,{0},0,0\n3,{0},{0},0\n4,0,{0},0\n", side);
+  deck += "*ELEMENT_SHELL\n1,1,1,2,3,4\n";
+  deck += fmt::format(
+      "*PART\nsheet\n1,1,1,0,1\n*SECTION_SHELL\n1,2,0.8333333,3\n{0},{0},{0},{0}\n"
+      "*HOURGLASS\n1,4,0.05\n",
+      thick);
+  deck += fmt::format("*MAT_PIECEWISE_LINEAR_PLASTICITY\n1,{},{},{},{},{},{}\n", kRho, kE, kNu,
+                      kSigy, kEtan, kFail);
+  deck +=
+      "*BOUNDARY_SPC_NODE\n1,0,1,1,1,1,1,1\n4,0,1,0,1,1,1,1\n2,0,0,0,1,1,1,1\n"
+      "3,0,0,0,1,1,1,1\n";
+  deck += "*BOUNDARY_PRESCRIBED_MOTION_NODE\n2,1,0,1,1.0\n3,1,0,1,1.0\n";
+  // Pulled at 1 m/s: the same strain path as the bar, 100 times faster in time.
+  deck += fmt::format("*DEFINE_CURVE\n1,0,1.0,{}\n0,0\n{},{}\n1e9,{}\n", side / 1.0, kRamp, kPull,
+                      kPull);
+  // The curve scaled by SFO = side: the pull is kPull * side per second, so the strain follows
+  // the unit bar's path in time.
+  // A shell keeps its thickness (ISTUPD 0): its volume follows the in-plane strains,
+  // ln(V/V0) = eps_x + eps_y = (1 - nu) sigma / E + eps_p / 2.
+  const BarFailure unit =
+      bar_failure(1.0, [](double sigma, double ep) { return (1.0 - kNu) * sigma / kE + 0.5 * ep; });
+  deck += fmt::format("*CONTROL_TERMINATION\n{}\n*END\n", 1.2 * unit.time);
+  solver::Simulation sim(read(deck), {});
+  const double time = run_to_erosion(sim);
+  const auto& ledger = sim.erosion().ledger();
+  const double volume = side * side * thick;
+  std::printf("shell: eroded at %.6f s (analytic %.6f), work %.6e (analytic %.6e)\n", time,
+              unit.time, ledger.internal_energy, unit.work * volume);
+  ASSERT_GT(time, 0.0) << "the shell never eroded";
+  EXPECT_NEAR(time, unit.time, 2e-3 * unit.time);
+  EXPECT_NEAR(ledger.internal_energy / (unit.work * volume), 1.0, 1e-3);
+  EXPECT_EQ(sim.state().shell_blocks[0].erosion.count, 1);
+}
+
+// A truss (ELFORM 3) with *MAT_003 FS: one stress point, deleted when it reaches FS.
+TEST(Erosion, TrussErodesAtItsFailureStrain) {
+  const BarFailure unit = bar_failure(1.0);
+  std::string deck = "*KEYWORD\n*NODE\n1,0,0,0\n2,1,0,0\n*ELEMENT_BEAM\n1,1,1,2\n";
+  deck += "*PART\ntruss\n1,1,1\n*SECTION_BEAM\n1,3\n1e-4\n";
+  // *MAT_003 with BETA 1 (isotropic): the same linear law as the 024 card.
+  deck += fmt::format("*MAT_PLASTIC_KINEMATIC\n1,{},{},{},{},{},1.0\n0,0,{}\n", kRho, kE, kNu,
+                      kSigy, kEtan, kFail);
+  deck += "*BOUNDARY_SPC_NODE\n1,0,1,1,1,0,0,0\n2,0,0,1,1,0,0,0\n";
+  deck += "*BOUNDARY_PRESCRIBED_MOTION_NODE\n2,1,0,1,1.0\n";
+  deck += pull_curve(1.2 * unit.time) + "*END\n";
+  solver::Simulation sim(read(deck), {});
+  const double time = run_to_erosion(sim);
+  // The truss keeps its area A (no lateral contraction): ln(V/V0) = ln(L/L0).
+  const double work =
+      bar_failure(1.0, [](double sigma, double ep) { return sigma / kE + ep; }).work;
+  std::printf("truss: eroded at %.6f s (analytic %.6f), work %.6e (analytic %.6e)\n", time,
+              unit.time, sim.erosion().ledger().internal_energy, work * 1e-4);
+  ASSERT_GT(time, 0.0) << "the truss never eroded";
+  EXPECT_NEAR(time, unit.time, 2e-3 * unit.time);
+  EXPECT_NEAR(sim.erosion().ledger().internal_energy / (work * 1e-4), 1.0, 1e-3);
+}
+
+// *MAT_ADD_EROSION stress criteria on an elastic cube in uniaxial stress: sigma = E ln(L/L0),
+// so each criterion is met at a known stretch.
+struct StressCriterion {
+  const char* name;
+  std::string card;       // the *MAT_ADD_EROSION cards after MID
+  double failure_stress;  // uniaxial stress at which the element must go
+};
+
+class AddErosionCriteria : public ::testing::TestWithParam<StressCriterion> {};
+
+TEST_P(AddErosionCriteria, ElementGoesWhenTheUniaxialStressMeetsTheCriterion) {
+  const StressCriterion& c = GetParam();
+  const double strain = c.failure_stress / kE;
+  const double expected = time_of_displacement(std::exp(strain) - 1.0);
+  const std::string material =
+      fmt::format("*MAT_ELASTIC\n1,{},{},{}\n*MAT_ADD_EROSION\n1{}\n", kRho, kE, kNu, c.card);
+  solver::Simulation sim(read(pulled_cube(material, 1.5 * expected)), {});
+  const double step = sim.state().dt;
+  const double time = run_to_erosion(sim);
+  std::printf("%s: eroded at %.6f s (analytic %.6f, step %.1e)\n", c.name, time, expected, step);
+  ASSERT_GT(time, 0.0);
+  // The criterion is checked once per step: the deletion falls within one step after the
+  // analytic instant (plus the lateral-inertia wobble of one element, below 1e-3).
+  EXPECT_GE(time, expected * (1.0 - 1e-3));
+  EXPECT_LE(time, expected * (1.0 + 1e-3) + step);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Erosion, AddErosionCriteria,
+    ::testing::Values(
+        StressCriterion{"principal stress", ",0,0,0,0,0,1,1\n0,3e8,0,0,0,0,0,0\n", 3e8},
+        StressCriterion{"von Mises", ",0,0,0,0,0,1,1\n0,0,2.5e8,0,0,0,0,0\n", 2.5e8},
+        // Tension cut-off: p = -sigma/3 <= MNPRES.
+        StressCriterion{"minimum pressure", ",0,0,0,0,0,1,1\n-1e8,0,0,0,0,0,0,0\n", 3e8},
+        // Both at once (NCS 2): the later of the two, sigma = 3.5e8.
+        StressCriterion{"two criteria at once", ",0,0,0,0,0,1,2\n0,3.5e8,2e8,0,0,0,0,0\n", 3.5e8},
+        // Exclusion number 1234: SIGVM = 1234 is off, SIGP1 acts.
+        StressCriterion{"exclusion number", ",1234,0,0,0,0,1,1\n0,2e8,1234,0,0,0,0,0\n", 2e8}),
+    [](const ::testing::TestParamInfo<StressCriterion>& info) {
+      std::string name = info.param.name;
+      for (char& ch : name)
+        if (ch == ' ') ch = '_';
+      return name;
+    });
+
+// TDEL: a cube (nu = 0) squeezed along x; its step is L/c with c = sqrt(E/rho), so it is deleted
+// when L falls to c TDEL.
+TEST(Erosion, ElementGoesWhenItsStepFallsBelowTdel) {
+  BoxMesh mesh;
+  std::string deck = "*KEYWORD\n" + mesh.keyword_text();
+  deck += "*PART\ncube\n1,1,1,0,1\n*SECTION_SOLID\n1,1\n*HOURGLASS\n1,4,0.1\n";
+  const double c = std::sqrt(kE / kRho);
+  const double tdel = 0.8 / c;  // L = 0.8
+  deck += fmt::format("*MAT_PIECEWISE_LINEAR_PLASTICITY\n1,{},{},0.0,1e12,0,0,{:.17g}\n", kRho, kE,
+                      tdel);
+  deck += "*CONTROL_BULK_VISCOSITY\n0.0,0.0\n";
+  std::vector<int> y0, z0;
+  for (int k = 0; k <= 1; ++k)
+    for (int i = 0; i <= 1; ++i) y0.push_back(mesh.node_id(i, 0, k));
+  for (int j = 0; j <= 1; ++j)
+    for (int i = 0; i <= 1; ++i) z0.push_back(mesh.node_id(i, j, 0));
+  deck +=
+      node_set(1, mesh.face_x(0)) + node_set(2, mesh.face_x(1)) + node_set(3, y0) + node_set(4, z0);
+  deck += "*BOUNDARY_SPC_SET\n1,0,1,0,0\n3,0,0,1,0\n4,0,0,0,1\n";
+  // Squeezed at 20 m/s after a 1 ms ramp: L = 0.8 at t = 0.2 / 20 + 0.5 ms.
+  deck += "*BOUNDARY_PRESCRIBED_MOTION_SET\n2,1,0,1,-1.0\n";
+  deck += "*DEFINE_CURVE\n1\n0,0\n1e-3,20\n1e9,20\n*CONTROL_TERMINATION\n0.02\n*END\n";
+  const double expected = 0.2 / 20.0 + 0.5e-3;
+  solver::Simulation sim(read(deck), {});
+  const double step = sim.state().dt;
+  const double time = run_to_erosion(sim);
+  std::printf("TDEL: eroded at %.6f s (analytic %.6f, step %.1e)\n", time, expected, step);
+  ASSERT_GT(time, 0.0);
+  EXPECT_GE(time, expected - 1e-9);
+  EXPECT_LE(time, expected + 1.01 * step);
+  ASSERT_FALSE(sim.erosion().events().empty());
+  EXPECT_NE(sim.erosion().events().front().criterion.find("TDEL"), std::string::npos);
+}
+
+// A free block of two elements, moving and spinning, deleted whole by FAILTM: every node is
+// removed, and what moved leaves with the ledger: momentum, angular momentum and kinetic energy
+// before = ledger after (exactly, up to round-off), and the balance closes.
+TEST(Erosion, FreeBodyDeletedByFailureTimeHandsItsMotionToTheLedger) {
+  Block block;
+  block.nx = 2;
+  block.lx = 2.0;
+  std::string deck = "*KEYWORD\n" + block.text();
+  deck += elastic(1, kRho, 2e9, 0.3, 4);
+  // FAILTM (card 2, eighth field) = 20 ms, about ten steps in.
+  deck += "*MAT_ADD_EROSION\n1,0,0,0,0,0,1,1\n0,0,0,0,0,0,0,0.02\n";
+  deck += "*INITIAL_VELOCITY_GENERATION\n1,2,30.0,3,-2,1\n1.0,0.5,0.5,0,0,1\n";
+  deck += "*CONTROL_TIMESTEP\n0,0.5\n*CONTROL_TERMINATION\n0.05\n*END\n";
+  solver::Simulation sim(read(deck), {});
+  sim.cycle();
+  ASSERT_TRUE(sim.erosion().events().empty());
+  const auto before = sim.energy();
+  std::array<double, 3> momentum{}, angular{};
+  for (int k = 0; k < 3; ++k) {
+    momentum[k] = before.momentum[k];
+    angular[k] = before.angular_momentum[k];
+  }
+  const double kinetic = before.kinetic;
+  const double time = run_to_erosion(sim);
+  ASSERT_GT(time, 0.0);
+  EXPECT_GE(time, 0.02);
+  const auto& l = sim.erosion().ledger();
+  EXPECT_EQ(l.elements, 2);
+  EXPECT_EQ(l.nodes, 12);
+  const double scale_p = std::hypot(momentum[0], momentum[1], momentum[2]);
+  const double scale_h = std::hypot(angular[0], angular[1], angular[2]);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(l.momentum[k], momentum[k], 1e-12 * scale_p) << k;
+    EXPECT_NEAR(l.angular_momentum[k], angular[k], 1e-10 * scale_h) << k;
+  }
+  // What the block held (kinetic + strain energy) went to the ledger's two accounts.
+  EXPECT_NEAR(l.kinetic_energy + l.internal_energy, kinetic, 1e-6 * kinetic);
+  sim.run();
+  EXPECT_EQ(sim.energy().kinetic, 0.0);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(sim.energy().momentum[k], 0.0);
+  EXPECT_NEAR(sim.energy().ratio(), 1.0, 1e-9);
+}
+
+// A bar flying apart: its two halves move away from each other unevenly; elements in the middle
+// stretch, yield and reach FS; the halves then fly free. Momentum (with what left in the ledger)
+// and energy (kinetic + internal + eroded) are conserved.
+TEST(Erosion, BarTornApartConservesMomentumAndEnergy) {
+  Block block;
+  block.nx = 8;
+  block.lx = 0.8;
+  block.ly = block.lz = 0.1;
+  std::string deck = "*KEYWORD\n" + block.text();
+  deck += "*PART\nbar\n1,1,1,0,1\n*SECTION_SOLID\n1,1\n*HOURGLASS\n1,4,0.1\n";
+  deck += fmt::format("*MAT_PLASTIC_KINEMATIC\n1,{},{},{},{},{},1.0\n0,0,0.02\n", kRho, kE, kNu,
+                      kSigy, kEtan);
+  // Left half at -20 m/s, right half at +60 m/s (nodes x < 0.4 and x > 0.4; the middle plane
+  // at +20 m/s): a net momentum along x, and a sideways drift of the right half.
+  deck += "*INITIAL_VELOCITY_NODE\n";
+  for (int k = 0; k <= 1; ++k)
+    for (int j = 0; j <= 1; ++j)
+      for (int i = 0; i <= 8; ++i) {
+        const double vx = i < 4 ? -20.0 : (i == 4 ? 20.0 : 60.0);
+        deck += fmt::format("{},{},{},0\n", block.node(i, j, k), vx, i > 4 ? 5.0 : 0.0);
+      }
+  deck += "*CONTROL_TIMESTEP\n0,0.5\n*CONTROL_TERMINATION\n6e-3\n*END\n";
+  solver::Simulation sim(read(deck), {});
+  sim.cycle();
+  std::array<double, 3> momentum{};
+  for (int k = 0; k < 3; ++k) momentum[k] = sim.energy().momentum[k];
+  sim.run();
+  const auto& l = sim.erosion().ledger();
+  const auto* eps = element::find_history(sim.state().hex_blocks[0], "effective_plastic_strain");
+  double largest = 0.0;
+  for (const double e : eps->values) largest = std::max(largest, e);
+  std::printf("torn bar: largest plastic strain %.4f, enabled %d\n", largest,
+              int(sim.state().hex_blocks[0].erosion.enabled));
+  std::printf("torn bar: %lld elements and %lld nodes eroded, ratio %.12f, eroded work %.4e J\n",
+              static_cast<long long>(l.elements), static_cast<long long>(l.nodes),
+              sim.energy().ratio(), l.internal_energy);
+  EXPECT_GE(l.elements, 1);
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(sim.energy().momentum[k] + l.momentum[k], momentum[k], 1e-9 * 2000.0) << k;
+  EXPECT_NEAR(sim.energy().ratio(), 1.0, 1e-6);
+  EXPECT_GT(l.internal_energy, 0.0);
+}
+
+// --- Bad input ----------------------------------------------------------------------------------
+
+std::string error_of(const std::string& deck) {
+  try {
+    solver::Simulation sim(read(deck), {});
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string cube_with(const std::string& extra) {
+  BoxMesh mesh;
+  return "*KEYWORD\n" + mesh.keyword_text() +
+         fmt::format("*PART\ncube\n1,1,1,0,0\n*SECTION_SOLID\n1,1\n*MAT_ELASTIC\n1,{},{},{}\n",
+                     kRho, kE, kNu) +
+         extra + "*CONTROL_TERMINATION\n1e-3\n*END\n";
+}
+
+TEST(ErosionDeck, UnsupportedCriteriaAndBadCardsAreErrorsNamingTheField) {
+  EXPECT_NE(error_of(cube_with("*MAT_ADD_EROSION\n1,0,0,0.1\n")).find("MNEPS"), std::string::npos);
+  EXPECT_NE(error_of(cube_with("*MAT_ADD_EROSION\n1\n0,0,0,0.2\n")).find("MXEPS"),
+            std::string::npos);
+  EXPECT_NE(error_of(cube_with("*MAT_ADD_EROSION\n1\n0,0,0,0,0,0,0,0\n7\n")).find("IDAM"),
+            std::string::npos);
+  EXPECT_NE(error_of(cube_with("*MAT_ADD_EROSION\n9\n0,3e8\n")).find("material 9 is not defined"),
+            std::string::npos);
+  EXPECT_NE(error_of(cube_with("*MAT_ADD_EROSION\n1,0,0,0,0,0,1,3\n0,3e8,2e8\n")).find("NCS"),
+            std::string::npos);
+  EXPECT_NE(error_of(cube_with("*MAT_ADD_EROSION\n1\n0,0,-5\n")).find("SIGVM"), std::string::npos);
+  EXPECT_NE(error_of(cube_with("*MAT_ADD_EROSION\n1,0,0,0,0,0,-50\n0,3e8\n")).find("NUMFIP"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace rf::test
