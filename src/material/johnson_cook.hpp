@@ -41,8 +41,14 @@
 //      largest principal stress reaches -pmin the point has spalled; 3: once p < pmin it has
 //      spalled. A spalled point keeps no deviatoric stress and no tension (p >= 0) from then on.
 //      The energy uses the pressure after the cutoff.
+//   6. fracture (Johnson & Cook, Eng. Fract. Mech. 21 (1985) 31-48, eq. 4): with D1..D5 the
+//      damage D += d(eps_p) / eps_f, eps_f = max(EFMIN, [D1 + D2 exp(D3 sigma*)]
+//      [1 + D4 ln rate*] [1 + D5 T*]), sigma* = sigma_m / sigma_eq the triaxiality after the
+//      step (sigma_m = -p), rate* = max(plastic rate / EPSO, 1), T* as above. At D >= 1 the
+//      point has failed: it keeps no deviatoric stress and no tension (as a spalled point); with
+//      EROD 0 the element is deleted (solver/erosion.cpp).
 // History: effective plastic strain, temperature, internal energy per unit reference volume,
-// relative volume V / V0, and 1 for a spalled point (0 otherwise).
+// relative volume V / V0, 1 for a spalled point (0 otherwise), damage D.
 #pragma once
 
 #include <array>
@@ -69,6 +75,10 @@ struct JohnsonCookParameters {
   std::array<double, 7> eos_c{};  // C0 .. C6
   double e0 = 0.0;                // initial internal energy per unit reference volume
   double bulk = 0.0;              // without EOS: K from E, PR
+  // Fracture (header comment, step 6): D1..D5, EFMIN; off when D1 = D2 = 0.
+  bool fracture = false;
+  std::array<double, 5> d{};
+  double efmin = 1e-6;
 };
 
 namespace jc {
@@ -174,8 +184,11 @@ inline void point_update(const ElasticConstants& el, const JohnsonCookParameters
   double& energy = h[2];
   double& volume = h[3];
   double& spalled = h[4];
+  double& damage = h[5];
   const double v_new = volume * std::exp(trd * dt);
   const double dv = v_new - volume;
+  const double temperature_before = temperature;
+  double dl = 0.0;
 
   if (spalled != 0.0) {
     for (double& c : st) c = 0.0;
@@ -190,7 +203,7 @@ inline void point_update(const ElasticConstants& el, const JohnsonCookParameters
       k0 = rate_factor(p, std::sqrt(2.0 / 3.0 * dd));
     }
     const double theta = thermal_factor(p, temperature);
-    const double dl = J > 0.0 ? plastic_increment(p, G, J, eps, dt, k0, theta) : 0.0;
+    dl = J > 0.0 ? plastic_increment(p, G, J, eps, dt, k0, theta) : 0.0;
     if (dl > 0.0) {
       const double scale = 1.0 - 3.0 * G * dl / J;
       for (double& c : st) c *= scale;
@@ -232,6 +245,22 @@ inline void point_update(const ElasticConstants& el, const JohnsonCookParameters
       }
     }
   }
+  // Fracture (header comment, step 6), with the deviatoric stress and pressure of the step.
+  if (p.fracture && dl > 0.0 && spalled == 0.0) {
+    const double ss = st[0] * st[0] + st[1] * st[1] + st[2] * st[2] +
+                      2.0 * (st[3] * st[3] + st[4] * st[4] + st[5] * st[5]);
+    const double equivalent = std::sqrt(1.5 * ss);
+    const double triaxiality = equivalent > 0.0 ? -pressure / equivalent : 0.0;
+    double strain = p.d[0] + p.d[1] * std::exp(p.d[2] * triaxiality);
+    if (p.d[3] != 0.0) strain *= 1.0 + p.d[3] * std::log(std::max(dl / dt / p.epso, 1.0));
+    if (p.d[4] != 0.0 && p.tm > p.tr)
+      strain *= 1.0 + p.d[4] * std::clamp((temperature_before - p.tr) / (p.tm - p.tr), 0.0, 1.0);
+    damage += dl / std::max(strain, p.efmin);
+    if (damage >= 1.0) {
+      spalled = 1.0;
+      for (double& c : st) c = 0.0;
+    }
+  }
   if (spalled != 0.0) pressure = std::max(pressure, 0.0);
   // Energy with the pressure actually taken (explicit once the pressure is fixed).
   double sd_final = 0.0;
@@ -246,11 +275,12 @@ inline void point_update(const ElasticConstants& el, const JohnsonCookParameters
 struct JohnsonCookMaterial {
   static constexpr model::MaterialKind kKind = model::MaterialKind::JohnsonCook;
   static constexpr unsigned kFamilies = kHex8;
-  static constexpr std::array<HistoryField, 5> kHistory{{{"effective_plastic_strain", 1, false},
+  static constexpr std::array<HistoryField, 6> kHistory{{{"effective_plastic_strain", 1, false},
                                                          {"temperature", 1, false},
                                                          {"internal_energy", 1, false},
                                                          {"relative_volume", 1, false},
-                                                         {"spalled", 1, false}}};
+                                                         {"spalled", 1, false},
+                                                         {"damage", 1, false}}};
   using Parameters = JohnsonCookParameters;
 
   // Values of the history fields before the first step (kHistory order).
@@ -260,6 +290,7 @@ struct JohnsonCookMaterial {
     h[2] = p.eos ? p.e0 : 0.0;
     h[3] = 1.0;
     h[4] = 0.0;
+    h[5] = 0.0;
   }
 
   // The law is pow/log per point: lanes are updated one at a time.
@@ -268,16 +299,16 @@ struct JohnsonCookMaterial {
                      double dt, T s[6], T* h) {
     constexpr int kLanes = lane_count<T>();
     for (int l = 0; l < kLanes; ++l) {
-      double dl[6], wl[3], sl[6], hl[5];
+      double dl[6], wl[3], sl[6], hl[6];
       for (int c = 0; c < 6; ++c) {
         dl[c] = get_lane(d[c], l);
         sl[c] = get_lane(s[c], l);
       }
       for (int c = 0; c < 3; ++c) wl[c] = get_lane(w[c], l);
-      for (int c = 0; c < 5; ++c) hl[c] = get_lane(h[c], l);
+      for (int c = 0; c < 6; ++c) hl[c] = get_lane(h[c], l);
       jc::point_update(m, p, dl, wl, dt, sl, hl);
       for (int c = 0; c < 6; ++c) set_lane(s[c], l, sl[c]);
-      for (int c = 0; c < 5; ++c) set_lane(h[c], l, hl[c]);
+      for (int c = 0; c < 6; ++c) set_lane(h[c], l, hl[c]);
     }
   }
 };

@@ -27,6 +27,9 @@ JohnsonCookParameters make_johnson_cook_parameters(const model::Model& model,
   p.vp = c.vp;
   p.pmin = c.pc;
   p.spall = c.spall;
+  p.fracture = c.fractures();
+  p.d = c.d;
+  p.efmin = c.efmin;
   const double g = c.g;
   double bulk = 0.0;
   if (part.eosid != 0) {

@@ -253,6 +253,12 @@ struct JohnsonCookCard {
   double tm = 0.0, tr = 0.0, epso = 0.0;
   double cp = 0.0, pc = 0.0;
   int spall = 2;  // 1 pressure cutoff, 2 principal stress spall, 3 hydrostatic spall
+  // Fracture (Johnson & Cook 1985): D1..D5, EROD (0: a failed element erodes), EFMIN.
+  std::array<double, 5> d{};
+  double erod = 0.0;
+  double efmin = 1e-6;
+  bool fractures() const { return d[0] != 0.0 || d[1] != 0.0; }
+  bool erodes() const { return fractures() && erod == 0.0; }
 };
 
 struct Material {

@@ -252,6 +252,7 @@ void Erosion::setup(const model::Model& model, State& state) {
       c.plastic_strain = mat.plastic.fail;
       c.tdel = mat.plastic.tdel;
     }
+    if (mat.kind == model::MaterialKind::JohnsonCook) c.damage = mat.johnson_cook.erodes();
     if (const auto it = model.add_erosions.find(mat.id); it != model.add_erosions.end()) {
       const model::AddErosion& a = it->second;
       auto take = [](const std::optional<double>& v, bool& has, double& value) {

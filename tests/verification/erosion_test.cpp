@@ -353,6 +353,32 @@ TEST(Erosion, BarTornApartConservesMomentumAndEnergy) {
   EXPECT_GT(l.internal_energy, 0.0);
 }
 
+// Johnson-Cook fracture: a cube in uniaxial stress (triaxiality 1/3, D4 = D5 = 0) fails when
+// its plastic strain reaches eps_f = D1 + D2 exp(D3 / 3); the damage then is 1.
+TEST(Erosion, JohnsonCookFractureAtTheFailureStrainOfUniaxialStress) {
+  const double a = 2e8, b = 5e8, d1 = 0.05, d2 = 0.3, d3 = -1.5;
+  const double fracture = d1 + d2 * std::exp(d3 / 3.0);
+  const double stress = a + b * fracture;  // N = 1
+  const double expected = time_of_displacement(std::exp(fracture + stress / kE) - 1.0);
+  const std::string material =
+      fmt::format("*MAT_JOHNSON_COOK\n1,{},{},{},{}\n{},{},1.0\n0,-1e12,1,0,{},{},{},0\n0\n", kRho,
+                  kE / (2.0 * (1.0 + kNu)), kE, kNu, a, b, d1, d2, d3);
+  solver::Simulation sim(read(pulled_cube(material, 1.2 * expected)), {});
+  const double step = sim.state().dt;
+  const double time = run_to_erosion(sim);
+  const auto* damage = element::find_history(sim.state().hex_blocks[0], "damage");
+  const auto* eps = element::find_history(sim.state().hex_blocks[0], "effective_plastic_strain");
+  std::printf(
+      "Johnson-Cook fracture: eroded at %.6f s (analytic %.6f, step %.1e), eps_p %.5f "
+      "(eps_f %.5f), damage %.5f\n",
+      time, expected, step, eps->values[0], fracture, damage->values[0]);
+  ASSERT_GT(time, 0.0);
+  EXPECT_NEAR(time, expected, 2e-3 * expected);
+  EXPECT_NEAR(eps->values[0], fracture, 2e-3 * fracture);
+  EXPECT_GE(damage->values[0], 1.0);
+  EXPECT_NE(sim.erosion().events().front().criterion.find("Johnson-Cook"), std::string::npos);
+}
+
 // --- Bad input ----------------------------------------------------------------------------------
 
 std::string error_of(const std::string& deck) {

@@ -91,6 +91,7 @@ void mat_johnson_cook(const Block& block, ReaderContext& context) {
   }
 
   model::SourceLocation spall_where = m.where;
+  model::SourceLocation fracture_where = m.where;
   if (const auto c3 = cursor.next_optional(n + 2, kEightByTen)) {
     spall_where = c3->location();
     jc.cp = c3->real(0, "CP", 0.0);
@@ -111,12 +112,8 @@ void mat_johnson_cook(const Block& block, ReaderContext& context) {
     // solved to round-off, which is IT 1's answer.
     if (it != 0.0 && it != 1.0) throw c3->error("IT", fmt::format("IT {} is not 0 or 1", it));
     static const char* const kD[] = {"D1", "D2", "D3", "D4"};
-    for (std::size_t k = 0; k < 4; ++k)
-      if (c3->real(4 + k, kD[k], 0.0) != 0.0)
-        throw c3->error(kD[k], fmt::format("the Johnson-Cook fracture model ({} and the other "
-                                           "D constants) needs element erosion, which is not "
-                                           "supported yet (leave D1..D5 blank)",
-                                           kD[k]));
+    for (std::size_t k = 0; k < 4; ++k) jc.d[k] = c3->real(4 + k, kD[k], 0.0);
+    fracture_where = c3->location();
   }
   if (jc.pc == 0.0 && jc.spall != 1)
     context.warn(spall_where,
@@ -125,12 +122,31 @@ void mat_johnson_cook(const Block& block, ReaderContext& context) {
                              "material that carries tension",
                              jc.spall, jc.spall == 2 ? "principal stress" : "pressure"));
   if (const auto c4 = cursor.next_optional(n + 3, kEightByTen)) {
-    if (c4->real(0, "D5", 0.0) != 0.0)
-      throw c4->error("D5",
-                      "the Johnson-Cook fracture model (D5 and the other D constants) needs "
-                      "element erosion, which is not supported yet (leave D1..D5 blank)");
-    // C2/P/XNP: only for RATEOP > 0 (refused above); EROD EFMIN NUMINT: only with D1..D5.
+    jc.d[4] = c4->real(0, "D5", 0.0);
+    // C2/P/XNP: only for RATEOP > 0 (refused above).
+    jc.erod = c4->real(2, "EROD", 0.0);
+    if (!c4->blank(3)) jc.efmin = c4->real(3, "EFMIN", 1e-6);
+    if (!(jc.efmin > 0.0))
+      throw c4->error("EFMIN", fmt::format("lower bound of the failure strain EFMIN {} must be "
+                                           "positive",
+                                           jc.efmin));
+    const double numint = c4->real(4, "NUMINT", 0.0);
+    if (numint != 0.0 && numint != 1.0)
+      throw c4->error("NUMINT", fmt::format("NUMINT {} is not supported: a solid element erodes "
+                                            "when one of its points has failed (leave it blank "
+                                            "or 1)",
+                                            numint));
   }
+  // Fracture strain D1 + D2 exp(D3 sigma*) must be positive at zero triaxiality at least.
+  if ((jc.d[2] != 0.0 || jc.d[3] != 0.0 || jc.d[4] != 0.0) && !jc.fractures())
+    throw InputError(model::context_of(fracture_where, "D1"),
+                     "D3, D4 or D5 without D1 or D2: the fracture strain D1 + D2 exp(D3 sigma*) "
+                     "would be zero");
+  if (jc.fractures() && !(jc.d[0] + jc.d[1] > 0.0))
+    throw InputError(model::context_of(fracture_where, "D1"),
+                     fmt::format("fracture strain D1 + D2 = {} at zero triaxiality must be "
+                                 "positive",
+                                 jc.d[0] + jc.d[1]));
   check_unique(context.model.materials, m.id, card, "MID", "material");
   context.model.materials.emplace(m.id, std::move(m));
   warn_unread_lines(block, cursor, context);
