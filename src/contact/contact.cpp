@@ -87,6 +87,10 @@ struct FaceRef {
   std::int64_t element = 0;
   int side = 0;
   int count = 0;
+  // The second element of a face two elements share (other_block -1: none).
+  std::int32_t other_block = -1;
+  std::int64_t other_element = 0;
+  int other_side = 0;
 };
 
 std::array<std::int32_t, 4> corners_of(const element::HexBlock& block, std::size_t e, int s) {
@@ -108,7 +112,11 @@ std::map<FaceKey, FaceRef> face_table(const solver::State& state,
         if (!key) continue;
         auto [it, inserted] = faces.try_emplace(
             *key, FaceRef{static_cast<std::int32_t>(b), static_cast<std::int64_t>(e), s, 0});
-        ++it->second.count;
+        if (++it->second.count == 2) {
+          it->second.other_block = static_cast<std::int32_t>(b);
+          it->second.other_element = static_cast<std::int64_t>(e);
+          it->second.other_side = s;
+        }
       }
     }
   }
@@ -234,6 +242,116 @@ std::vector<model::Id> parts_of_side(const model::Model& model, model::Id id, in
   return parts;
 }
 
+// ---- Erosion (docs/contact.md, "Erosion") ----
+
+bool can_erode(const solver::State& state, const ElementRef& element) {
+  switch (element.family) {
+    case ElementRef::kHex:
+      return state.hex_blocks[element.block].erosion.enabled;
+    case ElementRef::kShell:
+      return state.shell_blocks[element.block].erosion.enabled;
+    default:
+      return false;
+  }
+}
+
+bool is_eroded(const solver::State& state, const ElementRef& element) {
+  const auto e = static_cast<std::size_t>(element.element);
+  switch (element.family) {
+    case ElementRef::kHex:
+      return state.hex_blocks[element.block].erosion.is_eroded(e);
+    case ElementRef::kShell:
+      return state.shell_blocks[element.block].erosion.is_eroded(e);
+    default:
+      return true;  // no element: an exterior face has nothing across it
+  }
+}
+
+bool any_block_erodes(const solver::State& state) {
+  for (const auto& b : state.hex_blocks) {
+    if (b.erosion.enabled) return true;
+  }
+  for (const auto& b : state.shell_blocks) {
+    if (b.erosion.enabled) return true;
+  }
+  for (const auto& b : state.beam_blocks) {
+    if (b.erosion.enabled) return true;
+  }
+  return false;
+}
+
+// Which segments and nodes of an erodible side take part now (the rule of ContactSurface).
+// A segment's nodes belong to its live owner, so they are not removed in a consistent state;
+// the test keeps a removed node from ever exerting a force all the same. Returns whether a
+// segment's flag changed.
+bool refresh_active(ContactSurface& surface, const solver::State& state) {
+  if (!surface.erodible) return false;
+  bool changed = false;
+  const auto& nodes = state.nodes;
+  for (std::size_t s = 0; s < surface.segments.size(); ++s) {
+    const auto& q = surface.segments[s];
+    bool active = !is_eroded(state, surface.owner[s]) && is_eroded(state, surface.covered_by[s]);
+    for (int a = 0; a < 4 && active; ++a)
+      active = !nodes.is_removed(static_cast<std::size_t>(q[a]));
+    changed |= surface.segment_active[s] != static_cast<std::uint8_t>(active);
+    surface.segment_active[s] = active ? 1 : 0;
+  }
+  const bool node_set = surface.segments.empty();
+  for (std::size_t j = 0; j < surface.nodes.size(); ++j) {
+    bool active = !nodes.is_removed(static_cast<std::size_t>(surface.nodes[j]));
+    if (!node_set && active) {
+      // On an active segment; its contact offset the largest of those (a node of a solid face
+      // and of an eroded shell keeps only the face's offset).
+      bool on_active = false;
+      double half_thickness = 0.0;
+      for (auto k = surface.node_segment_start[j]; k < surface.node_segment_start[j + 1]; ++k) {
+        const auto s = static_cast<std::size_t>(surface.node_segments[k]);
+        if (!surface.segment_active[s]) continue;
+        half_thickness = on_active ? std::max(half_thickness, surface.half_thickness[s])
+                                   : surface.half_thickness[s];
+        on_active = true;
+      }
+      active = on_active;
+      if (on_active) surface.node_half_thickness[j] = half_thickness;
+    }
+    surface.node_active[j] = active ? 1 : 0;
+  }
+  return changed;
+}
+
+// Sets up the flags of a side once its segments, owners and nodes are known: a side none of
+// whose elements can erode drops the owner arrays and keeps the code path of no erosion.
+void finish_erosion(ContactSurface& surface, const solver::State& state, bool node_set) {
+  surface.erodible = false;
+  if (node_set) {
+    surface.erodible = any_block_erodes(state);
+  } else {
+    for (std::size_t s = 0; s < surface.owner.size() && !surface.erodible; ++s) {
+      surface.erodible =
+          can_erode(state, surface.owner[s]) || can_erode(state, surface.covered_by[s]);
+    }
+  }
+  if (!surface.erodible) {
+    surface.owner.clear();
+    surface.covered_by.clear();
+    surface.owner.shrink_to_fit();
+    surface.covered_by.shrink_to_fit();
+    return;
+  }
+  surface.segment_active.assign(surface.segments.size(), 0);
+  surface.node_active.assign(surface.nodes.size(), 0);
+  refresh_active(surface, state);
+}
+
+// Records the owner of the segments added since `first` (a face's p x p sub-quads share it).
+void set_owner(ContactSurface& surface, std::size_t first, const ElementRef& owner,
+               const ElementRef& covered_by) {
+  surface.owner.resize(first, ElementRef{});
+  surface.covered_by.resize(first, ElementRef{});
+  surface.owner.resize(surface.segments.size(), owner);
+  surface.covered_by.resize(surface.segments.size(), covered_by);
+}
+
 // `node_set_half_thickness`: the contact offset of nodes without segments (SST/2); nodes of
 // shells (a node set of NODES_TO_SURFACE) take `shell_half_thickness` (by dense node; empty: none).
 void finish_surface(const solver::State& state, double node_set_half_thickness,
@@ -315,15 +433,22 @@ void finish_surface(const solver::State& state, double node_set_half_thickness,
 }
 
 // Outward node normals from the segments' area vectors at the current positions.
-void update_node_normals(ContactSurface& surface, const solver::Vec3Array& x,
-                         std::int64_t parallel_minimum) {
+// kErosion: only the active segments bound the live surface (a side without erosion runs the
+// loop without the test, as evaluate_pass_of does).
+template <bool kErosion>
+void update_node_normals_of(ContactSurface& surface, const solver::Vec3Array& x,
+                            std::int64_t parallel_minimum) {
   const std::int64_t nn = static_cast<std::int64_t>(surface.nodes.size());
+  const std::uint8_t* active = surface.segment_active.data();
 #pragma omp parallel for schedule(static) if (nn >= parallel_minimum)
   for (std::int64_t j = 0; j < nn; ++j) {
     Vec sum{0, 0, 0};
     for (auto k = surface.node_segment_start[j]; k < surface.node_segment_start[j + 1]; ++k) {
       // A shell has no outward side: its nodes meet segments from either side.
       if (surface.two_sided[surface.node_segments[k]]) continue;
+      if constexpr (kErosion) {
+        if (!active[surface.node_segments[k]]) continue;
+      }
       const auto& q = surface.segments[surface.node_segments[k]];
       const Vec n = diagonal_normal(position(x, q[0]), position(x, q[1]), position(x, q[2]),
                                     position(x, q[3]));
@@ -332,6 +457,15 @@ void update_node_normals(ContactSurface& surface, const solver::Vec3Array& x,
     const double length = norm(sum);
     for (int d = 0; d < 3; ++d)
       surface.node_normal[3 * j + d] = length > 0.0 ? sum[d] / length : 0.0;
+  }
+}
+
+void update_node_normals(ContactSurface& surface, const solver::Vec3Array& x,
+                         std::int64_t parallel_minimum) {
+  if (!surface.segment_active.empty()) {
+    update_node_normals_of<true>(surface, x, parallel_minimum);
+  } else {
+    update_node_normals_of<false>(surface, x, parallel_minimum);
   }
 }
 
@@ -360,6 +494,7 @@ ContactSurface build_side(const model::Model& model, const solver::NodeIndex& no
       }
     }
     finish_surface(state, solid_half_thickness, surface, shell_half);
+    finish_erosion(surface, state, true);
     return surface;
   }
   if (type == 0) {  // segment set: each segment must be a solid face or a shell element
@@ -378,12 +513,19 @@ ContactSurface build_side(const model::Model& model, const solver::NodeIndex& no
       std::array<std::int32_t, 4> dense{};
       for (int k = 0; k < 4; ++k) dense[k] = node_index.at(segment[k], contact.where, field);
       const auto key = face_key(dense);
+      // A listed segment leaves with its element; nothing is exposed (the set names segments).
+      const std::size_t first = surface.segments.size();
       if (const auto it = key ? faces.find(*key) : faces.end(); it != faces.end()) {
         add_face_segments(state, it->second, solid_half_thickness, surface);
+        set_owner(surface, first, {ElementRef::kHex, it->second.block, it->second.element}, {});
         continue;
       }
       if (const auto it = key ? shells.find(*key) : shells.end(); it != shells.end()) {
         add_shell_segment(state, it->second.first, it->second.second, thickness, surface);
+        set_owner(surface, first,
+                  {ElementRef::kShell, static_cast<std::int32_t>(it->second.first),
+                   static_cast<std::int64_t>(it->second.second)},
+                  {});
         continue;
       }
       throw InputError(model::context_of(contact.where, field),
@@ -393,6 +535,7 @@ ContactSurface build_side(const model::Model& model, const solver::NodeIndex& no
                                    segment[0], segment[1], segment[2], segment[3], id));
     }
     finish_surface(state, solid_half_thickness, surface);
+    finish_erosion(surface, state, false);
     return surface;
   }
   const auto parts = parts_of_side(model, id, type);
@@ -408,18 +551,50 @@ ContactSurface build_side(const model::Model& model, const solver::NodeIndex& no
                                  block.part_id));
   }
   std::vector<bool> use(state.hex_blocks.size(), false);
+  bool erodes = false;  // an element of the side can erode: owners are recorded
   for (std::size_t b = 0; b < state.hex_blocks.size(); ++b) {
     use[b] = on_side(state.hex_blocks[b].part_id);
+    erodes |= use[b] && state.hex_blocks[b].erosion.enabled;
   }
-  // Exterior faces: those of one element only among the side's elements.
+  for (const auto& block : state.shell_blocks) {
+    erodes |= on_side(block.part_id) && block.erosion.enabled;
+  }
+  // Exterior faces: those of one element only among the side's elements. With erosion, also
+  // the interior faces next to an erodible element, out of each element whose neighbour can
+  // erode (exposed when it has; LS-DYNA's eroding contacts likewise update the surface).
   for (const auto& [key, face] : face_table(state, use)) {
-    if (face.count == 1) add_face_segments(state, face, solid_half_thickness, surface);
+    const ElementRef first_element{ElementRef::kHex, face.block, face.element};
+    const std::size_t first = surface.segments.size();
+    if (face.count == 1) {
+      add_face_segments(state, face, solid_half_thickness, surface);
+      if (erodes) set_owner(surface, first, first_element, {});
+      continue;
+    }
+    if (!erodes || face.count != 2 || face.other_block < 0) continue;
+    const ElementRef second_element{ElementRef::kHex, face.other_block, face.other_element};
+    if (face.block == face.other_block && face.element == face.other_element) continue;
+    if (can_erode(state, second_element)) {
+      add_face_segments(state, face, solid_half_thickness, surface);
+      set_owner(surface, first, first_element, second_element);
+    }
+    if (can_erode(state, first_element)) {
+      const std::size_t second = surface.segments.size();
+      const FaceRef other{face.other_block, face.other_element, face.other_side, 2};
+      add_face_segments(state, other, solid_half_thickness, surface);
+      set_owner(surface, second, second_element, first_element);
+    }
   }
   // Shells: every element is a (two-sided) segment.
   for (std::size_t b = 0; b < state.shell_blocks.size(); ++b) {
     if (!on_side(state.shell_blocks[b].part_id)) continue;
     for (std::size_t e = 0; e < state.shell_blocks[b].size(); ++e) {
+      const std::size_t first = surface.segments.size();
       add_shell_segment(state, b, e, thickness, surface);
+      if (erodes) {
+        set_owner(surface, first,
+                  {ElementRef::kShell, static_cast<std::int32_t>(b), static_cast<std::int64_t>(e)},
+                  {});
+      }
     }
   }
   if (surface.segments.empty()) {
@@ -428,6 +603,7 @@ ContactSurface build_side(const model::Model& model, const solver::NodeIndex& no
                                  type == 3 ? "part" : "part set", id));
   }
   finish_surface(state, solid_half_thickness, surface);
+  finish_erosion(surface, state, false);
   return surface;
 }
 
@@ -466,7 +642,12 @@ void build_grid(SegmentGrid& grid, const ContactSurface& master, const ContactSu
   }
   Vec lo_all{kInfinity, kInfinity, kInfinity}, hi_all{-kInfinity, -kInfinity, -kInfinity};
   double extent = 0.0;
+  // Only active segments are listed (erosion): update_after_erosion rebuilds the grid when
+  // segments join or leave, so the lookup never visits the interior of an erodible solid.
+  std::size_t listed = 0;
   for (std::size_t s = 0; s < nseg; ++s) {
+    if (!master.is_active_segment(s)) continue;
+    ++listed;
     Vec lo, hi;
     segment_box(x, master.segments[s], grid.expansion, lo, hi);
     for (int d = 0; d < 3; ++d) {
@@ -475,17 +656,18 @@ void build_grid(SegmentGrid& grid, const ContactSurface& master, const ContactSu
       extent = std::max(extent, hi[d] - lo[d]);
     }
   }
-  if (nseg == 0) {
+  if (listed == 0) {
     grid.dims = {0, 0, 0};
     grid.cell_start.assign(1, 0);
     grid.cell_segments.clear();
+    grid.visit_stamp.assign(nseg, 0);
     return;
   }
   // Cells as large as the largest grown box: a segment is listed in at most 8 cells. The
   // number of cells is kept within a few times the number of segments (O(n) memory).
   grid.cell = std::max(
       extent, 1e-12 * (1.0 + std::abs(hi_all[0]) + std::abs(hi_all[1]) + std::abs(hi_all[2])));
-  const double limit = 4.0 * static_cast<double>(nseg) + 64.0;
+  const double limit = 4.0 * static_cast<double>(listed) + 64.0;
   for (;;) {
     double cells = 1.0;
     for (int d = 0; d < 3; ++d) {
@@ -510,12 +692,15 @@ void build_grid(SegmentGrid& grid, const ContactSurface& master, const ContactSu
       for (auto j = a[1]; j <= b[1]; ++j)
         for (auto i = a[0]; i <= b[0]; ++i) visit(i + grid.dims[0] * (j + grid.dims[1] * k));
   };
-  for (std::size_t s = 0; s < nseg; ++s)
-    for_cells(s, [&](std::int64_t c) { ++grid.cell_start[c + 1]; });
+  for (std::size_t s = 0; s < nseg; ++s) {
+    if (master.is_active_segment(s))
+      for_cells(s, [&](std::int64_t c) { ++grid.cell_start[c + 1]; });
+  }
   for (std::int64_t c = 0; c < cells; ++c) grid.cell_start[c + 1] += grid.cell_start[c];
   grid.cell_segments.resize(static_cast<std::size_t>(grid.cell_start[cells]));
   grid.fill.assign(grid.cell_start.begin(), grid.cell_start.end() - 1);
   for (std::size_t s = 0; s < nseg; ++s) {
+    if (!master.is_active_segment(s)) continue;
     for_cells(s, [&](std::int64_t c) {
       grid.cell_segments[grid.fill[c]++] = static_cast<std::int32_t>(s);
     });
@@ -624,8 +809,12 @@ bool contains(const std::array<std::int32_t, 4>& s, std::int32_t node) {
   return s[0] == node || s[1] == node || s[2] == node || s[3] == node;
 }
 
-void evaluate_pass(ContactInterface& contact, ContactPass& pass, const solver::State& state,
-                   double dt, std::int64_t parallel_minimum) {
+// kErosion: a side of the pass can erode, and the flags are tested. A model without erosion runs
+// the instantiation without them: the loop of the code before erosion, instruction for
+// instruction (the tests alone cost it 6-9 % of the evaluation, measured with callgrind).
+template <bool kErosion>
+void evaluate_pass_of(ContactInterface& contact, ContactPass& pass, const solver::State& state,
+                      double dt, std::int64_t parallel_minimum) {
   const ContactSurface& slave = contact.sides[pass.slave_side];
   const ContactSurface& master = contact.sides[pass.master_side];
   const auto& x = state.nodes.x;
@@ -636,6 +825,13 @@ void evaluate_pass(ContactInterface& contact, ContactPass& pass, const solver::S
   const double soft_dt = contact.soft_dt;
   const double reach = grid.expansion - grid.slack;
   const bool self_contact = contact.kind == model::ContactKind::SingleSurface;
+  // Erosion: the flags of the sides (null: everything takes part, docs/contact.md section 7).
+  const std::uint8_t* slave_active =
+      kErosion && !slave.node_active.empty() ? slave.node_active.data() : nullptr;
+  const std::uint8_t* own_active =
+      kErosion && !slave.segment_active.empty() ? slave.segment_active.data() : nullptr;
+  const std::uint8_t* master_active =
+      kErosion && !master.segment_active.empty() ? master.segment_active.data() : nullptr;
 #pragma omp parallel for schedule(dynamic, 256) if (n >= parallel_minimum)
   for (std::int64_t j = 0; j < n; ++j) {
     const std::int32_t node = slave.nodes[j];
@@ -643,6 +839,11 @@ void evaluate_pass(ContactInterface& contact, ContactPass& pass, const solver::S
     double* ft = pass.tangential_force.data() + 3 * j;
     double* remembered = pass.contact_normal.data() + 3 * j;
     result.segment = -1;
+    // Not on the live surface (interior of an erodible solid, eroded, removed): its state was
+    // reset when it left.
+    if constexpr (kErosion) {
+      if (slave_active && !slave_active[j]) continue;
+    }
     const Vec p = position(x, node);
     // The node's position at the start of the step, x^n = x^{n+1} - dt v^{n+1/2}: the side of a
     // shell it approaches from when it was not in contact before.
@@ -662,6 +863,9 @@ void evaluate_pass(ContactInterface& contact, ContactPass& pass, const solver::S
     int neighbour_count = 0;
     if (self_contact) {
       for (auto q = slave.node_segment_start[j]; q < slave.node_segment_start[j + 1]; ++q) {
+        if constexpr (kErosion) {
+          if (own_active && !own_active[slave.node_segments[q]]) continue;
+        }
         for (const auto other : slave.segments[slave.node_segments[q]]) {
           bool seen = false;
           for (int a = 0; a < neighbour_count; ++a) seen |= neighbours[a] == other;
@@ -675,6 +879,11 @@ void evaluate_pass(ContactInterface& contact, ContactPass& pass, const solver::S
       const std::int64_t c = a[0] + grid.dims[0] * (a[1] + grid.dims[1] * a[2]);
       for (auto k = grid.cell_start[c]; k < grid.cell_start[c + 1]; ++k) {
         const std::int32_t s = grid.cell_segments[k];
+        // The grid lists active segments only (update_after_erosion has it rebuilt); the flag
+        // is checked all the same.
+        if constexpr (kErosion) {
+          if (master_active && !master_active[s]) continue;
+        }
         const auto& q = master.segments[s];
         if (contains(q, node)) continue;
         if (self_contact) {
@@ -766,6 +975,9 @@ void evaluate_pass(ContactInterface& contact, ContactPass& pass, const solver::S
       double most_opposed = 2.0;
       double k_slave = kInfinity;
       for (auto q = slave.node_segment_start[j]; q < slave.node_segment_start[j + 1]; ++q) {
+        if constexpr (kErosion) {
+          if (own_active && !own_active[slave.node_segments[q]]) continue;
+        }
         const auto& own = slave.segments[slave.node_segments[q]];
         const Vec n_own = diagonal_normal(position(x, own[0]), position(x, own[1]),
                                           position(x, own[2]), position(x, own[3]));
@@ -846,6 +1058,15 @@ void evaluate_pass(ContactInterface& contact, ContactPass& pass, const solver::S
     for (int a4 = 0; a4 < 4; ++a4) result.weight[a4] = best.weight[a4];
     for (int d = 0; d < 3; ++d) result.force[d] = force[d];
     result.gap = gap;
+  }
+}
+
+void evaluate_pass(ContactInterface& contact, ContactPass& pass, const solver::State& state,
+                   double dt, std::int64_t parallel_minimum) {
+  if (contact.sides[pass.slave_side].erodible || contact.sides[pass.master_side].erodible) {
+    evaluate_pass_of<true>(contact, pass, state, dt, parallel_minimum);
+  } else {
+    evaluate_pass_of<false>(contact, pass, state, dt, parallel_minimum);
   }
 }
 
@@ -987,6 +1208,54 @@ void compute_contact_forces(ContactSystem& system, const solver::State& state, d
   }
 }
 
+void update_after_erosion(ContactSystem& system, const solver::State& state) {
+  for (auto& contact : system.interfaces) {
+    std::array<bool, 2> changed{false, false};
+    for (int side = 0; side < 2; ++side) {
+      changed[side] = refresh_active(contact.sides[side], state);
+    }
+    bool result_reset = false;
+    for (auto& pass : contact.passes) {
+      const ContactSurface& slave = contact.sides[pass.slave_side];
+      const ContactSurface& master = contact.sides[pass.master_side];
+      if (changed[pass.master_side]) pass.grid.built = false;
+      if (!slave.erodible && !master.erodible) continue;
+      // Slave nodes off the live surface, and nodes whose segment (found, or remembered for the
+      // side of a shell) has left: no result, no friction spring, no side memory. Resetting
+      // what is already reset changes nothing, so a second call (a restart) is harmless.
+      for (std::size_t j = 0; j < slave.nodes.size(); ++j) {
+        const std::int32_t found = pass.results[j].segment;
+        const std::int32_t remembered = pass.contact_segment[j];
+        const bool left =
+            !slave.is_active_node(j) ||
+            (found >= 0 && !master.is_active_segment(static_cast<std::size_t>(found))) ||
+            (remembered >= 0 && !master.is_active_segment(static_cast<std::size_t>(remembered)));
+        if (!left) continue;
+        result_reset |= found >= 0;
+        pass.results[j] = NodeContact{};
+        for (int d = 0; d < 3; ++d) {
+          pass.tangential_force[3 * j + d] = 0.0;
+          pass.contact_normal[3 * j + d] = 0.0;
+        }
+        pass.contact_segment[j] = -1;
+      }
+    }
+    if (!result_reset) continue;
+    // The resultant and count that resultant_force() and the output report: the remaining
+    // results, summed in the order of compute_contact_forces.
+    contact.slave_force = {0.0, 0.0, 0.0};
+    contact.active_nodes = 0;
+    for (const auto& pass : contact.passes) {
+      const double sign = pass.slave_side == 0 ? 1.0 : -1.0;
+      for (const auto& r : pass.results) {
+        if (r.segment < 0) continue;
+        ++contact.active_nodes;
+        for (int d = 0; d < 3; ++d) contact.slave_force[d] += sign * r.force[d];
+      }
+    }
+  }
+}
+
 void add_contact_forces(const ContactSystem& system, solver::State& state) {
   if (system.empty()) return;
   auto& f = state.nodes.f_ext;
@@ -1025,11 +1294,13 @@ bool within_offset(const ContactSystem& system, model::Id contact_id, double off
   const SegmentGrid& grid = pass.grid;
   const double offset2 = offset * offset;
   for (std::size_t j = 0; j < slave.nodes.size(); ++j) {
+    if (!slave.is_active_node(j)) continue;
     const bool node_named = named(slave.node_part[j]);
     if (!node_named && !master_named) continue;
     const auto node = slave.nodes[j];
     const Vec p = position(x, node);
     auto close = [&](std::int32_t s) {
+      if (!master.is_active_segment(static_cast<std::size_t>(s))) return false;
       if (!node_named && !named(master.part[s])) return false;
       if (contains(master.segments[s], node)) return false;
       const Projection r = project(x, master.segments[s], p);

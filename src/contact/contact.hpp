@@ -18,6 +18,8 @@
 // master nodes have moved farther than the grid's slack since the last build (O(n) build, O(1)
 // lookup per slave node). Results are deterministic for any thread count: each slave node's
 // force is computed independently, the reactions are gathered in slave-node order.
+// Erosion: segments of eroded elements leave, interior faces of erodible solids they uncover
+// join, as in LS-DYNA's *CONTACT_ERODING_* (update_after_erosion, docs/contact.md section 7).
 // Theory, stiffness formulas, energy accounting and choices: docs/contact.md.
 #pragma once
 
@@ -31,10 +33,26 @@
 
 namespace rf::contact {
 
+// An element of the state's blocks, as a contact segment refers to it (erosion).
+struct ElementRef {
+  enum Family : std::int8_t { kNone = 0, kHex = 1, kShell = 2 };
+  Family family = kNone;
+  std::int32_t block = -1;  // in state.hex_blocks or state.shell_blocks
+  std::int64_t element = -1;
+};
+
 // Segments (bilinear quadrilaterals, triangles repeat their third node) of one contact side:
 // exterior faces of solids, ordered so that (x2 - x1) x (x4 - x1) points out of the solid
 // (one-sided), and shell elements in their element order (two-sided: a node meets them from
 // either side, docs/contact.md section 1).
+//
+// Erosion (docs/contact.md, "Erosion"; LS-DYNA's *CONTACT_ERODING_*): a side with elements that
+// can erode also holds, as candidate segments, every interior face of its erodible solids, once
+// out of each element whose neighbour across the face can erode. A segment is active while the
+// element it bounds (`owner`) is alive, the element across it (`covered_by`, kNone for an
+// exterior face) has eroded, and none of its nodes is removed; a node while it is on an active
+// segment (node set: always) and not removed. update_after_erosion() recomputes the flags. A side
+// that cannot erode leaves all four arrays empty: everything is active, as before erosion.
 struct ContactSurface {
   std::vector<std::array<std::int32_t, 4>> segments;  // dense node indices
   // SOFT = 0 penalty stiffness: SLSFAC K A^2 / V (solids), SLSFAC K A / max diagonal (shells).
@@ -62,9 +80,21 @@ struct ContactSurface {
   std::vector<double> node_normal;
   double max_size = 0.0;
   double max_half_thickness = 0.0;  // over segments and nodes
+
+  // Erosion (see above).
+  std::vector<ElementRef> owner;             // per segment (erodible sides only)
+  std::vector<ElementRef> covered_by;        // per segment (erodible sides only)
+  std::vector<std::uint8_t> segment_active;  // per segment (erodible sides only)
+  std::vector<std::uint8_t> node_active;     // per node (erodible sides only)
+  bool erodible = false;  // an element (or, node sets: a node) of the side can leave
+
+  bool is_active_segment(std::size_t s) const {
+    return segment_active.empty() || segment_active[s] != 0;
+  }
+  bool is_active_node(std::size_t j) const { return node_active.empty() || node_active[j] != 0; }
 };
 
-// Uniform-grid bucket sort of a surface's segments. Each segment is listed in every cell that
+// Uniform-grid bucket sort of a surface's active segments. Each is listed in every cell that
 // its bounding box, grown by `expansion`, overlaps (the box at the build positions).
 struct SegmentGrid {
   double cell = 0.0;
@@ -148,6 +178,13 @@ ContactSystem build_contacts(const model::Model& model, const solver::NodeIndex&
 // (`dt` the step just taken, for the friction slip; 0 at the start). Fills system.force; does
 // not touch f_ext (add_contact_forces does). Call once per cycle: friction state advances.
 void compute_contact_forces(ContactSystem& system, const solver::State& state, double dt);
+// After a cycle in which elements eroded (and once after a restart was read: the flags are
+// derived from the blocks' erosion state and NodalState::removed, not dumped): recomputes which
+// segments and nodes take part, resets the per-pass state (result, friction spring, side memory)
+// of slave nodes that left or whose segment left, and the interface's resultant and count if a
+// result was reset; marks the search grids of changed sides for a rebuild (the next evaluation
+// rebuilds them: an event, like a grid rebuild, not per-cycle work). docs/contact.md, "Erosion".
+void update_after_erosion(ContactSystem& system, const solver::State& state);
 // f_ext += the contact forces of the last evaluation (after the external forces were formed).
 void add_contact_forces(const ContactSystem& system, solver::State& state);
 
