@@ -246,9 +246,10 @@ TEST(ShellEigen, FreeSquarePlateMatchesLeissa) {
 
 // The drilling penalty (docs/eigen.md) gives every node of a flat plate a drilling mode at
 // about sqrt(k / J); on a thick plate with the physical rotary inertia they crowd the spectrum
-// from a low mode number on (issue 18's head-impact plate: from mode 52 of 100). A larger
-// EigenRequest::drilling_factor moves them up by its square root and leaves the out-of-plane
-// modes exactly as they are (a flat plate's bending does not couple to in-plane rotations).
+// from a low mode number on (issue 18's 10 mm head-impact plate: from mode 52; this 20 mm plate
+// of 12 x 10 shells: within the first 40). A larger EigenRequest::drilling_factor moves them
+// up by its square root and leaves the out-of-plane modes exactly as they are (a flat plate's
+// bending does not couple to in-plane rotations).
 TEST(ShellEigen, DrillingFactorMovesDrillingModesAndKeepsBending) {
   ShellPlate p;
   p.nx = 12;
@@ -256,8 +257,8 @@ TEST(ShellEigen, DrillingFactorMovesDrillingModesAndKeepsBending) {
   p.lx = 480.0;
   p.ly = 400.0;
   const std::string deck = "*KEYWORD\n" + p.text() +
-                           shell_part(1, 10.0, kRho, kE, 0.3, 2, 4, 0.05) +
-                           "*CONTROL_IMPLICIT_GENERAL\n1\n*CONTROL_IMPLICIT_EIGENVALUE\n60\n*END\n";
+                           shell_part(1, 20.0, kRho, kE, 0.3, 2, 4, 0.05) +
+                           "*CONTROL_IMPLICIT_GENERAL\n1\n*CONTROL_IMPLICIT_EIGENVALUE\n40\n*END\n";
   const model::Model model = read(deck);
   struct Spectrum {
     std::vector<double> bending;   // out-of-plane modes (z energy > 90 %), Hz
@@ -281,12 +282,12 @@ TEST(ShellEigen, DrillingFactorMovesDrillingModesAndKeepsBending) {
   const Spectrum high = analyse(100.0 * modal::kDrillingFactor);
   ASSERT_FALSE(low.drilling.empty());
   std::printf(
-      "drilling factor 1e-3: %zu bending, %zu drilling modes among 60, first drilling "
+      "drilling factor 1e-3: %zu bending, %zu drilling modes among 40, first drilling "
       "%.1f Hz; 1e-1: %zu bending, %zu drilling\n",
       low.bending.size(), low.drilling.size(), low.drilling.front(), high.bending.size(),
       high.drilling.size());
-  // With the default the drilling modes take part of the 60; with 100x none is left below the
-  // first drilling frequency times 10 (sqrt(100)), so more bending modes fit in the 60.
+  // With the default the drilling modes take part of the 40; with 100x none is left below the
+  // first drilling frequency times 10 (sqrt(100)), so more bending modes fit in the 40.
   EXPECT_GT(high.bending.size(), low.bending.size());
   for (const double f : high.drilling) EXPECT_GT(f, 9.9 * low.drilling.front());
   // The bending modes found with both are the same to the Lanczos tolerance.
