@@ -51,6 +51,7 @@ int run_eigen_command(const model::Model& model, const EigenCommandOptions& opti
   request.backend = options.solver == "simplicial" ? modal::FactorizationBackend::EigenSimplicial
                                                    : modal::FactorizationBackend::Cholmod;
   if (options.explicit_rotary_inertia) request.rotary_inertia = modal::RotaryInertia::kExplicit;
+  if (options.drilling_factor) request.drilling_factor = *options.drilling_factor;
   std::vector<std::string> log;
   request.log = &log;
   // Warnings always (--quiet hides progress and summaries only).

@@ -18,6 +18,7 @@ struct EigenCommandOptions {
   std::optional<double> remove_rigid_below;  // --remove-rigid F: LFLAG 1, LFTEND F
   std::string solver = "cholmod";            // cholmod | simplicial
   bool explicit_rotary_inertia = false;      // --rotary-inertia explicit
+  std::optional<double> drilling_factor;     // --drilling-factor
   bool quiet = false;
 };
 

@@ -582,7 +582,7 @@ int main(int argc, char** argv) {
 
   std::optional<int> eigen_modes;
   std::string eigen_parts, eigen_solver = "cholmod", eigen_rotary_inertia = "physical";
-  std::optional<double> eigen_shift, eigen_remove_rigid;
+  std::optional<double> eigen_shift, eigen_remove_rigid, eigen_drilling_factor;
   auto* eigen = app.add_subcommand(
       "eigen", "Eigen analysis (modes of free-free or constrained parts) of any deck");
   eigen->add_option("deck", deck, "Keyword deck")->required();
@@ -604,6 +604,11 @@ int main(int argc, char** argv) {
                    "Rotational inertia of shell and beam nodes: physical (default) or explicit "
                    "(the explicit solver's scaled rotary inertia, docs/eigen.md)")
       ->check(CLI::IsMember({"physical", "explicit"}));
+  eigen
+      ->add_option("--drilling-factor", eigen_drilling_factor,
+                   "Drilling penalty of shells, k = F G t A (default 1e-3, docs/eigen.md); "
+                   "larger F moves the drilling modes up the spectrum")
+      ->check(CLI::PositiveNumber);
   eigen->add_option("--threads", threads, "OpenMP threads (default: all cores)")
       ->check(CLI::NonNegativeNumber);
   eigen->add_flag("--quiet", quiet, "No progress or summary (warnings and errors still printed)");
@@ -655,6 +660,7 @@ int main(int argc, char** argv) {
       options.remove_rigid_below = eigen_remove_rigid;
       options.solver = eigen_solver;
       options.explicit_rotary_inertia = eigen_rotary_inertia == "explicit";
+      options.drilling_factor = eigen_drilling_factor;
       options.quiet = quiet;
       rf::model::Model model = rf::io::read_deck(deck, read_options);
       clear_output_directory(options.output, rf::app::ResultKind::kEigen, quiet);

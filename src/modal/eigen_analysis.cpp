@@ -161,8 +161,8 @@ ModeSet compute_modes(const model::Model& model, const EigenRequest& request, Ei
                                                       request.mode_count));
   }
   auto t0 = Clock::now();
-  StructuralMatrices sm =
-      assemble_structural_matrices(model, request.parts, request.rotary_inertia);
+  StructuralMatrices sm = assemble_structural_matrices(model, request.parts, request.rotary_inertia,
+                                                       request.drilling_factor);
   report.seconds_assembly = seconds_since(t0);
   for (auto& w : sm.warnings) report.warnings.push_back(w);
   const std::size_t ndof = static_cast<std::size_t>(sm.mass.size());

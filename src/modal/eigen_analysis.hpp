@@ -42,6 +42,9 @@ struct EigenRequest {
   FactorizationBackend backend = FactorizationBackend::Automatic;
   // Rotational inertia of shell and beam nodes (stiffness_assembly.hpp, docs/eigen.md).
   RotaryInertia rotary_inertia = RotaryInertia::kPhysical;
+  // Drilling penalty of shells, k = drilling_factor G t A (docs/eigen.md): larger values move
+  // the drilling modes (which the explicit shell does not have) above the band of interest.
+  double drilling_factor = kDrillingFactor;
   // Where messages (convergence, warnings) go; null: nowhere.
   std::vector<std::string>* log = nullptr;
 };

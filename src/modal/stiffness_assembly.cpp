@@ -510,16 +510,31 @@ namespace {
 // K (the hexahedra's 3n x 3n translational block) becomes the whole (3n + 3r)^2 matrix with the
 // shell and beam element matrices added: triplets in (block, element) order, summed by
 // setFromTriplets in that fixed order (deterministic for any thread count).
+// The shells' element matrices carry the drilling stiffness with `drilling_factor`; beams have
+// a rotational stiffness about every axis and need none.
+std::vector<double> structural_element_stiffness(const element::ShellBlock& block,
+                                                 const solver::NodalState& nodes, std::size_t first,
+                                                 std::size_t count, double drilling_factor) {
+  return element_stiffness_matrices(block, nodes, first, count, drilling_factor);
+}
+std::vector<double> structural_element_stiffness(const element::BeamBlock& block,
+                                                 const solver::NodalState& nodes, std::size_t first,
+                                                 std::size_t count, double) {
+  return element_stiffness_matrices(block, nodes, first, count);
+}
+
 template <class Block>
 void add_block_triplets(const Block& block, const solver::State& state, std::size_t n,
-                        std::vector<Eigen::Triplet<double>>& triplets, double& asymmetry) {
+                        double drilling_factor, std::vector<Eigen::Triplet<double>>& triplets,
+                        double& asymmetry) {
   const int npe = static_cast<int>(block.conn.size() / std::max<std::size_t>(1, block.size()));
   const std::size_t nd = 6 * static_cast<std::size_t>(npe);
   const std::size_t chunk = std::max<std::size_t>(1, kChunkDoubles / (nd * nd));
   std::vector<std::int64_t> dof(nd);
   for (std::size_t first = 0; first < block.size(); first += chunk) {
     const std::size_t count = std::min(chunk, block.size() - first);
-    const std::vector<double> ke = element_stiffness_matrices(block, state.nodes, first, count);
+    const std::vector<double> ke =
+        structural_element_stiffness(block, state.nodes, first, count, drilling_factor);
     for (std::size_t e = 0; e < count; ++e) {
       const std::size_t element = first + e;
       const double* k = &ke[e * nd * nd];
@@ -556,8 +571,8 @@ void add_block_triplets(const Block& block, const solver::State& state, std::siz
   }
 }
 
-void add_structural_stiffness(const solver::State& state, Eigen::SparseMatrix<double>& K,
-                              double& asymmetry) {
+void add_structural_stiffness(const solver::State& state, double drilling_factor,
+                              Eigen::SparseMatrix<double>& K, double& asymmetry) {
   const std::size_t n = state.nodes.size();
   const std::size_t ndof = 3 * n + 3 * state.rotations.size();
   std::vector<Eigen::Triplet<double>> triplets;
@@ -569,10 +584,10 @@ void add_structural_stiffness(const solver::State& state, Eigen::SparseMatrix<do
     }
   }
   for (const auto& block : state.shell_blocks) {
-    if (!block.rigid) add_block_triplets(block, state, n, triplets, asymmetry);
+    if (!block.rigid) add_block_triplets(block, state, n, drilling_factor, triplets, asymmetry);
   }
   for (const auto& block : state.beam_blocks) {
-    if (!block.rigid) add_block_triplets(block, state, n, triplets, asymmetry);
+    if (!block.rigid) add_block_triplets(block, state, n, drilling_factor, triplets, asymmetry);
   }
   Eigen::SparseMatrix<double> whole(static_cast<Eigen::Index>(ndof),
                                     static_cast<Eigen::Index>(ndof));
@@ -591,7 +606,7 @@ model::Id StructuralMatrices::node_of_dof(std::size_t dof) const {
 
 StructuralMatrices assemble_structural_matrices(const model::Model& model,
                                                 const std::vector<model::Id>& parts,
-                                                RotaryInertia inertia) {
+                                                RotaryInertia inertia, double drilling_factor) {
   StructuralMatrices out;
   const model::Model sub = extract_parts(model, parts, &out.warnings);
   const solver::NodeIndex node_index(sub);
@@ -787,7 +802,7 @@ StructuralMatrices assemble_structural_matrices(const model::Model& model,
     }
   }
   if (!state.shell_blocks.empty() || !state.beam_blocks.empty()) {
-    add_structural_stiffness(state, K, asymmetry);
+    add_structural_stiffness(state, drilling_factor, K, asymmetry);
   }
   out.element_asymmetry = asymmetry;
   return out;

@@ -90,6 +90,7 @@ enum class RotaryInertia { kPhysical, kExplicit };
 // Builds the state of the sub-model of `parts` and assembles K (OpenMP over elements) and M.
 StructuralMatrices assemble_structural_matrices(const model::Model& model,
                                                 const std::vector<model::Id>& parts,
-                                                RotaryInertia inertia = RotaryInertia::kPhysical);
+                                                RotaryInertia inertia = RotaryInertia::kPhysical,
+                                                double drilling_factor = kDrillingFactor);
 
 }  // namespace rf::modal

@@ -244,6 +244,58 @@ TEST(ShellEigen, FreeSquarePlateMatchesLeissa) {
   }
 }
 
+// The drilling penalty (docs/eigen.md) gives every node of a flat plate a drilling mode at
+// about sqrt(k / J); on a thick plate with the physical rotary inertia they crowd the spectrum
+// from a low mode number on (issue 18's 10 mm head-impact plate: from mode 52; this 20 mm plate
+// of 12 x 10 shells: within the first 40). A larger EigenRequest::drilling_factor moves them
+// up by its square root and leaves the out-of-plane modes exactly as they are (a flat plate's
+// bending does not couple to in-plane rotations).
+TEST(ShellEigen, DrillingFactorMovesDrillingModesAndKeepsBending) {
+  ShellPlate p;
+  p.nx = 12;
+  p.ny = 10;
+  p.lx = 480.0;
+  p.ly = 400.0;
+  const std::string deck = "*KEYWORD\n" + p.text() +
+                           shell_part(1, 20.0, kRho, kE, 0.3, 2, 4, 0.05) +
+                           "*CONTROL_IMPLICIT_GENERAL\n1\n*CONTROL_IMPLICIT_EIGENVALUE\n40\n*END\n";
+  const model::Model model = read(deck);
+  struct Spectrum {
+    std::vector<double> bending;   // out-of-plane modes (z energy > 90 %), Hz
+    std::vector<double> drilling;  // modes with < 10 % of their energy in translations, Hz
+  };
+  auto analyse = [&](double factor) {
+    modal::EigenRequest request = modal::request_from_deck(model);
+    request.drilling_factor = factor;
+    const modal::ModeSet modes = modal::compute_modes(model, request);
+    Spectrum s;
+    for (std::size_t k = 0; k < modes.mode_count(); ++k) {
+      if (modes.rigid[k]) continue;
+      const EnergyShares e = shares(modes, k);
+      const double f = frequency(modes.eigenvalues[k]);
+      if (e.z > 0.9) s.bending.push_back(f);
+      if (e.x + e.y + e.z < 0.1) s.drilling.push_back(f);
+    }
+    return s;
+  };
+  const Spectrum low = analyse(modal::kDrillingFactor);
+  const Spectrum high = analyse(100.0 * modal::kDrillingFactor);
+  ASSERT_FALSE(low.drilling.empty());
+  std::printf(
+      "drilling factor 1e-3: %zu bending, %zu drilling modes among 40, first drilling "
+      "%.1f Hz; 1e-1: %zu bending, %zu drilling\n",
+      low.bending.size(), low.drilling.size(), low.drilling.front(), high.bending.size(),
+      high.drilling.size());
+  // With the default the drilling modes take part of the 40; with 100x none is left below the
+  // first drilling frequency times 10 (sqrt(100)), so more bending modes fit in the 40.
+  EXPECT_GT(high.bending.size(), low.bending.size());
+  for (const double f : high.drilling) EXPECT_GT(f, 9.9 * low.drilling.front());
+  // The bending modes found with both are the same to the Lanczos tolerance.
+  for (std::size_t m = 0; m < low.bending.size(); ++m) {
+    EXPECT_NEAR(high.bending[m] / low.bending[m], 1.0, 1e-8) << m;
+  }
+}
+
 // Beam cantilever along x, square section h x h, n elements; s axis y.
 std::string beam_cantilever(int elform, int n, double length, double h) {
   std::string deck = "*KEYWORD\n*NODE\n";
