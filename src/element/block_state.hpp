@@ -30,6 +30,7 @@ void visit_erosion(Block& block, Visit& visit) {
   if (!block.erosion.enabled) return;
   visit(std::string("erosion_time"), block.erosion.time);
   visit(std::string("erosion_work"), block.erosion.work);
+  visit(std::string("erosion_artificial_work"), block.erosion.artificial_work);
 }
 
 // Hexahedra: stresses at every stress point, the stiffness forms' hourglass forces, volumes and

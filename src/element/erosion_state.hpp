@@ -46,12 +46,17 @@ struct ErosionState {
   // Per element: work of its nodal forces (and moments) since t = 0, with the displacement of
   // the step that glstat's balance uses; frozen at erosion (its eroded internal energy).
   std::vector<double> work;
+  // Per element: the part of `work` done by its hourglass and bulk viscosity forces (the kernels
+  // add it, hex_block.cpp, shell_block.cpp): it stays in glstat's hourglass and bulk viscosity
+  // columns when the element erodes, the rest becomes eroded internal energy.
+  std::vector<double> artificial_work;
   std::int64_t count = 0;  // eroded elements of the block
 
   bool is_eroded(std::size_t e) const { return enabled && time[e] >= 0.0; }
   void allocate(std::size_t n) {
     time.assign(n, -1.0);
     work.assign(n, 0.0);
+    artificial_work.assign(n, 0.0);
     count = 0;
   }
 };

@@ -53,8 +53,8 @@
 // get zero). Lumped mass: rho V0 / (number of distinct nodes) to each distinct node.
 // Time step: dt_e = L_e / c with L_e = V / A_max (LS-DYNA's solid rule); collapsed faces have zero
 // or triangle area automatically; tetrahedra use the smallest altitude 3 V / A_max.
-#include "element/kernel_partials.hpp"
 #include "element/hex_block.hpp"
+#include "element/kernel_partials.hpp"
 
 #include <fmt/format.h>
 #include <omp.h>
@@ -137,7 +137,9 @@ KernelResult combine(const KernelPartials& partials, int threads) {
   return combine_partials(partials, threads);
 }
 
-inline int thread_count() { return kernel_thread_count(); }
+inline int thread_count() {
+  return kernel_thread_count();
+}
 
 // --- ELFORM 1 -----------------------------------------------------------------------------
 //
@@ -607,6 +609,7 @@ void elform1_batch(HexBlock& block, std::size_t first, int count, const NodalVie
     }
     part.hourglass_work += h.work[l];
     part.bulk_viscosity_work += bulk_work[l];
+    if (block.erosion.enabled) block.erosion.artificial_work[e] += h.work[l] + bulk_work[l];
     if (!std::isfinite(fsum[l])) part.record_failure(ie, vol[l]);
     if (b.slots[l] == kIdentitySlots) {
       for (int n = 0; n < 8; ++n)
@@ -743,6 +746,8 @@ void elform2_element(HexBlock& block, std::size_t e, const NodalView& nv, double
     q_bulk = bulk_viscosity_pressure(bv, block.material.wave_speed, density, length, div_bar);
     pbar -= q_bulk;
     part.bulk_viscosity_work += -q_bulk * div_bar * gm.volume * dt;
+    if (block.erosion.enabled)
+      block.erosion.artificial_work[e] += -q_bulk * div_bar * gm.volume * dt;
   }
   for (int i = 0; i < 3; ++i)
     for (int n = 0; n < 8; ++n) f[i][n] += pbar * g.b[i][n];
@@ -750,10 +755,10 @@ void elform2_element(HexBlock& block, std::size_t e, const NodalView& nv, double
   if (inverted || !finite_forces(f)) part.record_failure(static_cast<std::int64_t>(e), g.volume);
   scatter_forces(slots, f, out);
   const double speed = block.material.wave_speed;
-  part.record_dt(scaled_step(block.step_scale, static_cast<std::int64_t>(e),
-                             bv.on() ? viscous_time_step(bv, speed, length, div_bar)
-                                     : length / speed),
-                 static_cast<std::int64_t>(e));
+  part.record_dt(
+      scaled_step(block.step_scale, static_cast<std::int64_t>(e),
+                  bv.on() ? viscous_time_step(bv, speed, length, div_bar) : length / speed),
+      static_cast<std::int64_t>(e));
 }
 
 HexShape detect_shape(const std::int32_t* c) {

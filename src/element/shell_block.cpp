@@ -285,7 +285,9 @@ KernelResult combine(const KernelPartials& partials, int threads) {
   return combine_partials(partials, threads);
 }
 
-inline int thread_count() { return kernel_thread_count(); }
+inline int thread_count() {
+  return kernel_thread_count();
+}
 
 // Constants of a block that every element uses.
 struct BlockConstants {
@@ -617,6 +619,7 @@ void shell_batch(ShellBlock& block, const BlockConstants& k, std::size_t first, 
     }
     for (int c = 0; c < kShellSlot; ++c) o[c] = material::get_lane(out[c], l);
     part.hourglass_work += material::get_lane(work, l);
+    if (block.erosion.enabled) block.erosion.artificial_work[e] += material::get_lane(work, l);
     if (!std::isfinite(material::get_lane(sum, l))) part.record_failure(ie, area_end);
     // Squared steps here: the mass scale enters squared.
     const double scale = block.step_scale.empty() ? 1.0 : block.step_scale[e];

@@ -191,6 +191,8 @@ void SimulationAccess::read_members(Simulation& s, const Group& g) {
       l.angular_momentum[k] = g.get_double(fmt::format("eroded_angular_momentum_{}", k));
     }
     s.erosion_.restore(st, s.rigid_.empty() ? nullptr : &s.rigid_.body_of_node);
+    // Contact's active segments and nodes are derived from the erosion state (contact.hpp).
+    if (!s.contacts_.empty()) contact::update_after_erosion(s.contacts_, st);
     e.eroded_internal = l.internal_energy;
     e.eroded_kinetic = l.kinetic_energy;
   }

@@ -426,7 +426,7 @@ std::int64_t Erosion::erode_failed_elements(State& state, double time,
     for (const std::size_t e : failed) {
       block.erosion.time[e] = time;
       ++block.erosion.count;
-      ledger_.internal_energy += block.erosion.work[e];
+      ledger_.internal_energy += block.erosion.work[e] - block.erosion.artificial_work[e];
       ++ledger_.elements;
       std::fill_n(block.force.begin() + static_cast<std::ptrdiff_t>(slot * e), slot, 0.0);
       const std::size_t points = static_cast<std::size_t>(block.points_per_element());

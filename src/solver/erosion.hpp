@@ -21,7 +21,9 @@ namespace rf::solver {
 
 // What has left the model since t = 0.
 struct ErosionLedger {
-  double internal_energy = 0.0;      // work the eroded elements' forces did before they left
+  // Work the eroded elements' forces did before they left, less their hourglass and bulk
+  // viscosity work (which stays in those glstat columns).
+  double internal_energy = 0.0;
   double kinetic_energy = 0.0;       // 1/2 m v^2 (+ 1/2 I w^2) of the removed nodes at removal
   std::array<double, 3> momentum{};  // m v of the removed nodes at removal
   std::array<double, 3> angular_momentum{};  // x x m v (+ I w) of the removed nodes

@@ -961,7 +961,13 @@ void Simulation::update_velocities() {
   energy_.internal_work +=
       sums[1] + rigid_sums.modal_damping_loss - rigid_sums.modal_stiffening_work;
   if (part_histories_) part_histories_->add_step_work(state_, rigid_, vp, dt_avg);  // matsum
-  if (erosion_.enabled()) erosion_.add_step_work(state_, vp, dt_avg);               // eroded energy
+  if (erosion_.enabled()) {
+    erosion_.add_step_work(state_, vp, dt_avg);
+    // With the kinetic energy of this half step, which no longer holds the nodes removed since
+    // the last one (the ledger took them when they went).
+    energy_.eroded_internal = erosion_.ledger().internal_energy;
+    energy_.eroded_kinetic = erosion_.ledger().kinetic_energy;
+  }
   if (!state_.discrete_blocks.empty()) add_discrete_work(state_, vp, dt_avg);  // glstat columns
   energy_.external_work +=
       sums[2] - sums[9] + reaction_work + rigid_sums.external_work + rigid_sums.modal_inertia_work;
@@ -1366,9 +1372,8 @@ void Simulation::compute_internal_forces() {
 void Simulation::erode_failed_elements() {
   const std::int64_t eroded = erosion_.erode_failed_elements(
       state_, state_.time, rigid_.empty() ? nullptr : &rigid_.body_of_node);
-  energy_.eroded_internal = erosion_.ledger().internal_energy;
-  energy_.eroded_kinetic = erosion_.ledger().kinetic_energy;
   if (eroded == 0) return;
+  if (!contacts_.empty()) contact::update_after_erosion(contacts_, state_);
   if (erosion_csv_) {
     for (const ErosionEvent& event : erosion_.events()) {
       erosion_csv_->write_text(fmt::format("{:.9g},{},{},{},\"{}\"\n", event.time, event.part,

@@ -76,6 +76,9 @@ TEST(OutputCsv, GlstatHeaderAndBitExactValues) {
   row.bulk_viscosity_energy = 7.0 / 19.0;
   row.spring_energy = 3.0 / 23.0;
   row.damper_energy = 5.0 / 29.0;
+  row.eroded_internal_energy = 7.0 / 31.0;
+  row.eroded_kinetic_energy = 11.0 / 37.0;
+  row.eroded_elements = 42.0;
   GlstatRow second = row;
   second.time = 2.0 / 3.0;
   second.cycle = 7;
@@ -91,24 +94,42 @@ TEST(OutputCsv, GlstatHeaderAndBitExactValues) {
             "total_energy,energy_ratio,momentum_x,momentum_y,momentum_z,angular_momentum_x,"
             "angular_momentum_y,angular_momentum_z,switch_energy,frozen_energy,rigidwall_work,"
             "contact_energy,modal_energy,damping_work,added_mass,mass_scaling_work,"
-            "bulk_viscosity_energy,spring_energy,damper_energy");
+            "bulk_viscosity_energy,spring_energy,damper_energy,eroded_internal_energy,"
+            "eroded_kinetic_energy,eroded_elements");
   const auto f = split_csv(lines[1]);
-  ASSERT_EQ(f.size(), 26u);
+  ASSERT_EQ(f.size(), 29u);
   expect_bits(f[0], row.time);
   expect_bits(f[1], row.dt);
   EXPECT_EQ(f[2], "123456789012");
-  const double rest[] = {
-      row.kinetic_energy,      row.internal_energy,     row.hourglass_energy,
-      row.external_work,       row.total_energy,        row.energy_ratio,
-      row.momentum[0],         row.momentum[1],         row.momentum[2],
-      row.angular_momentum[0], row.angular_momentum[1], row.angular_momentum[2],
-      row.switch_energy,       row.frozen_energy,       row.rigidwall_work,
-      row.contact_energy,      row.modal_energy,        row.damping_work,
-      row.added_mass,          row.mass_scaling_work,   row.bulk_viscosity_energy,
-      row.spring_energy,       row.damper_energy};
-  for (int i = 0; i < 23; ++i) expect_bits(f[3 + i], rest[i]);
+  const double rest[] = {row.kinetic_energy,
+                         row.internal_energy,
+                         row.hourglass_energy,
+                         row.external_work,
+                         row.total_energy,
+                         row.energy_ratio,
+                         row.momentum[0],
+                         row.momentum[1],
+                         row.momentum[2],
+                         row.angular_momentum[0],
+                         row.angular_momentum[1],
+                         row.angular_momentum[2],
+                         row.switch_energy,
+                         row.frozen_energy,
+                         row.rigidwall_work,
+                         row.contact_energy,
+                         row.modal_energy,
+                         row.damping_work,
+                         row.added_mass,
+                         row.mass_scaling_work,
+                         row.bulk_viscosity_energy,
+                         row.spring_energy,
+                         row.damper_energy,
+                         row.eroded_internal_energy,
+                         row.eroded_kinetic_energy,
+                         row.eroded_elements};
+  for (int i = 0; i < 26; ++i) expect_bits(f[3 + i], rest[i]);
   const auto g = split_csv(lines[2]);
-  ASSERT_EQ(g.size(), 26u);
+  ASSERT_EQ(g.size(), 29u);
   expect_bits(g[0], second.time);
   EXPECT_EQ(g[2], "7");
 }

@@ -5,6 +5,7 @@
 
 #include "io/keyword/definition_ids.hpp"
 #include "io/keyword/handlers.hpp"
+#include "model/error_context.hpp"
 
 namespace rf::io::handlers {
 
@@ -125,7 +126,8 @@ void mat_johnson_cook(const Block& block, ReaderContext& context) {
     jc.d[4] = c4->real(0, "D5", 0.0);
     // C2/P/XNP: only for RATEOP > 0 (refused above).
     jc.erod = c4->real(2, "EROD", 0.0);
-    if (!c4->blank(3)) jc.efmin = c4->real(3, "EFMIN", 1e-6);
+    // EFMIN blank or 0: LS-DYNA's default 1e-6.
+    if (const double efmin = c4->real(3, "EFMIN", 0.0); efmin != 0.0) jc.efmin = efmin;
     if (!(jc.efmin > 0.0))
       throw c4->error("EFMIN", fmt::format("lower bound of the failure strain EFMIN {} must be "
                                            "positive",
