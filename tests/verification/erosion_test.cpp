@@ -73,9 +73,9 @@ std::string pull_curve(double end_time) {
                      kPull, kPull, end_time);
 }
 
-// One unit cube on the symmetry planes x = 0, y = 0, z = 0, the face x = 1 pulled (lateral
-// faces free: uniaxial stress), material card `material` for part 1.
-std::string pulled_cube(const std::string& material, double end_time) {
+// One unit cube (part 1, ELFORM 1, IHQ 4) on the symmetry planes x = 0, y = 0, z = 0, its face
+// x = 1 moved along x by curve 1 times `scale` (lateral faces free: uniaxial stress).
+std::string cube_on_symmetry_planes(const std::string& material, double scale) {
   BoxMesh mesh;
   std::string deck = "*KEYWORD\n" + mesh.keyword_text();
   deck += "*PART\nbar\n1,1,1,0,1\n*SECTION_SOLID\n1,1\n*HOURGLASS\n1,4,0.1\n" + material;
@@ -87,8 +87,12 @@ std::string pulled_cube(const std::string& material, double end_time) {
   deck +=
       node_set(1, mesh.face_x(0)) + node_set(2, mesh.face_x(1)) + node_set(3, y0) + node_set(4, z0);
   deck += "*BOUNDARY_SPC_SET\n1,0,1,0,0\n3,0,0,1,0\n4,0,0,0,1\n";
-  deck += "*BOUNDARY_PRESCRIBED_MOTION_SET\n2,1,0,1,1.0\n";
-  return deck + pull_curve(end_time) + "*END\n";
+  return deck + fmt::format("*BOUNDARY_PRESCRIBED_MOTION_SET\n2,1,0,1,{}\n", scale);
+}
+
+// The cube pulled by the ramp of pull_curve.
+std::string pulled_cube(const std::string& material, double end_time) {
+  return cube_on_symmetry_planes(material, 1.0) + pull_curve(end_time) + "*END\n";
 }
 
 // Runs until the first erosion (or the end); returns the time of the cycle that deleted.
@@ -236,24 +240,14 @@ INSTANTIATE_TEST_SUITE_P(
 // TDEL: a cube (nu = 0) squeezed along x; its step is L/c with c = sqrt(E/rho), so it is deleted
 // when L falls to c TDEL.
 TEST(Erosion, ElementGoesWhenItsStepFallsBelowTdel) {
-  BoxMesh mesh;
-  std::string deck = "*KEYWORD\n" + mesh.keyword_text();
-  deck += "*PART\ncube\n1,1,1,0,1\n*SECTION_SOLID\n1,1\n*HOURGLASS\n1,4,0.1\n";
   const double c = std::sqrt(kE / kRho);
   const double tdel = 0.8 / c;  // L = 0.8
-  deck += fmt::format("*MAT_PIECEWISE_LINEAR_PLASTICITY\n1,{},{},0.0,1e12,0,0,{:.17g}\n", kRho, kE,
-                      tdel);
-  deck += "*CONTROL_BULK_VISCOSITY\n0.0,0.0\n";
-  std::vector<int> y0, z0;
-  for (int k = 0; k <= 1; ++k)
-    for (int i = 0; i <= 1; ++i) y0.push_back(mesh.node_id(i, 0, k));
-  for (int j = 0; j <= 1; ++j)
-    for (int i = 0; i <= 1; ++i) z0.push_back(mesh.node_id(i, j, 0));
-  deck +=
-      node_set(1, mesh.face_x(0)) + node_set(2, mesh.face_x(1)) + node_set(3, y0) + node_set(4, z0);
-  deck += "*BOUNDARY_SPC_SET\n1,0,1,0,0\n3,0,0,1,0\n4,0,0,0,1\n";
   // Squeezed at 20 m/s after a 1 ms ramp: L = 0.8 at t = 0.2 / 20 + 0.5 ms.
-  deck += "*BOUNDARY_PRESCRIBED_MOTION_SET\n2,1,0,1,-1.0\n";
+  std::string deck = cube_on_symmetry_planes(
+      fmt::format("*MAT_PIECEWISE_LINEAR_PLASTICITY\n1,{},{},0.0,1e12,0,0,{:.17g}\n"
+                  "*CONTROL_BULK_VISCOSITY\n0.0,0.0\n",
+                  kRho, kE, tdel),
+      -1.0);
   deck += "*DEFINE_CURVE\n1\n0,0\n1e-3,20\n1e9,20\n*CONTROL_TERMINATION\n0.02\n*END\n";
   const double expected = 0.2 / 20.0 + 0.5e-3;
   solver::Simulation sim(read(deck), {});
