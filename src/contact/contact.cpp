@@ -1110,6 +1110,13 @@ ContactSystem build_contacts(const model::Model& model, const solver::NodeIndex&
     if (contact.sides[1].segments.empty()) {
       throw InputError(model::context_of(c.where, "MSID"), "the master side has no segments");
     }
+    // *CONTROL_CONTACT SLSFAC: the segment stiffnesses above use LS-DYNA's default 0.1.
+    if (const double scale = model.contact_control.slsfac / kSlsfac; scale != 1.0) {
+      for (ContactSurface& side : contact.sides) {
+        for (double& k : side.stiffness) k *= scale;
+        for (double& k : side.node_stiffness) k *= scale;
+      }
+    }
     auto add_pass = [&](int slave_side, int master_side) {
       ContactPass pass;
       pass.slave_side = slave_side;

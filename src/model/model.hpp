@@ -142,6 +142,13 @@ struct SectionDiscrete {
   SourceLocation where;
 };
 
+// *CONTROL_CONTACT: the fields that change the physics of our contacts (the others are accepted
+// where they cannot change it and refused where they would, io/keyword/handlers_contact.cpp).
+struct ContactControl {
+  double slsfac = 0.1;  // scale of the SOFT = 0 penalty stiffness (contact/contact.cpp)
+  SourceLocation where;
+};
+
 // *CONTROL_SHELL fields that change the physics (the others are accepted at their defaults).
 struct ShellControl {
   int theory = 2;  // default ELFORM of *SECTION_SHELL ELFORM 0
@@ -1034,6 +1041,7 @@ struct Model {
   std::vector<DiscreteElement> discretes;  // *ELEMENT_DISCRETE, in input order
   std::map<Id, SectionDiscrete> discrete_sections;
   ShellControl shell_control;
+  ContactControl contact_control;  // *CONTROL_CONTACT
   std::map<Id, Material> materials;
   std::map<Id, EquationOfState> equations_of_state;  // *EOS_, by EOSID
   std::map<Id, AddErosion> add_erosions;             // *MAT_ADD_EROSION, by MID

@@ -16,6 +16,7 @@
 
 #include "contact/contact.hpp"
 #include "deck_builder.hpp"
+#include "model/error.hpp"
 
 namespace rf::test {
 namespace {
@@ -437,6 +438,55 @@ TEST(Contact, BlockSticksOnInclineFlatterThanFrictionAngle) {
   // Without friction it would slide g sin a t^2 / 2 = 8.5 mm; it creeps only by the elastic
   // tangential spring.
   EXPECT_LT(std::abs(r.along), 1e-5);
+}
+
+}  // namespace
+}  // namespace rf::test
+
+namespace rf::test {
+namespace {
+
+// *CONTROL_CONTACT SLSFAC scales every SOFT = 0 segment stiffness: k = SLSFAC K A^2 / V with K
+// the bulk modulus E / (3 (1 - 2 nu)), A the face area and V the element's volume (LS-DYNA
+// Theory Manual, contact penalty method), here on the bar's faces (nu = 0: K = E / 3).
+TEST(Contact, ControlContactSlsfacScalesThePenaltyStiffness) {
+  const int nz = 4;
+  solver::Simulation sim(read(bar_drop_deck(nz, "*CONTROL_CONTACT\n0.3\n")), {});
+  const contact::ContactSurface& bar = sim.contacts().interfaces.at(0).sides[0];
+  const auto& x = sim.state().nodes.x;
+  const double bulk = kE / 3.0;
+  const double volume = (kWidth / 2) * (kWidth / 2) * (kLength / nz);
+  ASSERT_FALSE(bar.segments.empty());
+  for (std::size_t s = 0; s < bar.segments.size(); ++s) {
+    const auto& q = bar.segments[s];
+    auto p = [&](int a) { return Eigen::Vector3d(x.x[q[a]], x.y[q[a]], x.z[q[a]]); };
+    const double area = 0.5 * ((p(2) - p(0)).cross(p(3) - p(1))).norm();
+    EXPECT_NEAR(bar.stiffness[s], 0.3 * bulk * area * area / volume, 1e-12 * bar.stiffness[s]);
+  }
+  // The default (no *CONTROL_CONTACT) is LS-DYNA's 0.1.
+  solver::Simulation plain(read(bar_drop_deck(nz)), {});
+  const contact::ContactSurface& bar0 = plain.contacts().interfaces.at(0).sides[0];
+  for (std::size_t s = 0; s < bar0.segments.size(); ++s)
+    EXPECT_NEAR(bar.stiffness[s] / bar0.stiffness[s], 3.0, 1e-12);
+}
+
+// Fields that would change the physics are refused by name; those without effect are accepted.
+TEST(Contact, ControlContactRefusesWhatWouldChangeThePhysics) {
+  auto error_of = [](const std::string& control) {
+    try {
+      solver::Simulation sim(read(bar_drop_deck(2, control)), {});
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(error_of("*CONTROL_CONTACT\n0.1,0,2,1,1,1,1,0\n0,0,10,1,4,0,1,0\n"), "");
+  EXPECT_NE(error_of("*CONTROL_CONTACT\n0.1,0,1,0,1,0,1,1\n").find("ENMASS"), std::string::npos);
+  EXPECT_NE(error_of("*CONTROL_CONTACT\n0.1,0,1,0,4\n").find("PENOPT"), std::string::npos);
+  EXPECT_NE(error_of("*CONTROL_CONTACT\n0.1,1.0\n").find("RWPNAL"), std::string::npos);
+  EXPECT_NE(error_of("*CONTROL_CONTACT\n0.1\n0\n0.3\n").find("SFRIC"), std::string::npos);
+  EXPECT_NE(error_of("*CONTROL_CONTACT\n0.1\n0\n0\n1\n").find("IGNORE"), std::string::npos);
+  EXPECT_NE(error_of("*CONTROL_CONTACT\n-1\n").find("SLSFAC"), std::string::npos);
 }
 
 }  // namespace

@@ -29,6 +29,8 @@ void mat_three_parameter_barlat(const Block&, ReaderContext&);
 // handlers_johnson_cook.cpp
 void mat_johnson_cook(const Block&, ReaderContext&);
 void eos_linear_polynomial(const Block&, ReaderContext&);
+// handlers_contact.cpp
+void control_contact(const Block&, ReaderContext&);
 // handlers_erosion.cpp
 void mat_add_erosion(const Block&, ReaderContext&);
 void hourglass(const Block&, ReaderContext&);

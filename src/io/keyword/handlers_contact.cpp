@@ -9,6 +9,7 @@
 // not used (docs/keywords.md). The solver side is src/contact/contact.hpp.
 #include <fmt/format.h>
 
+#include <cmath>
 #include <string>
 
 #include "io/keyword/handlers.hpp"
@@ -176,6 +177,95 @@ void contact_automatic(const Block& block, ReaderContext& context) {
     require_default(b, 7, "SLDSTF", 0.0, "solid contact stiffness override is not modelled");
   }
   context.model.contacts.push_back(std::move(contact));
+  warn_unread_lines(block, cursor, context);
+}
+
+// *CONTROL_CONTACT (LS-DYNA Keyword User's Manual, *CONTROL_CONTACT; six optional cards). Each
+// field is one of: used (SLSFAC), what our contacts already do (PENOPT 0/1: the smaller of the
+// master segment's and the slave node's stiffness; ENMASS 0: nodes of eroded elements are
+// removed), no effect on them (checks, search tuning, output, options of contact types we do not
+// read), or refused when set, because it would change the physics (default friction and
+// damping for every contact, initial-penetration handling, rigid-wall penalties, spot-weld
+// options, thermal contact, symmetry planes, edge treatment). docs/keywords.md lists each.
+void control_contact(const Block& block, ReaderContext& context) {
+  CardCursor cursor(block, context.parameters);
+  model::ContactControl& control = context.model.contact_control;
+  // Refused unless blank or equal to the default `fallback`.
+  auto refuse = [](const Card& card, std::size_t i, const char* name, double fallback,
+                   const char* what) {
+    const double v = card.real(i, name, fallback);
+    if (v != fallback)
+      throw card.error(name, fmt::format("value {} is not supported: {} (leave it blank or {})", v,
+                                         what, fallback));
+  };
+  const Card c1 =
+      cursor.next(1, kEightByTen, "SLSFAC RWPNAL ISLCHK SHLTHK PENOPT THKCHG ORIEN ENMASS");
+  control.where = c1.location();
+  const double slsfac = c1.real(0, "SLSFAC", 0.0);
+  if (slsfac < 0.0 || !std::isfinite(slsfac))
+    throw c1.error("SLSFAC", fmt::format("penalty scale {} must be positive (blank: 0.1)", slsfac));
+  control.slsfac = slsfac > 0.0 ? slsfac : 0.1;
+  refuse(c1, 1, "RWPNAL", 0.0,
+         "rigid walls act by the constraint method here (penalty walls are not implemented)");
+  const double penopt = c1.real(4, "PENOPT", 0.0);
+  if (penopt != 0.0 && penopt != 1.0)
+    throw c1.error("PENOPT", fmt::format("PENOPT {} is not supported: the contacts use the smaller "
+                                         "of the master segment's and the slave node's stiffness "
+                                         "(PENOPT 1; leave it blank, 0 or 1)",
+                                         penopt));
+  refuse(c1, 7, "ENMASS", 0.0,
+         "nodes left without elements by erosion are removed from the model and from contact "
+         "(ENMASS 0)");
+  // ISLCHK (a check), SHLTHK (automatic contacts always offset by the shell thickness), THKCHG
+  // (shell thicknesses do not change, ISTUPD 0), ORIEN (orientation of non-automatic contacts):
+  // no effect.
+  if (const auto c2 = cursor.next_optional(2, kEightByTen)) {
+    refuse(*c2, 0, "USRSTR", 0.0, "user contact subroutines are not supported");
+    refuse(*c2, 1, "USRFRC", 0.0, "user friction subroutines are not supported");
+    refuse(*c2, 5, "SSTHK", 0.0,
+           "single-surface contacts take the thickness of *CONTACT card 3 (SST, SFST)");
+    // NSBCS, INTERM, XPENE (search and penetration checks of other contact types), ECDT (the
+    // contacts never enter the time step), TIEDPRJ (tied contacts): no effect.
+  }
+  if (const auto c3 = cursor.next_optional(3, kEightByTen)) {
+    static const char* const kNames[] = {"SFRIC", "DFRIC", "EDC", "VFC", "TH", "TH_SF", "PEN_SF"};
+    for (std::size_t k = 0; k < 7; ++k)
+      refuse(*c3, k, kNames[k], 0.0,
+             k < 4 ? "default friction and damping for every contact (give FS, FD, DC, VDC on "
+                     "each *CONTACT instead)"
+                   : "thermal contact is not implemented");
+  }
+  if (const auto c4 = cursor.next_optional(4, kEightByTen)) {
+    refuse(*c4, 0, "IGNORE", 0.0,
+           "initial penetrations are not treated specially (they are pushed out by the penalty)");
+    refuse(*c4, 4, "SPOTSTP", 0.0, "spot weld checks are not implemented");
+    refuse(*c4, 5, "SPOTDEL", 0.0,
+           "spot welds are not deleted with their elements (*CONSTRAINED_SPOTWELD)");
+    refuse(*c4, 6, "SPOTHIN", 0.0, "spot weld thinning is not implemented");
+    // FRCENG, SKIPRWG, OUTSEG: output options.
+  }
+  if (const auto c5 = cursor.next_optional(5, kEightByTen)) {
+    refuse(*c5, 0, "ISYM", 0.0, "symmetry planes in contact are not implemented");
+    refuse(*c5, 1, "NSEROD", 0.0, "eroding node-to-surface options are not implemented");
+    refuse(*c5, 2, "RWGAPS", 1.0, "rigid wall gaps of shells are not implemented");
+    refuse(*c5, 3, "RWGDTH", 0.0, "rigid wall gaps of shells are not implemented");
+    const double rwksf = c5->real(4, "RWKSF", 1.0);
+    if (rwksf != 0.0 && rwksf != 1.0)
+      throw c5->error("RWKSF", fmt::format("value {} is not supported: rigid walls act by the "
+                                           "constraint method (leave it blank or 1)",
+                                           rwksf));
+    refuse(*c5, 5, "ICOV", 0.0, "invariant node numbering is not implemented");
+    refuse(*c5, 6, "SWRADF", 0.0, "spot weld radius scaling is not implemented");
+    refuse(*c5, 7, "ITHOFF", 0.0, "thermal contact is not implemented");
+  }
+  if (const auto c6 = cursor.next_optional(6, kEightByTen)) {
+    static const char* const kNames[] = {"SHLEDG", "PSTIFF", "ITHCNT", "TDCNOF",
+                                         "FTALL",  "",       "SHLTRW", "IGACTC"};
+    for (std::size_t k = 0; k < 8; ++k) {
+      if (k == 5) continue;
+      refuse(*c6, k, kNames[k], 0.0, "this contact option is not implemented");
+    }
+  }
   warn_unread_lines(block, cursor, context);
 }
 

@@ -26,6 +26,7 @@ const std::vector<KeywordEntry>& table() {
       {"*MAT_SPRING_NONLINEAR_ELASTIC", mat_discrete, {"TITLE"}},
       {"*MAT_S04", mat_discrete, {"TITLE"}},
       {"*CONTROL_SHELL", control_shell, {}},
+      {"*CONTROL_CONTACT", control_contact, {}},
       {"*MAT_ELASTIC", mat_elastic, {"TITLE"}},
       {"*MAT_001", mat_elastic, {"TITLE"}},
       {"*MAT_RIGID", mat_rigid, {"TITLE"}},
