@@ -1,6 +1,7 @@
 #include "app/model_summary.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "element/kernels.hpp"
 
@@ -8,12 +9,36 @@
 #include <array>
 #include <map>
 #include <set>
+#include <string>
+#include <vector>
 
 #include "solver/simulation.hpp"
 
 namespace rf::app {
 
 namespace {
+
+// The failure criteria of an erodible block (solver/erosion.hpp), one line for the summary.
+std::string erosion_line(const element::ErosionState& erosion) {
+  if (!erosion.enabled) return "";
+  const element::ErosionCriteria& c = erosion.criteria;
+  std::vector<std::string> items;
+  if (c.plastic_strain > 0.0) items.push_back(fmt::format("plastic strain {:g}", c.plastic_strain));
+  if (c.damage) items.push_back("Johnson-Cook damage 1");
+  if (c.tdel > 0.0) items.push_back(fmt::format("step below TDEL {:g}", c.tdel));
+  if (c.add_erosion()) {
+    std::vector<std::string> a;
+    if (c.has_max_pressure) a.push_back(fmt::format("MXPRES {:g}", c.max_pressure));
+    if (c.has_min_pressure) a.push_back(fmt::format("MNPRES {:g}", c.min_pressure));
+    if (c.has_principal_stress) a.push_back(fmt::format("SIGP1 {:g}", c.principal_stress));
+    if (c.has_von_mises) a.push_back(fmt::format("SIGVM {:g}", c.von_mises));
+    if (c.has_volumetric_strain) a.push_back(fmt::format("VOLEPS {:g}", c.volumetric_strain));
+    if (c.has_failure_time) a.push_back(fmt::format("FAILTM {:g}", c.failure_time));
+    items.push_back(fmt::format("*MAT_ADD_EROSION {} (NCS {}, NUMFIP {:g})", fmt::join(a, ", "),
+                                c.criteria_at_once, c.failed_points));
+  }
+  return fmt::format("    erodes at: {}\n", fmt::join(items, "; "));
+}
 
 // The ELFORM as the deck wrote it (ELFORM 10 tetrahedra run the ELFORM 1 kernel).
 int section_elform(const model::Model& model, model::Id secid, int kernel_elform) {
@@ -104,6 +129,7 @@ void print_model_summary(const model::Model& model, const solver::Simulation& si
                                             block.bulk_viscosity.q1, block.bulk_viscosity.q2)
                               : std::string("no bulk viscosity")),
         dt);
+    fmt::print(out, "{}", erosion_line(block.erosion));
   }
   // Shell and beam parts with their sections (and the step of the deformable ones).
   if (!model.shells.empty() || !model.beams.empty()) {
@@ -129,6 +155,7 @@ void print_model_summary(const model::Model& model, const solver::Simulation& si
                            : fmt::format(", hourglass IHQ {} QM {:g}, element step {:.4g}",
                                          block.hourglass.ihq, block.hourglass.qm,
                                          element::shell_critical_timestep(block, view).min_dt));
+    fmt::print(out, "{}", erosion_line(block.erosion));
   }
   for (const auto& block : state.beam_blocks) {
     const auto& part = model.parts.at(block.part_id);
@@ -142,6 +169,7 @@ void print_model_summary(const model::Model& model, const solver::Simulation& si
                block.rigid ? std::string(", rigid")
                            : fmt::format(", element step {:.4g}",
                                          element::beam_critical_timestep(block, view).min_dt));
+    fmt::print(out, "{}", erosion_line(block.erosion));
   }
   if (!state.rotations.empty()) {
     fmt::print(out, "nodes with rotations: {}\n", state.rotations.size());

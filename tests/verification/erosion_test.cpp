@@ -16,6 +16,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "app/model_summary.hpp"
 #include "deck_builder.hpp"
 #include "model/error.hpp"
 
@@ -468,6 +469,28 @@ TEST(ErosionDeck, UnsupportedCriteriaAndBadCardsAreErrorsNamingTheField) {
   EXPECT_NE(error_of(cube_with("*MAT_ADD_EROSION\n1\n0,0,-5\n")).find("SIGVM"), std::string::npos);
   EXPECT_NE(error_of(cube_with("*MAT_ADD_EROSION\n1,0,0,0,0,0,-50\n0,3e8\n")).find("NUMFIP"),
             std::string::npos);
+}
+
+}  // namespace
+}  // namespace rf::test
+
+namespace rf::test {
+namespace {
+
+// `rigidflex check` lists the criteria of every part that can erode.
+TEST(ErosionDeck, CheckListsTheCriteriaOfErodibleParts) {
+  const model::Model model = read(cube_with("*MAT_ADD_EROSION\n1,0,0,0,0,0,1,2\n0,3e8,2e8\n"));
+  solver::Simulation sim(model, {});
+  std::FILE* file = std::tmpfile();
+  ASSERT_NE(file, nullptr);
+  app::print_model_summary(model, sim, file);
+  std::rewind(file);
+  std::string text;
+  for (int ch; (ch = std::fgetc(file)) != EOF;) text.push_back(static_cast<char>(ch));
+  std::fclose(file);
+  EXPECT_NE(text.find("erodes at: *MAT_ADD_EROSION SIGP1 3e+08, SIGVM 2e+08 (NCS 2, NUMFIP 1)"),
+            std::string::npos)
+      << text;
 }
 
 }  // namespace
