@@ -19,6 +19,9 @@
 // GCC vector of doubles when the element kernels process a batch of elements in SIMD lanes.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include "material/elastic.hpp"
 
 namespace rf::material {
@@ -90,6 +93,21 @@ inline void split_velocity_gradient(const T L[9], T d[6], T w[3]) {
   w[0] = 0.5 * (L[7] - L[5]);  // W_zy
   w[1] = 0.5 * (L[2] - L[6]);  // W_xz
   w[2] = 0.5 * (L[3] - L[1]);  // W_yx
+}
+
+// Largest eigenvalue of a symmetric 3x3 (Voigt xx yy zz xy yz zx), trigonometric closed form
+// (Smith, Commun. ACM 4 (1961) 168). Johnson-Cook spall, *MAT_ADD_EROSION SIGP1.
+inline double max_principal(const double s[6]) {
+  const double q = (s[0] + s[1] + s[2]) / 3.0;
+  const double a = s[0] - q, b = s[1] - q, c = s[2] - q;
+  const double off = s[3] * s[3] + s[4] * s[4] + s[5] * s[5];
+  const double p2 = (a * a + b * b + c * c + 2.0 * off) / 6.0;
+  if (!(p2 > 0.0)) return q;
+  const double pp = std::sqrt(p2);
+  const double det =
+      a * (b * c - s[4] * s[4]) - s[3] * (s[3] * c - s[4] * s[5]) + s[5] * (s[3] * s[4] - b * s[5]);
+  const double r = std::clamp(det / (2.0 * pp * pp * pp), -1.0, 1.0);
+  return q + 2.0 * pp * std::cos(std::acos(r) / 3.0);
 }
 
 }  // namespace rf::material

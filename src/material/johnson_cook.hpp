@@ -150,22 +150,8 @@ inline double plastic_increment(const JohnsonCookParameters& p, double shear, do
   return x;
 }
 
-// Largest eigenvalue of a symmetric 3x3 (Voigt xx yy zz xy yz zx), trigonometric closed form
-// (Smith, Commun. ACM 4 (1961) 168).
-inline double max_principal(const double s[6]) {
-  const double q = (s[0] + s[1] + s[2]) / 3.0;
-  const double a = s[0] - q, b = s[1] - q, c = s[2] - q;
-  const double off = s[3] * s[3] + s[4] * s[4] + s[5] * s[5];
-  const double p2 = (a * a + b * b + c * c + 2.0 * off) / 6.0;
-  if (!(p2 > 0.0)) return q;
-  const double pp = std::sqrt(p2);
-  const double det =
-      a * (b * c - s[4] * s[4]) - s[3] * (s[3] * c - s[4] * s[5]) + s[5] * (s[3] * s[4] - b * s[5]);
-  const double r = std::clamp(det / (2.0 * pp * pp * pp), -1.0, 1.0);
-  return q + 2.0 * pp * std::cos(std::acos(r) / 3.0);
-}
-
-// One step at one point; h = {eps_p, temperature, internal energy, relative volume, spalled}.
+// One step at one point; h = {eps_p, temperature, internal energy, relative volume, spalled,
+// damage}.
 inline void point_update(const ElasticConstants& el, const JohnsonCookParameters& p,
                          const double d[6], const double w[3], double dt, double s[6], double* h) {
   hughes_winget_rotate(w, dt, s);

@@ -4,11 +4,11 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <string_view>
 
+#include "material/elastic_update.hpp"
 #include "model/error.hpp"
 #include "model/error_context.hpp"
 
@@ -43,13 +43,6 @@ PointStress point_stress(const double s[6]) {
   return p;
 }
 
-double largest_principal(const double s[6]) {
-  Eigen::Matrix3d m;
-  m << s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2];
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(m, Eigen::EigenvaluesOnly);
-  return solver.eigenvalues()(2);
-}
-
 // How many *MAT_ADD_EROSION criteria a point meets (element-level ones, the volumetric strain
 // and the failure time, count at every point).
 int criteria_met(const element::ErosionCriteria& c, const double s[6], double log_volume_ratio,
@@ -61,7 +54,7 @@ int criteria_met(const element::ErosionCriteria& c, const double s[6], double lo
     if (c.has_min_pressure && p.pressure <= c.min_pressure) ++met;
     if (c.has_von_mises && p.von_mises >= c.von_mises) ++met;
   }
-  if (c.has_principal_stress && largest_principal(s) >= c.principal_stress) ++met;
+  if (c.has_principal_stress && material::max_principal(s) >= c.principal_stress) ++met;
   if (c.has_volumetric_strain) {
     const double v = c.volumetric_strain;
     if ((v > 0.0 && log_volume_ratio >= v) || (v < 0.0 && log_volume_ratio <= v)) ++met;

@@ -757,20 +757,7 @@ void Simulation::apply_switch(model::Id swset, const std::vector<model::PartSwit
     released_dt = std::min(released_dt, r.min_dt);
   }
   if (distribution_) released_dt = distribution_->communicator().min(released_dt);
-  element_dt_ = std::numeric_limits<double>::infinity();
-  for (const auto& block : state_.hex_blocks) {
-    if (block.rigid) continue;
-    const element::KernelResult r = element::block_critical_timestep(block, view);
-    element_dt_ = std::min(element_dt_, r.min_dt);
-  }
-  for (const auto& block : state_.shell_blocks) {
-    if (block.rigid) continue;
-    element_dt_ = std::min(element_dt_, element::shell_critical_timestep(block, view).min_dt);
-  }
-  for (const auto& block : state_.beam_blocks) {
-    if (block.rigid) continue;
-    element_dt_ = std::min(element_dt_, element::beam_critical_timestep(block, view).min_dt);
-  }
+  element_dt_ = critical_step_of_blocks().first;
   if (dtmax > 0.0 || swset != 0) switch_dt_cap_ = dtmax;
   const double tssfac = model_.timestep.tssfac > 0.0 ? model_.timestep.tssfac : 0.9;
   double cap = tssfac * released_dt;
@@ -1381,32 +1368,27 @@ void Simulation::erode_failed_elements() {
     }
   }
   // The step the remaining elements allow (the kernels' minimum included the deleted ones).
+  const auto [step, controlling] = critical_step_of_blocks();
+  element_dt_ = step;
+  if (controlling != 0) controlling_element_ = controlling;
+}
+
+std::pair<double, model::Id> Simulation::critical_step_of_blocks() const {
   const element::NodalView view = view_of(state_.nodes);
-  element_dt_ = std::numeric_limits<double>::infinity();
-  for (const auto& block : state_.hex_blocks) {
-    if (block.rigid) continue;
-    const element::KernelResult r = element::block_critical_timestep(block, view);
-    if (r.min_dt < element_dt_) {
-      element_dt_ = r.min_dt;
-      if (r.min_dt_element >= 0) controlling_element_ = block.element_id[r.min_dt_element];
-    }
-  }
-  for (const auto& block : state_.shell_blocks) {
-    if (block.rigid) continue;
-    const element::KernelResult r = element::shell_critical_timestep(block, view);
-    if (r.min_dt < element_dt_) {
-      element_dt_ = r.min_dt;
-      if (r.min_dt_element >= 0) controlling_element_ = block.element_id[r.min_dt_element];
-    }
-  }
-  for (const auto& block : state_.beam_blocks) {
-    if (block.rigid) continue;
-    const element::KernelResult r = element::beam_critical_timestep(block, view);
-    if (r.min_dt < element_dt_) {
-      element_dt_ = r.min_dt;
-      if (r.min_dt_element >= 0) controlling_element_ = block.element_id[r.min_dt_element];
-    }
-  }
+  double step = std::numeric_limits<double>::infinity();
+  model::Id controlling = 0;
+  auto take = [&](const element::KernelResult& r, const std::vector<model::Id>& ids) {
+    if (!(r.min_dt < step)) return;
+    step = r.min_dt;
+    controlling = r.min_dt_element >= 0 ? ids[static_cast<std::size_t>(r.min_dt_element)] : 0;
+  };
+  for (const auto& block : state_.hex_blocks)
+    if (!block.rigid) take(element::block_critical_timestep(block, view), block.element_id);
+  for (const auto& block : state_.shell_blocks)
+    if (!block.rigid) take(element::shell_critical_timestep(block, view), block.element_id);
+  for (const auto& block : state_.beam_blocks)
+    if (!block.rigid) take(element::beam_critical_timestep(block, view), block.element_id);
+  return {step, controlling};
 }
 
 // f_int from every family: the element blocks' force slots (summed over the ranks), then the

@@ -223,12 +223,16 @@ class Simulation {
   void gather_internal_forces(bool book_work);
   void compute_structural_forces();  // shells and beams (part of compute_internal_forces)
   void compute_discrete_forces();    // springs and dampers (part of compute_internal_forces)
-  void apply_rigid_walls();  // (inside update_velocities) walls stop nodes and bodies
+  void apply_rigid_walls();          // (inside update_velocities) walls stop nodes and bodies
   void write_output_if_due(bool force);
   void update_positions();         // x^{n+1} = x^n + dt v^{n+1/2}
   void compute_internal_forces();  // element kernels at n+1, assembly, element time step
   // Deletes the elements that failed in this cycle's kernels (before their forces are gathered).
   void erode_failed_elements();
+  // Smallest critical step of the deformable blocks of every family at the current geometry
+  // (no TSSFAC), and the element that sets it: after a switch or a deletion, when the kernels'
+  // minimum of the cycle no longer describes the model.
+  std::pair<double, model::Id> critical_step_of_blocks() const;
   void compute_contact_forces();   // contact at x^{n+1} (contact/contact.hpp)
   void compute_external_forces();  // loads at t^{n+1}, plus the contact forces
   void scale_masses_if_needed();   // *CONTROL_TIMESTEP DT2MS (solver/mass_scaling.hpp)
@@ -275,8 +279,8 @@ class Simulation {
   RigidSystem rigid_;
   JointSystem joints_;  // *CONSTRAINED_JOINT_... (penalty springs between node pairs)
   NodalConstraints nodal_constraints_;  // *CONSTRAINED_SPOTWELD, *CONSTRAINED_NODE_SET
-  MassScaling mass_scaling_;  // *CONTROL_TIMESTEP DT2MS; inactive without it
-  Erosion erosion_;           // failure criteria and deleted elements; inert without them
+  MassScaling mass_scaling_;            // *CONTROL_TIMESTEP DT2MS; inactive without it
+  Erosion erosion_;                     // failure criteria and deleted elements; inert without them
   std::unique_ptr<output::CsvFile> erosion_csv_;  // erosion.csv: one row per deleted element
   std::vector<model::Warning> warnings_;
   Boundary boundary_;

@@ -16,7 +16,6 @@
 
 #include "contact/contact.hpp"
 #include "deck_builder.hpp"
-#include "model/error.hpp"
 
 namespace rf::test {
 namespace {
@@ -473,12 +472,7 @@ TEST(Contact, ControlContactSlsfacScalesThePenaltyStiffness) {
 // Fields that would change the physics are refused by name; those without effect are accepted.
 TEST(Contact, ControlContactRefusesWhatWouldChangeThePhysics) {
   auto error_of = [](const std::string& control) {
-    try {
-      solver::Simulation sim(read(bar_drop_deck(2, control)), {});
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string();
+    return simulation_error_of(bar_drop_deck(2, control));
   };
   EXPECT_EQ(error_of("*CONTROL_CONTACT\n0.1,0,2,1,1,1,1,0\n0,0,10,1,4,0,1,0\n"), "");
   EXPECT_NE(error_of("*CONTROL_CONTACT\n0.1,0,1,0,1,0,1,1\n").find("ENMASS"), std::string::npos);

@@ -13,6 +13,7 @@
 
 #include "contact/contact.hpp"
 #include "io/keyword/reader.hpp"
+#include "model/error.hpp"
 #include "solver/simulation.hpp"
 
 namespace rf::test {
@@ -140,6 +141,34 @@ inline std::string elastic_part(double rho, double e, double nu, int elform, int
 
 inline model::Model read(const std::string& text) {
   return io::read_deck_text(text, "verification.k");
+}
+
+// The InputError message of reading `deck` and building its simulation; empty if it builds.
+inline std::string simulation_error_of(const std::string& deck) {
+  try {
+    solver::Simulation sim(read(deck), {});
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// One unit cube (part 1, ELFORM 1, IHQ 4, material card `material`) on the symmetry planes
+// x = 0, y = 0, z = 0, its face x = 1 moved along x by curve 1 times `scale`: with the lateral
+// faces free, uniaxial stress. The deck still needs curve 1, the termination and *END.
+inline std::string cube_on_symmetry_planes(const std::string& material, double scale) {
+  BoxMesh mesh;
+  std::string deck = "*KEYWORD\n" + mesh.keyword_text();
+  deck += "*PART\nbar\n1,1,1,0,1\n*SECTION_SOLID\n1,1\n*HOURGLASS\n1,4,0.1\n" + material;
+  std::vector<int> y0, z0;
+  for (int k = 0; k <= 1; ++k)
+    for (int i = 0; i <= 1; ++i) y0.push_back(mesh.node_id(i, 0, k));
+  for (int j = 0; j <= 1; ++j)
+    for (int i = 0; i <= 1; ++i) z0.push_back(mesh.node_id(i, j, 0));
+  deck +=
+      node_set(1, mesh.face_x(0)) + node_set(2, mesh.face_x(1)) + node_set(3, y0) + node_set(4, z0);
+  deck += "*BOUNDARY_SPC_SET\n1,0,1,0,0\n3,0,0,1,0\n4,0,0,0,1\n";
+  return deck + fmt::format("*BOUNDARY_PRESCRIBED_MOTION_SET\n2,1,0,1,{}\n", scale);
 }
 
 // Strain energy of linear elastic elements from their stresses: sum V/2 sigma : C^-1 : sigma.

@@ -74,23 +74,6 @@ std::string pull_curve(double end_time) {
                      kPull, kPull, end_time);
 }
 
-// One unit cube (part 1, ELFORM 1, IHQ 4) on the symmetry planes x = 0, y = 0, z = 0, its face
-// x = 1 moved along x by curve 1 times `scale` (lateral faces free: uniaxial stress).
-std::string cube_on_symmetry_planes(const std::string& material, double scale) {
-  BoxMesh mesh;
-  std::string deck = "*KEYWORD\n" + mesh.keyword_text();
-  deck += "*PART\nbar\n1,1,1,0,1\n*SECTION_SOLID\n1,1\n*HOURGLASS\n1,4,0.1\n" + material;
-  std::vector<int> y0, z0;
-  for (int k = 0; k <= 1; ++k)
-    for (int i = 0; i <= 1; ++i) y0.push_back(mesh.node_id(i, 0, k));
-  for (int j = 0; j <= 1; ++j)
-    for (int i = 0; i <= 1; ++i) z0.push_back(mesh.node_id(i, j, 0));
-  deck +=
-      node_set(1, mesh.face_x(0)) + node_set(2, mesh.face_x(1)) + node_set(3, y0) + node_set(4, z0);
-  deck += "*BOUNDARY_SPC_SET\n1,0,1,0,0\n3,0,0,1,0\n4,0,0,0,1\n";
-  return deck + fmt::format("*BOUNDARY_PRESCRIBED_MOTION_SET\n2,1,0,1,{}\n", scale);
-}
-
 // The cube pulled by the ramp of pull_curve.
 std::string pulled_cube(const std::string& material, double end_time) {
   return cube_on_symmetry_planes(material, 1.0) + pull_curve(end_time) + "*END\n";
@@ -439,15 +422,6 @@ TEST(Erosion, ProjectilePerforatesAnErodiblePlateWithMomentumAndEnergyKept) {
 
 // --- Bad input ----------------------------------------------------------------------------------
 
-std::string error_of(const std::string& deck) {
-  try {
-    solver::Simulation sim(read(deck), {});
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
-
 std::string cube_with(const std::string& extra) {
   BoxMesh mesh;
   return "*KEYWORD\n" + mesh.keyword_text() +
@@ -457,18 +431,24 @@ std::string cube_with(const std::string& extra) {
 }
 
 TEST(ErosionDeck, UnsupportedCriteriaAndBadCardsAreErrorsNamingTheField) {
-  EXPECT_NE(error_of(cube_with("*MAT_ADD_EROSION\n1,0,0,0.1\n")).find("MNEPS"), std::string::npos);
-  EXPECT_NE(error_of(cube_with("*MAT_ADD_EROSION\n1\n0,0,0,0.2\n")).find("MXEPS"),
+  EXPECT_NE(simulation_error_of(cube_with("*MAT_ADD_EROSION\n1,0,0,0.1\n")).find("MNEPS"),
             std::string::npos);
-  EXPECT_NE(error_of(cube_with("*MAT_ADD_EROSION\n1\n0,0,0,0,0,0,0,0\n7\n")).find("IDAM"),
+  EXPECT_NE(simulation_error_of(cube_with("*MAT_ADD_EROSION\n1\n0,0,0,0.2\n")).find("MXEPS"),
             std::string::npos);
-  EXPECT_NE(error_of(cube_with("*MAT_ADD_EROSION\n9\n0,3e8\n")).find("material 9 is not defined"),
+  EXPECT_NE(
+      simulation_error_of(cube_with("*MAT_ADD_EROSION\n1\n0,0,0,0,0,0,0,0\n7\n")).find("IDAM"),
+      std::string::npos);
+  EXPECT_NE(simulation_error_of(cube_with("*MAT_ADD_EROSION\n9\n0,3e8\n"))
+                .find("material 9 is not defined"),
             std::string::npos);
-  EXPECT_NE(error_of(cube_with("*MAT_ADD_EROSION\n1,0,0,0,0,0,1,3\n0,3e8,2e8\n")).find("NCS"),
+  EXPECT_NE(
+      simulation_error_of(cube_with("*MAT_ADD_EROSION\n1,0,0,0,0,0,1,3\n0,3e8,2e8\n")).find("NCS"),
+      std::string::npos);
+  EXPECT_NE(simulation_error_of(cube_with("*MAT_ADD_EROSION\n1\n0,0,-5\n")).find("SIGVM"),
             std::string::npos);
-  EXPECT_NE(error_of(cube_with("*MAT_ADD_EROSION\n1\n0,0,-5\n")).find("SIGVM"), std::string::npos);
-  EXPECT_NE(error_of(cube_with("*MAT_ADD_EROSION\n1,0,0,0,0,0,-50\n0,3e8\n")).find("NUMFIP"),
-            std::string::npos);
+  EXPECT_NE(
+      simulation_error_of(cube_with("*MAT_ADD_EROSION\n1,0,0,0,0,0,-50\n0,3e8\n")).find("NUMFIP"),
+      std::string::npos);
 }
 
 }  // namespace

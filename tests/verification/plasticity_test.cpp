@@ -222,19 +222,9 @@ INSTANTIATE_TEST_SUITE_P(Plasticity, UniaxialHardening, ::testing::ValuesIn(hard
 // sigma_xx - sigma_yy, so the law holds for it; the lateral stress stays small.
 TEST(PlasticKinematic, UniaxialStressTensionWithFreeLateralFaces) {
   const double etan = 2.0e9, v = 0.1, end = 5.0;  // ln(1.5) = 0.41, 32000 cycles
-  BoxMesh mesh;
-  std::string deck = "*KEYWORD\n" + mesh.keyword_text();
-  deck += "*PART\nbar\n1,1,1,0,1\n*SECTION_SOLID\n1,1\n*HOURGLASS\n1,4,0.1\n";
-  deck += fmt::format("*MAT_PLASTIC_KINEMATIC\n1,{},{},{},{},{},1.0\n", kRho, kE, kNu, kSigy, etan);
-  std::vector<int> y0, z0;
-  for (int k = 0; k <= 1; ++k)
-    for (int i = 0; i <= 1; ++i) y0.push_back(mesh.node_id(i, 0, k));
-  for (int j = 0; j <= 1; ++j)
-    for (int i = 0; i <= 1; ++i) z0.push_back(mesh.node_id(i, j, 0));
-  deck +=
-      node_set(1, mesh.face_x(0)) + node_set(2, mesh.face_x(1)) + node_set(3, y0) + node_set(4, z0);
-  deck += "*BOUNDARY_SPC_SET\n1,0,1,0,0\n3,0,0,1,0\n4,0,0,0,1\n";
-  deck += "*BOUNDARY_PRESCRIBED_MOTION_SET\n2,1,0,1,1.0\n";
+  std::string deck = cube_on_symmetry_planes(
+      fmt::format("*MAT_PLASTIC_KINEMATIC\n1,{},{},{},{},{},1.0\n", kRho, kE, kNu, kSigy, etan),
+      1.0);
   deck += fmt::format("*DEFINE_CURVE\n1\n0,0\n0.1,{0}\n1e9,{0}\n", v);
   deck += fmt::format("*CONTROL_TERMINATION\n{},\n*END\n", end);
   solver::Simulation sim(read(deck), {});

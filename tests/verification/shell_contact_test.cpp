@@ -519,15 +519,6 @@ TEST(ShellContact, ResultsDoNotDependOnThreadCount) {
 // ---------------------------------------------------------------------------------------
 // Bad input: errors with file, line, keyword and field.
 
-std::string error_of(const std::string& deck) {
-  try {
-    solver::Simulation sim(read(deck), {});
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
-
 TEST(ShellContact, RefusesBeamsSegmentsThatBoundNoElementAndNegativeThickness) {
   const ShellPlate p = plate(2, 0.04, 1, 1);
   const std::string base = "*KEYWORD\n" + p.text() + shell_part(1, 0.002, 2700.0, 7e10, 0.3) +
@@ -536,21 +527,22 @@ TEST(ShellContact, RefusesBeamsSegmentsThatBoundNoElementAndNegativeThickness) {
   const std::string beam =
       "*NODE\n900,0,0,0.1\n901,0.1,0,0.1\n*ELEMENT_BEAM\n900,9,900,901\n*PART\nbeam\n9,9,9\n"
       "*SECTION_BEAM\n9,3\n0.0001\n*MAT_ELASTIC\n9,7800,2e11,0.3\n";
-  const std::string e1 =
-      error_of(base + beam + "*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE\n9,1,3,3\n0,0\n1,1\n*END\n");
+  const std::string e1 = simulation_error_of(
+      base + beam + "*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE\n9,1,3,3\n0,0\n1,1\n*END\n");
   EXPECT_NE(e1.find("part 9 (beam elements)"), std::string::npos) << e1;
   EXPECT_NE(e1.find("SSID"), std::string::npos) << e1;
   EXPECT_NE(e1.find("*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE"), std::string::npos) << e1;
   // A segment that is neither a solid face nor a shell.
-  const std::string e3 = error_of(base + "*SET_SEGMENT\n7\n1,2,6,4\n" + "*SET_NODE_LIST\n1\n1,2\n" +
-                                  "*CONTACT_AUTOMATIC_NODES_TO_SURFACE\n1,7,4,0\n0,0\n1,1\n*END\n");
+  const std::string e3 =
+      simulation_error_of(base + "*SET_SEGMENT\n7\n1,2,6,4\n" + "*SET_NODE_LIST\n1\n1,2\n" +
+                          "*CONTACT_AUTOMATIC_NODES_TO_SURFACE\n1,7,4,0\n0,0\n1,1\n*END\n");
   EXPECT_NE(e3.find("1 2 6 4 of segment set 7 is neither a face of a solid element nor a shell"),
             std::string::npos)
       << e3;
   EXPECT_NE(e3.find("MSID"), std::string::npos) << e3;
   // Negative SST.
-  const std::string e4 =
-      error_of(base + "*CONTACT_AUTOMATIC_SINGLE_SURFACE\n1,0,3\n0,0\n1,1,-0.001\n*END\n");
+  const std::string e4 = simulation_error_of(
+      base + "*CONTACT_AUTOMATIC_SINGLE_SURFACE\n1,0,3\n0,0\n1,1,-0.001\n*END\n");
   EXPECT_NE(e4.find("SST"), std::string::npos) << e4;
   EXPECT_NE(e4.find("must not be negative"), std::string::npos) << e4;
 }

@@ -198,4 +198,12 @@ void finish_impetus(ReaderContext& context);
 // Reports data lines a handler did not consume.
 void warn_unread_lines(const Block& block, CardCursor& cursor, ReaderContext& context);
 
+// The number of the first data card: 2 after the title line of a `_TITLE` keyword (consumed
+// here), else 1.
+inline int skip_title(const Block& block, CardCursor& cursor) {
+  if (!block.has_option("TITLE")) return 1;
+  cursor.next_text(1, "title");
+  return 2;
+}
+
 }  // namespace rf::io

@@ -23,11 +23,7 @@ const Layout kEightByTen = uniform_layout(8, 10);
 // criterion out; a criterion we do not evaluate is refused, never dropped.
 void mat_add_erosion(const Block& block, ReaderContext& context) {
   CardCursor cursor(block, context.parameters);
-  int n = 1;
-  if (block.has_option("TITLE")) {
-    cursor.next_text(1, "title");
-    n = 2;
-  }
+  const int n = skip_title(block, cursor);
   const Card card = cursor.next(n, kEightByTen, "MID EXCL MXPRES MNEPS EFFEPS VOLEPS NUMFIP NCS");
   model::AddErosion erosion;
   erosion.mid = positive_id(card, 0, "MID", "material");

@@ -13,19 +13,13 @@ namespace {
 
 const Layout kEightByTen = uniform_layout(8, 10);
 
-int title_offset(const Block& block, CardCursor& cursor) {
-  if (!block.has_option("TITLE")) return 1;
-  cursor.next_text(1, "title");
-  return 2;
-}
-
 }  // namespace
 
 // Card 1: MID RO G E PR DTF VP RATEOP; card 2: A B N C M TM TR EPSO; card 3: CP PC SPALL IT D1 D2
 // D3 D4; card 4: D5 C2/P/XNP EROD EFMIN NUMINT.
 void mat_johnson_cook(const Block& block, ReaderContext& context) {
   CardCursor cursor(block, context.parameters);
-  const int n = title_offset(block, cursor);
+  const int n = skip_title(block, cursor);
   const Card card = cursor.next(n, kEightByTen, "MID RO G E PR DTF VP RATEOP");
   model::Material m;
   m.id = positive_id(card, 0, "MID", "material");
@@ -157,7 +151,7 @@ void mat_johnson_cook(const Block& block, ReaderContext& context) {
 // Card 1: EOSID C0 C1 C2 C3 C4 C5 C6; card 2: E0 V0.
 void eos_linear_polynomial(const Block& block, ReaderContext& context) {
   CardCursor cursor(block, context.parameters);
-  const int n = title_offset(block, cursor);
+  const int n = skip_title(block, cursor);
   const Card card = cursor.next(n, kEightByTen, "EOSID C0 C1 C2 C3 C4 C5 C6");
   model::EquationOfState eos;
   eos.id = positive_id(card, 0, "EOSID", "equation of state");
