@@ -26,6 +26,7 @@ std::string erosion_line(const element::ErosionState& erosion) {
   if (c.plastic_strain > 0.0) items.push_back(fmt::format("plastic strain {:g}", c.plastic_strain));
   if (c.damage) items.push_back("Johnson-Cook damage 1");
   if (c.tdel > 0.0) items.push_back(fmt::format("step below TDEL {:g}", c.tdel));
+  if (c.below_minimum_step) items.push_back("step below TSMIN (*CONTROL_TIMESTEP ERODE)");
   if (c.add_erosion()) {
     std::vector<std::string> a;
     if (c.has_max_pressure) a.push_back(fmt::format("MXPRES {:g}", c.max_pressure));
@@ -34,6 +35,10 @@ std::string erosion_line(const element::ErosionState& erosion) {
     if (c.has_von_mises) a.push_back(fmt::format("SIGVM {:g}", c.von_mises));
     if (c.has_volumetric_strain) a.push_back(fmt::format("VOLEPS {:g}", c.volumetric_strain));
     if (c.has_failure_time) a.push_back(fmt::format("FAILTM {:g}", c.failure_time));
+    if (c.has_max_principal_strain) a.push_back(fmt::format("MXEPS {:g}", c.max_principal_strain));
+    if (c.has_min_principal_strain) a.push_back(fmt::format("MNEPS {:g}", c.min_principal_strain));
+    if (c.has_effective_strain) a.push_back(fmt::format("EFFEPS {:g}", c.effective_strain));
+    if (c.has_shear_strain) a.push_back(fmt::format("EPSSH {:g}", c.shear_strain));
     items.push_back(fmt::format("*MAT_ADD_EROSION {} (NCS {}, NUMFIP {:g})", fmt::join(a, ", "),
                                 c.criteria_at_once, c.failed_points));
   }

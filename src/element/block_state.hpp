@@ -52,7 +52,8 @@ void visit_hex_state(Block& block, Visit&& visit) {
 // Shells: co-rotational stresses at every integration point, hourglass forces (accumulated for
 // IHQ 4, 5; the last step's for the viscous forms), reference and current areas, nodal and
 // element thicknesses (fixed today, no ISTUPD, visited all the same so that a thickness update
-// needs no change here), the last element forces and moments. Mass scaling's step_scale belongs
+// needs no change here), the last element forces and moments, the integrated strain when an
+// erosion criterion keeps one. Mass scaling's step_scale belongs
 // to the mass scaling (its element factors).
 template <class Block, class Visit>
 void visit_shell_state(Block& block, Visit&& visit) {
@@ -63,6 +64,7 @@ void visit_shell_state(Block& block, Visit&& visit) {
   visit(std::string("thickness"), block.thickness);
   visit(std::string("element_thickness"), block.element_thickness);
   visit(std::string("force"), block.force);
+  if (!block.strain.empty()) visit(std::string("strain"), block.strain);
   visit_history(block, visit);
   visit_erosion(block, visit);
 }

@@ -22,17 +22,35 @@ struct ErosionCriteria {
   double plastic_strain = 0.0;  // FS (003), FAIL (024): a point fails at this plastic strain
   bool damage = false;          // Johnson-Cook D1-D5: a point fails at damage 1
   double tdel = 0.0;            // TDEL (024): the element erodes when its step is below this
+  // *CONTROL_TIMESTEP ERODE names this family: the element erodes when its step (with mass
+  // scaling) would bring the run's step below TSMIN (Erosion::set_minimum_step).
+  bool below_minimum_step = false;
   // *MAT_ADD_EROSION (each off unless `has_*`): p = -tr(sigma)/3.
   bool has_max_pressure = false, has_min_pressure = false, has_principal_stress = false,
        has_von_mises = false, has_volumetric_strain = false, has_failure_time = false;
   double max_pressure = 0.0, min_pressure = 0.0, principal_stress = 0.0, von_mises = 0.0,
          volumetric_strain = 0.0, failure_time = 0.0;
+  // Strain criteria on the logarithmic principal strains e1 >= e2 >= e3 of the point
+  // (solids: from the deformation gradient; shells: the integrated in-plane strain `strain` of
+  // the shell block with a volume-preserving thickness strain; trusses: ln(L/L0) with
+  // volume-preserving lateral strains): e1 >= MXEPS, e3 <= MNEPS, sqrt(2/3 e':e') >= EFFEPS,
+  // (e1 - e3)/2 >= EPSSH.
+  bool has_max_principal_strain = false, has_min_principal_strain = false,
+       has_effective_strain = false, has_shear_strain = false;
+  double max_principal_strain = 0.0, min_principal_strain = 0.0, effective_strain = 0.0,
+         shear_strain = 0.0;
   int criteria_at_once = 1;    // NCS
   double failed_points = 1.0;  // NUMFIP (< 0: percentage of the element's points, shells)
-  bool add_erosion() const {
-    return has_max_pressure || has_min_pressure || has_principal_stress || has_von_mises ||
-           has_volumetric_strain || has_failure_time;
+  bool strain_criteria() const {
+    return has_max_principal_strain || has_min_principal_strain || has_effective_strain ||
+           has_shear_strain;
   }
+  int defined() const {
+    return has_max_pressure + has_min_pressure + has_principal_stress + has_von_mises +
+           has_volumetric_strain + has_failure_time + has_max_principal_strain +
+           has_min_principal_strain + has_effective_strain + has_shear_strain;
+  }
+  bool add_erosion() const { return defined() > 0; }
 };
 
 struct ErosionState {

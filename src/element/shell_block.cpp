@@ -462,6 +462,17 @@ void shell_batch(ShellBlock& block, const BlockConstants& k, std::size_t first, 
     for (int c = 0; c < 5; ++c) sp[c] = gather<T>(block.stress.data() + c, off);
     const T z = block.zeta[q] * half_t;
     const T d[3] = {em[0] + z * kp[0], em[1] + z * kp[1], em[2] + z * kp[2]};
+    if (!block.strain.empty()) {
+      // The strain criteria of erosion: integral of the rate of deformation in the co-rotational
+      // frame (midpoint rule, like the stress), tensor shear d_xy = (2 d_xy) / 2.
+      for (int l = 0; l < count; ++l) {
+        double* e = block.strain.data() +
+                    3 * (static_cast<std::size_t>(nip) * elem[l] + static_cast<std::size_t>(q));
+        e[0] += dt * material::get_lane(d[0], l);
+        e[1] += dt * material::get_lane(d[1], l);
+        e[2] += 0.5 * dt * material::get_lane(d[2], l);
+      }
+    }
     if constexpr (kHist > 0) {
       double h[kHist];
       const std::size_t point =

@@ -68,11 +68,11 @@ struct ShellBlock {
   // LS-DYNA's default BWC = 2 leaves it off).
   bool warping_correction = false;
 
-  std::vector<model::Id> element_id;     // user IDs, size n
-  std::vector<std::int32_t> conn;        // dense node indices, 4 per element (N3 == N4: triangle)
+  std::vector<model::Id> element_id;  // user IDs, size n
+  std::vector<std::int32_t> conn;     // dense node indices, 4 per element (N3 == N4: triangle)
   std::vector<std::int32_t> rotation_conn;  // rotational indices of the same nodes, 4 per element
-  std::vector<double> thickness;         // nodal thicknesses T1..T4, 4 per element
-  std::vector<std::uint8_t> triangle;    // 1 where N3 == N4
+  std::vector<double> thickness;            // nodal thicknesses T1..T4, 4 per element
+  std::vector<std::uint8_t> triangle;       // 1 where N3 == N4
 
   // Per-element state.
   // Stress: kShellStress per point, nip points per element (ELFORM 16: 4 x nip), co-rotational.
@@ -89,7 +89,7 @@ struct ShellBlock {
   // Element thickness: mean of the nodal thicknesses of the distinct nodes, fixed at
   // initialisation (no thickness update: ISTUPD 0).
   std::vector<double> element_thickness;
-  std::vector<double> area;   // current area
+  std::vector<double> area;  // current area
   // Anisotropic materials (*MAT_036): cosine and sine of the angle from the element's side 1-2
   // (co-rotational e1) to the material's rolling direction, 2 per element, fixed at
   // initialisation from the reference geometry and AOPT (the axes turn with the element).
@@ -97,6 +97,10 @@ struct ShellBlock {
   std::vector<double> material_axes;
   // Element forces and moments of the last evaluation, kShellSlot per element.
   std::vector<double> force;
+  // Strain integrated from the rate of deformation at every point (xx, yy and the tensor
+  // component xy, co-rotational like the stress), 3 per point; allocated only when an erosion
+  // criterion needs it (solver/erosion.cpp), empty otherwise and then never touched.
+  std::vector<double> strain;
 
   std::size_t size() const { return element_id.size(); }
   int in_plane_points() const { return elform == 16 ? 4 : 1; }

@@ -95,19 +95,34 @@ inline void split_velocity_gradient(const T L[9], T d[6], T w[3]) {
   w[2] = 0.5 * (L[3] - L[1]);  // W_yx
 }
 
-// Largest eigenvalue of a symmetric 3x3 (Voigt xx yy zz xy yz zx), trigonometric closed form
-// (Smith, Commun. ACM 4 (1961) 168). Johnson-Cook spall, *MAT_ADD_EROSION SIGP1.
-inline double max_principal(const double s[6]) {
+// The three eigenvalues of a symmetric 3x3 (Voigt xx yy zz xy yz zx) in descending order,
+// trigonometric closed form (Smith, Commun. ACM 4 (1961) 168): q + 2 p cos(phi/3 + 2 pi k/3), the
+// middle one from the trace. *MAT_ADD_EROSION strain criteria.
+inline void principal_values(const double s[6], double out[3]) {
   const double q = (s[0] + s[1] + s[2]) / 3.0;
   const double a = s[0] - q, b = s[1] - q, c = s[2] - q;
   const double off = s[3] * s[3] + s[4] * s[4] + s[5] * s[5];
   const double p2 = (a * a + b * b + c * c + 2.0 * off) / 6.0;
-  if (!(p2 > 0.0)) return q;
+  if (!(p2 > 0.0)) {
+    out[0] = out[1] = out[2] = q;
+    return;
+  }
   const double pp = std::sqrt(p2);
   const double det =
       a * (b * c - s[4] * s[4]) - s[3] * (s[3] * c - s[4] * s[5]) + s[5] * (s[3] * s[4] - b * s[5]);
   const double r = std::clamp(det / (2.0 * pp * pp * pp), -1.0, 1.0);
-  return q + 2.0 * pp * std::cos(std::acos(r) / 3.0);
+  const double phi = std::acos(r) / 3.0;
+  constexpr double kThird = 2.0943951023931954923;  // 2 pi / 3
+  out[0] = q + 2.0 * pp * std::cos(phi);
+  out[2] = q + 2.0 * pp * std::cos(phi + kThird);
+  out[1] = 3.0 * q - out[0] - out[2];
+}
+
+// Largest eigenvalue (Johnson-Cook spall, *MAT_ADD_EROSION SIGP1).
+inline double max_principal(const double s[6]) {
+  double values[3];
+  principal_values(s, values);
+  return values[0];
 }
 
 }  // namespace rf::material

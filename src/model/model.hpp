@@ -216,6 +216,11 @@ struct AddErosion {
   std::optional<double> sigp1;   // fail when the largest principal stress >= SIGP1
   std::optional<double> sigvm;   // fail when the von Mises stress >= SIGVM
   std::optional<double> voleps;  // fail when ln(V/V0) >= VOLEPS (> 0) or <= VOLEPS (< 0)
+  // Strain criteria on the logarithmic principal strains e1 >= e2 >= e3 (docs/materials.md):
+  std::optional<double> mxeps;   // fail when e1 >= MXEPS (> 0)
+  std::optional<double> mneps;   // fail when e3 <= MNEPS (< 0)
+  std::optional<double> effeps;  // fail when sqrt(2/3 e':e') >= EFFEPS (> 0)
+  std::optional<double> epssh;   // fail when (e1 - e3) / 2 >= EPSSH (> 0)
   std::optional<double> failtm;  // fail when the time >= FAILTM
   double numfip = 1.0;           // failed points before deletion (< 0 shells: percentage)
   int ncs = 1;                   // criteria a point must meet at once
@@ -897,8 +902,12 @@ struct Termination {
 struct TimestepControl {
   double dtinit = 0.0;
   double tssfac = 0.9;
-  double dt2ms = 0.0;    // mass scaling target (docs/keywords.md); 0: none
-  int ms1st = 0;         // 1: mass scaling at the first step only
+  double dt2ms = 0.0;  // mass scaling target (docs/keywords.md); 0: none
+  int ms1st = 0;       // 1: mass scaling at the first step only
+  // ERODE: digits 1 (solids), 10 (shells), 100 (beams): elements of those families whose step
+  // brings the run's step below TSMIN (*CONTROL_TERMINATION DTMIN times the first step) erode
+  // instead of stopping the run (solver/erosion.cpp).
+  int erode = 0;
   SourceLocation where;  // the *CONTROL_TIMESTEP card (errors found at set-up)
   int isdo = 0;          // shell step option (0 only)
   Id lctm = 0;

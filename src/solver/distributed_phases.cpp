@@ -50,6 +50,8 @@ void Simulation::start_distributed_run() {
         refuse(mat.plastic.fail_where, mat.plastic.fail > 0.0 ? "FAIL" : "TDEL",
                fmt::format("element erosion (failure of material {})", mat.id));
     }
+    if (model.timestep.erode != 0)
+      refuse(model.timestep.where, "ERODE", "element erosion by the time step (ERODE)");
     refuse(model.timestep.where, "", "element erosion");
   }
   // Measured: with the bulk viscosity on, the hourglass energy of a 3-rank run of

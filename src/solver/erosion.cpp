@@ -8,6 +8,7 @@
 #include <cmath>
 #include <string_view>
 
+#include "element/hex_geometry.hpp"
 #include "material/elastic_update.hpp"
 #include "model/error.hpp"
 #include "model/error_context.hpp"
@@ -43,11 +44,93 @@ PointStress point_stress(const double s[6]) {
   return p;
 }
 
+// sqrt(2/3 e':e') of the principal strains (e' the deviator): LS-DYNA's effective strain.
+double effective_strain(const double e[3]) {
+  const double mean = (e[0] + e[1] + e[2]) / 3.0;
+  const double a = e[0] - mean, b = e[1] - mean, c = e[2] - mean;
+  return std::sqrt(2.0 / 3.0 * (a * a + b * b + c * c));
+}
+
+// Principal logarithmic strains e_i = ln(lambda_i), descending, from the right Cauchy-Green
+// tensor C = F^T F (Voigt) whose eigenvalues are lambda_i^2.
+void log_strains_of_cauchy_green(const double c[6], double out[3]) {
+  material::principal_values(c, out);
+  for (int i = 0; i < 3; ++i) out[i] = out[i] > 0.0 ? 0.5 * std::log(out[i]) : -HUGE_VAL;
+}
+
+// Principal strains of a strain tensor whose thickness (or lateral) strain is not known: the
+// in-plane (axial) components given, e_zz = -(e_xx + e_yy) as in a volume-preserving plastic
+// flow (Voigt xx yy xy tensor components).
+void volume_preserving_strains(double xx, double yy, double xy, double out[3]) {
+  const double e[6] = {xx, yy, -(xx + yy), xy, 0.0, 0.0};
+  material::principal_values(e, out);
+}
+
+// Per family: the principal logarithmic strains at point q of element e (the strain criteria).
+// Solids: from the deformation gradient F = I + sum_n u_n (x) dN_n/dX on the reference geometry
+// (the element's mean gradients for one point, the 2x2x2 Gauss point's for ELFORM 2), exact for
+// any deformation. Shells: the integrated co-rotational rate of deformation (shell block
+// `strain`), the thickness strain volume-preserving (the thickness is fixed, ISTUPD 0).
+// Trusses: ln(L/L0) along the axis, lateral strains volume-preserving.
+void principal_strains(const element::HexBlock& b, const NodalState& nodes, std::size_t e, int q,
+                       double out[3]) {
+  double x0[3][8], u[3][8];
+  for (int n = 0; n < 8; ++n) {
+    const std::size_t i = static_cast<std::size_t>(b.conn[8 * e + static_cast<std::size_t>(n)]);
+    x0[0][n] = nodes.x0.x[i];
+    x0[1][n] = nodes.x0.y[i];
+    x0[2][n] = nodes.x0.z[i];
+    u[0][n] = nodes.x.x[i] - x0[0][n];
+    u[1][n] = nodes.x.y[i] - x0[1][n];
+    u[2][n] = nodes.x.z[i] - x0[2][n];
+  }
+  double dndx[3][8];
+  if (b.points_per_element() == 1) {
+    element::hex::Geometry g;
+    element::hex::compute_geometry(x0, g);
+    for (int j = 0; j < 3; ++j)
+      for (int n = 0; n < 8; ++n) dndx[j][n] = g.b[j][n] / g.volume;
+  } else {
+    double a[8][3];
+    element::hex::base_vectors(x0, a);
+    element::hex::gauss_gradients(a, q, dndx);
+  }
+  double f[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      double sum = i == j ? 1.0 : 0.0;
+      for (int n = 0; n < 8; ++n) sum += u[i][n] * dndx[j][n];
+      f[i][j] = sum;
+    }
+  auto c = [&](int i, int j) { return f[0][i] * f[0][j] + f[1][i] * f[1][j] + f[2][i] * f[2][j]; };
+  const double cauchy_green[6] = {c(0, 0), c(1, 1), c(2, 2), c(0, 1), c(1, 2), c(2, 0)};
+  log_strains_of_cauchy_green(cauchy_green, out);
+}
+void principal_strains(const element::ShellBlock& b, const NodalState&, std::size_t e, int q,
+                       double out[3]) {
+  const double* s = &b.strain[3 * (static_cast<std::size_t>(b.points_per_element()) * e +
+                                   static_cast<std::size_t>(q))];
+  volume_preserving_strains(s[0], s[1], s[2], out);
+}
+void principal_strains(const element::BeamBlock& b, const NodalState&, std::size_t e, int,
+                       double out[3]) {
+  const double axial =
+      b.length0[e] > 0.0 && b.length[e] > 0.0 ? std::log(b.length[e] / b.length0[e]) : 0.0;
+  volume_preserving_strains(axial, -0.5 * axial, 0.0, out);
+}
+
 // How many *MAT_ADD_EROSION criteria a point meets (element-level ones, the volumetric strain
-// and the failure time, count at every point).
-int criteria_met(const element::ErosionCriteria& c, const double s[6], double log_volume_ratio,
-                 double time) {
+// and the failure time, count at every point). `strain`: the point's principal logarithmic
+// strains, descending (read only when a strain criterion is on).
+int criteria_met(const element::ErosionCriteria& c, const double s[6], const double strain[3],
+                 double log_volume_ratio, double time) {
   int met = 0;
+  if (c.strain_criteria()) {
+    if (c.has_max_principal_strain && strain[0] >= c.max_principal_strain) ++met;
+    if (c.has_min_principal_strain && strain[2] <= c.min_principal_strain) ++met;
+    if (c.has_shear_strain && 0.5 * (strain[0] - strain[2]) >= c.shear_strain) ++met;
+    if (c.has_effective_strain && effective_strain(strain) >= c.effective_strain) ++met;
+  }
   if (c.has_max_pressure || c.has_min_pressure || c.has_von_mises) {
     const PointStress p = point_stress(s);
     if (c.has_max_pressure && p.pressure >= c.max_pressure) ++met;
@@ -155,17 +238,25 @@ double log_volume_ratio(const element::BeamBlock&, std::size_t) {
   return 0.0;
 }
 
+// The element's step with mass scaling (its step_scale), from the raw step TDEL reads.
+template <class Block>
+double scaled_step(const Block& b, const double* raw, std::size_t e) {
+  return b.step_scale.empty() ? raw[e] : raw[e] * b.step_scale[e];
+}
+
 enum FailureCode : std::uint8_t {
   kAlive = 0,
   kPlasticStrain = 1,
   kDamage = 2,
   kAddErosion = 3,
   kTimeStep = 4,
+  kMinimumStep = 5,
 };
 
 template <class Block>
-std::uint8_t evaluate(const Block& b, std::size_t e, double time, const double* eps,
-                      const double* damage, const double* step) {
+std::uint8_t evaluate(const Block& b, const NodalState& nodes, std::size_t e, double time,
+                      const double* eps, const double* damage, const double* step,
+                      double minimum_step) {
   const element::ErosionCriteria& c = b.erosion.criteria;
   const int points = b.points_per_element();
   const std::size_t first = static_cast<std::size_t>(points) * e;
@@ -179,19 +270,23 @@ std::uint8_t evaluate(const Block& b, std::size_t e, double time, const double* 
     const double lv = log_volume_ratio(b, e);
     int failed = 0;
     for (int q = 0; q < points; ++q) {
-      double s[6];
+      double s[6], strain[3] = {0.0, 0.0, 0.0};
       voigt_of(b, e, q, s);
-      if (criteria_met(c, s, lv, time) >= c.criteria_at_once) ++failed;
+      if (c.strain_criteria()) principal_strains(b, nodes, e, q, strain);
+      if (criteria_met(c, s, strain, lv, time) >= c.criteria_at_once) ++failed;
     }
     if (failed >= required_points(c, points)) return kAddErosion;
   }
   if (c.tdel > 0.0 && step && step[e] > 0.0 && step[e] < c.tdel) return kTimeStep;
+  if (c.below_minimum_step && minimum_step > 0.0 && step && scaled_step(b, step, e) < minimum_step)
+    return kMinimumStep;
   return kAlive;
 }
 
 template <class Block>
-std::string describe(const Block& b, std::size_t e, std::uint8_t code, double time,
-                     const double* eps, const double* damage, const double* step) {
+std::string describe(const Block& b, const NodalState& nodes, std::size_t e, std::uint8_t code,
+                     double time, const double* eps, const double* damage, const double* step,
+                     double minimum_step) {
   const element::ErosionCriteria& c = b.erosion.criteria;
   const int points = b.points_per_element();
   const std::size_t first = static_cast<std::size_t>(points) * e;
@@ -205,14 +300,24 @@ std::string describe(const Block& b, std::size_t e, std::uint8_t code, double ti
       return "Johnson-Cook damage reached 1";
     case kTimeStep:
       return fmt::format("element step {:.6g} < TDEL {:.6g}", step[e], c.tdel);
+    case kMinimumStep:
+      return fmt::format("element step {:.6g} below TSMIN / TSSFAC = {:.6g} (ERODE)",
+                         scaled_step(b, step, e), minimum_step);
     case kAddErosion: {
       double s[6];
       voigt_of(b, e, 0, s);
       const PointStress p = point_stress(s);
-      return fmt::format(
+      std::string text = fmt::format(
           "*MAT_ADD_EROSION (point 1: pressure {:.6g}, von Mises {:.6g}, ln V/V0 "
-          "{:.6g}, time {:.6g})",
+          "{:.6g}, time {:.6g}",
           p.pressure, p.von_mises, log_volume_ratio(b, e), time);
+      if (c.strain_criteria()) {
+        double strain[3];
+        principal_strains(b, nodes, e, 0, strain);
+        text += fmt::format(", principal strains {:.6g} {:.6g} {:.6g}, effective {:.6g}", strain[0],
+                            strain[1], strain[2], effective_strain(strain));
+      }
+      return text + ")";
     }
     default:
       return "";
@@ -236,10 +341,19 @@ void Erosion::setup(const model::Model& model, State& state) {
       throw InputError(context_of(card.where, "MID"),
                        fmt::format("material {} is *MAT_RIGID: rigid parts cannot erode", mid));
   }
+  // *CONTROL_TIMESTEP ERODE: the units digit names solids, the tens shells, the hundreds beams.
+  const int erode = model.timestep.erode;
+  auto erodes_by_step = [&](std::string_view family) {
+    const int digit = family == "solid"   ? erode % 10
+                      : family == "shell" ? erode / 10 % 10
+                                          : erode / 100;
+    return digit == 1;
+  };
   auto resolve = [&](auto& block, const char* family) {
     if (block.rigid) return;  // *MAT_RIGID (criteria on a rigid material are refused above)
     const model::Material& mat = material_of(model, block.part_id);
     element::ErosionCriteria c;
+    c.below_minimum_step = erodes_by_step(family) && model.termination.dtmin > 0.0;
     if (mat.kind == model::MaterialKind::PlasticKinematic ||
         mat.kind == model::MaterialKind::PiecewiseLinearPlasticity) {
       c.plastic_strain = mat.plastic.fail;
@@ -258,6 +372,10 @@ void Erosion::setup(const model::Model& model, State& state) {
       take(a.sigvm, c.has_von_mises, c.von_mises);
       take(a.voleps, c.has_volumetric_strain, c.volumetric_strain);
       take(a.failtm, c.has_failure_time, c.failure_time);
+      take(a.mxeps, c.has_max_principal_strain, c.max_principal_strain);
+      take(a.mneps, c.has_min_principal_strain, c.min_principal_strain);
+      take(a.effeps, c.has_effective_strain, c.effective_strain);
+      take(a.epssh, c.has_shear_strain, c.shear_strain);
       c.criteria_at_once = a.ncs;
       c.failed_points = a.numfip;
       const std::string_view f = family;
@@ -277,9 +395,21 @@ void Erosion::setup(const model::Model& model, State& state) {
                          fmt::format("part {} (resultant beams, ELFORM 2) has no stress points "
                                      "for the *MAT_ADD_EROSION criteria (use ELFORM 1 or 3)",
                                      block.part_id));
+      bool has_strain_tensor = true;
+      if constexpr (std::is_same_v<std::remove_cvref_t<decltype(block)>, element::BeamBlock>)
+        has_strain_tensor = block.elform == 3;
+      if (c.strain_criteria() && !has_strain_tensor)
+        throw InputError(
+            context_of(a.where, a.mxeps    ? "MXEPS"
+                                : a.mneps  ? "MNEPS"
+                                : a.effeps ? "EFFEPS"
+                                           : "EPSSH"),
+            fmt::format("part {} uses material {}: the strain criteria run on solids, shells and "
+                        "trusses (beam ELFORM 3); the section points of this beam carry no strain "
+                        "tensor",
+                        block.part_id, mat.id));
       if (c.criteria_at_once > 1) {
-        const int defined = c.has_max_pressure + c.has_min_pressure + c.has_principal_stress +
-                            c.has_von_mises + c.has_volumetric_strain + c.has_failure_time;
+        const int defined = c.defined();
         if (defined < c.criteria_at_once)
           throw InputError(context_of(a.where, "NCS"),
                            fmt::format("NCS {} asks for more criteria at once than the {} this "
@@ -288,7 +418,14 @@ void Erosion::setup(const model::Model& model, State& state) {
       }
     }
     block.erosion.criteria = c;
-    block.erosion.enabled = c.plastic_strain > 0.0 || c.damage || c.tdel > 0.0 || c.add_erosion();
+    block.erosion.enabled = c.plastic_strain > 0.0 || c.damage || c.tdel > 0.0 ||
+                            c.below_minimum_step || c.add_erosion();
+    if constexpr (std::is_same_v<std::remove_cvref_t<decltype(block)>, element::ShellBlock>) {
+      // The shell kernel integrates the strain only when a criterion reads it.
+      if (c.strain_criteria())
+        block.strain.assign(3 * static_cast<std::size_t>(block.points_per_element()) * block.size(),
+                            0.0);
+    }
     if (block.erosion.enabled) {
       block.erosion.allocate(block.size());
       enabled_ = true;
@@ -384,7 +521,7 @@ std::int64_t Erosion::erode_failed_elements(State& state, double time,
     const double* eps = eps_array ? eps_array->values.data() : nullptr;
     const double* damage = damage_array ? damage_array->values.data() : nullptr;
     const double* step = nullptr;
-    if (c.tdel > 0.0) {
+    if (c.tdel > 0.0 || (c.below_minimum_step && minimum_step_ > 0.0)) {
       using B = std::remove_cvref_t<decltype(block)>;
       if constexpr (std::is_same_v<B, element::HexBlock>)
         element::hex_critical_timestep(block, view, &scratch_steps_);
@@ -401,18 +538,20 @@ std::int64_t Erosion::erode_failed_elements(State& state, double time,
 #pragma omp parallel for schedule(static) reduction(min : first_failed)
     for (std::int64_t i = 0; i < items; ++i) {
       const std::size_t e = static_cast<std::size_t>(block.owned.element(i));
-      if (evaluate(block, e, time, eps, damage, step) != kAlive)
+      if (evaluate(block, state.nodes, e, time, eps, damage, step, minimum_step_) != kAlive)
         first_failed = std::min(first_failed, i);
     }
     if (first_failed == items) return;
     std::vector<std::size_t> failed;
     for (std::int64_t i = first_failed; i < items; ++i) {
       const std::size_t e = static_cast<std::size_t>(block.owned.element(i));
-      const std::uint8_t code = evaluate(block, e, time, eps, damage, step);
+      const std::uint8_t code =
+          evaluate(block, state.nodes, e, time, eps, damage, step, minimum_step_);
       if (code == kAlive) continue;
       failed.push_back(e);
-      events_.push_back({time, block.part_id, block.element_id[e], family_of(block),
-                         describe(block, e, code, time, eps, damage, step)});
+      events_.push_back(
+          {time, block.part_id, block.element_id[e], family_of(block),
+           describe(block, state.nodes, e, code, time, eps, damage, step, minimum_step_)});
     }
     const int slot = slot_size(block);
     const int npe = nodes_per(block);

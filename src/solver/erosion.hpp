@@ -64,6 +64,11 @@ class Erosion {
   // element counts and removed nodes (mass, inertia) as the interrupted run had them.
   void restore(State& state, const std::vector<std::int32_t>* body_of);
 
+  // *CONTROL_TIMESTEP ERODE: the element step below which the elements of the named families
+  // erode, TSMIN / TSSFAC with TSMIN = DTMIN times the run's first step (0: not yet known or no
+  // DTMIN, nothing erodes by it).
+  void set_minimum_step(double element_step) { minimum_step_ = element_step; }
+
   const ErosionLedger& ledger() const { return ledger_; }
   ErosionLedger& ledger() { return ledger_; }
   const std::vector<ErosionEvent>& events() const { return events_; }
@@ -78,7 +83,8 @@ class Erosion {
   // removed.
   std::vector<std::int32_t> live_elements_;
   std::vector<std::uint8_t> erodible_node_;
-  std::vector<double> scratch_steps_;  // TDEL: element steps of one block
+  std::vector<double> scratch_steps_;  // TDEL, ERODE: element steps of one block
+  double minimum_step_ = 0.0;
 };
 
 // Rebuilds a block's ownership from its erosion times: every element not eroded (one process).

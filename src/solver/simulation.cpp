@@ -1357,6 +1357,12 @@ void Simulation::compute_internal_forces() {
 // step minimum is taken again without them, contact drops their segments and exposes what they
 // covered, and each deletion is a row of erosion.csv.
 void Simulation::erode_failed_elements() {
+  // ERODE: TSMIN = DTMIN x the first step (*CONTROL_TERMINATION), as an element step before
+  // TSSFAC; unknown (0) until the first step is taken.
+  const double tssfac = model_.timestep.tssfac > 0.0 ? model_.timestep.tssfac : 0.9;
+  erosion_.set_minimum_step(model_.timestep.erode != 0 && initial_dt_ > 0.0
+                                ? model_.termination.dtmin * initial_dt_ / tssfac
+                                : 0.0);
   const std::int64_t eroded = erosion_.erode_failed_elements(
       state_, state_.time, rigid_.empty() ? nullptr : &rigid_.body_of_node);
   if (eroded == 0) return;

@@ -28,13 +28,14 @@ constexpr double kEp = kE * kEtan / (kE - kEtan);
 constexpr double kFail = 0.2;
 constexpr double kPull = 0.1, kRamp = 0.1;  // m/s after a linear ramp of kRamp s
 
-// Displacement of the pulled face at time t (the ramp of curve 1), and its inverse.
-double pulled(double t) {
-  return t < kRamp ? kPull * t * t / (2.0 * kRamp) : kPull * (t - 0.5 * kRamp);
+// Displacement of the pulled face at time t (the ramp of curve 1 to `speed` in `ramp` s), and
+// its inverse.
+double pulled(double t, double speed = kPull, double ramp = kRamp) {
+  return t < ramp ? speed * t * t / (2.0 * ramp) : speed * (t - 0.5 * ramp);
 }
-double time_of_displacement(double u) {
-  const double at_ramp_end = pulled(kRamp);
-  return u < at_ramp_end ? std::sqrt(2.0 * kRamp * u / kPull) : u / kPull + 0.5 * kRamp;
+double time_of_displacement(double u, double speed = kPull, double ramp = kRamp) {
+  const double at_ramp_end = pulled(ramp, speed, ramp);
+  return u < at_ramp_end ? std::sqrt(2.0 * ramp * u / speed) : u / speed + 0.5 * ramp;
 }
 
 // Analytic failure of a unit bar pulled in uniaxial stress: time and work per reference volume.
@@ -69,9 +70,9 @@ BarFailure bar_failure(double length) {
   return bar_failure(length, [](double sigma, double) { return (1.0 - 2.0 * kNu) * sigma / kE; });
 }
 
-std::string pull_curve(double end_time) {
-  return fmt::format("*DEFINE_CURVE\n1\n0,0\n{},{}\n1e9,{}\n*CONTROL_TERMINATION\n{}\n", kRamp,
-                     kPull, kPull, end_time);
+std::string pull_curve(double end_time, double speed = kPull, double ramp = kRamp) {
+  return fmt::format("*DEFINE_CURVE\n1\n0,0\n{},{}\n1e9,{}\n*CONTROL_TERMINATION\n{}\n", ramp,
+                     speed, speed, end_time);
 }
 
 // The cube pulled by the ramp of pull_curve.
@@ -244,6 +245,76 @@ TEST(Erosion, ElementGoesWhenItsStepFallsBelowTdel) {
   ASSERT_FALSE(sim.erosion().events().empty());
   EXPECT_NE(sim.erosion().events().front().criterion.find("TDEL"), std::string::npos);
 }
+
+// *CONTROL_TIMESTEP ERODE with *CONTROL_TERMINATION DTMIN 0.5: TSMIN is half the first step,
+// so an element of a family ERODE names goes when its step L/c (nu = 0, no bulk viscosity) has
+// halved, at L = 0.5; the same element of a family it does not name stops the run there ("time
+// step collapsed"). Squeezed at 20 m/s after a 1 ms ramp: L = 0.5 at t = 0.5 / 20 + 0.5 ms.
+struct ErodeCase {
+  const char* name;
+  const char* family;
+  int erode;
+  bool erodes;
+};
+
+std::string squeezed(const std::string& family, int erode) {
+  const std::string elastic = fmt::format("*MAT_ELASTIC\n1,{},{},0.0\n", kRho, kE);
+  std::string deck;
+  if (family == "solid") {
+    deck = cube_on_symmetry_planes(elastic, -1.0);
+  } else if (family == "shell") {
+    deck = "*KEYWORD\n*NODE\n1,0,0,0\n2,1,0,0\n3,1,1,0\n4,0,1,0\n*ELEMENT_SHELL\n1,1,1,2,3,4\n";
+    deck += "*PART\nsheet\n1,1,1\n*SECTION_SHELL\n1,2,0.8333333,2\n0.01,0.01,0.01,0.01\n" + elastic;
+    deck +=
+        "*BOUNDARY_SPC_NODE\n1,0,1,1,1,1,1,1\n2,0,0,1,1,1,1,1\n3,0,0,0,1,1,1,1\n"
+        "4,0,1,0,1,1,1,1\n*BOUNDARY_PRESCRIBED_MOTION_NODE\n2,1,0,1,-1.0\n3,1,0,1,-1.0\n";
+  } else {
+    deck = "*KEYWORD\n*NODE\n1,0,0,0\n2,1,0,0\n*ELEMENT_BEAM\n1,1,1,2\n";
+    deck += "*PART\ntruss\n1,1,1\n*SECTION_BEAM\n1,3\n1e-4\n" + elastic;
+    deck += "*BOUNDARY_SPC_NODE\n1,0,1,1,1,0,0,0\n2,0,0,1,1,0,0,0\n";
+    deck += "*BOUNDARY_PRESCRIBED_MOTION_NODE\n2,1,0,1,-1.0\n";
+  }
+  deck += "*CONTROL_BULK_VISCOSITY\n0.0,0.0\n";
+  deck += fmt::format("*CONTROL_TIMESTEP\n0,0.9,0,0,0,0,{}\n", erode);
+  return deck + "*DEFINE_CURVE\n1\n0,0\n1e-3,20\n1e9,20\n*CONTROL_TERMINATION\n0.05,0,0.5\n*END\n";
+}
+
+class ErodeBelowMinimumStep : public ::testing::TestWithParam<ErodeCase> {};
+
+TEST_P(ErodeBelowMinimumStep, ElementOfANamedFamilyGoesOthersStopTheRun) {
+  const ErodeCase& k = GetParam();
+  const double expected = 0.5 / 20.0 + 0.5e-3;
+  solver::Simulation sim(read(squeezed(k.family, k.erode)), {});
+  const double step = sim.state().dt;
+  if (!k.erodes) {
+    try {
+      sim.run();
+      FAIL() << "the run went on below TSMIN";
+    } catch (const SolverError& e) {
+      EXPECT_NE(std::string(e.what()).find("collapsed"), std::string::npos) << e.what();
+    }
+    EXPECT_GE(sim.state().time, expected - 1.01 * step);
+    EXPECT_LE(sim.state().time, expected + 1.01 * step);
+    return;
+  }
+  const double time = run_to_erosion(sim);
+  std::printf("%s: eroded at %.6f s (analytic %.6f, step %.1e)\n", k.name, time, expected, step);
+  ASSERT_GT(time, 0.0);
+  EXPECT_GE(time, expected - 1e-9);
+  EXPECT_LE(time, expected + 1.01 * step);
+  ASSERT_FALSE(sim.erosion().events().empty());
+  EXPECT_NE(sim.erosion().events().front().criterion.find("ERODE"), std::string::npos);
+}
+
+INSTANTIATE_TEST_SUITE_P(Erosion, ErodeBelowMinimumStep,
+                         ::testing::Values(ErodeCase{"solid_1", "solid", 1, true},
+                                           ErodeCase{"solid_111", "solid", 111, true},
+                                           ErodeCase{"solid_10", "solid", 10, false},
+                                           ErodeCase{"shell_10", "shell", 10, true},
+                                           ErodeCase{"shell_1", "shell", 1, false},
+                                           ErodeCase{"truss_100", "truss", 100, true},
+                                           ErodeCase{"truss_11", "truss", 11, false}),
+                         [](const auto& info) { return std::string(info.param.name); });
 
 // A free block of two elements, moving and spinning, deleted whole by FAILTM: every node is
 // removed, and what moved leaves with the ledger: momentum, angular momentum and kinetic energy
@@ -420,6 +491,178 @@ TEST(Erosion, ProjectilePerforatesAnErodiblePlateWithMomentumAndEnergyKept) {
   EXPECT_LT(worst_ratio, 1e-8);
 }
 
+// --- Strain criteria (MXEPS, MNEPS, EFFEPS, EPSSH)
+// -------------------------------------------------- Every node is prescribed, so the deformation
+// is homogeneous and known in closed form, and so are the principal logarithmic strains e1 >= e2 >=
+// e3 that the criteria read:
+//  - solid in simple shear x = X + gamma Y: e = (g, 0, -g), g = asinh(gamma / 2);
+//  - shell stretched equi-biaxially by 1 + u: e = (b, b, -2 b), b = ln(1 + u) (the thickness
+//    strain volume-preserving, as documented);
+//  - shell turned 45 degrees in its plane, stretched along x with y held (plane strain):
+//    e = (b, 0, -b), the element's own axes see shear (tensor xy = b/2 at small strain);
+//  - truss stretched by 1 + u: e = (b, -b/2, -b/2).
+// Each criterion equals factor x base (base = g or b); the element goes at base = limit / factor.
+enum class Strain { kMax, kMin, kEffective, kShear };
+constexpr double kStrainLimit = 0.1;
+// Every node is prescribed, so inertia plays no part: pulled ten times faster than the bars
+// above (a strain increment per step of 0.2 % of the limit).
+constexpr double kStrainPull = 1.0, kStrainRamp = 0.01;
+std::string strain_pull_curve(double end_time) {
+  return pull_curve(end_time, kStrainPull, kStrainRamp);
+}
+
+std::string strain_card(Strain c) {
+  switch (c) {
+    case Strain::kMax:
+      return fmt::format("*MAT_ADD_EROSION\n1\n0,0,0,{}\n", kStrainLimit);
+    case Strain::kMin:
+      return fmt::format("*MAT_ADD_EROSION\n1,0,0,{}\n", -kStrainLimit);
+    case Strain::kEffective:
+      return fmt::format("*MAT_ADD_EROSION\n1,0,0,0,{}\n", kStrainLimit);
+    case Strain::kShear:
+      return fmt::format("*MAT_ADD_EROSION\n1\n0,0,0,0,{}\n", kStrainLimit);
+  }
+  return "";
+}
+
+// Factors of (max, min, effective, shear) for the strain triples above.
+constexpr double kRoot3 = 1.7320508075688772;
+constexpr double kPlaneStrainFactors[4] = {1.0, 1.0, 2.0 / kRoot3, 1.0};  // (b, 0, -b)
+constexpr double kBiaxialFactors[4] = {1.0, 2.0, 2.0, 1.5};               // (b, b, -2b)
+constexpr double kTrussFactors[4] = {1.0, 0.5, 1.0, 0.75};                // (b, -b/2, -b/2)
+
+std::string elastic_card() {
+  return fmt::format("*MAT_ELASTIC\n1,{},{},{}\n", kRho, kE, kNu);
+}
+
+// One solid (ELFORM 1, 2 hexahedron or ELFORM 10 tetrahedron) of unit height in simple shear:
+// the nodes at y = 1 move along x by the pull, those at y = 0 are held, y and z held everywhere.
+std::string sheared_solid(int elform, Strain c, double end_time) {
+  std::string deck = "*KEYWORD\n";
+  std::vector<int> all, top, bottom;
+  if (elform == 10) {
+    deck += "*NODE\n1,0,0,0\n2,1,0,0\n3,0,1,0\n4,0,0,1\n*ELEMENT_SOLID\n1,1,1,2,3,4\n";
+    all = {1, 2, 3, 4};
+    top = {3};
+    bottom = {1, 2, 4};
+  } else {
+    BoxMesh mesh;
+    deck += mesh.keyword_text();
+    for (int k = 0; k <= 1; ++k)
+      for (int j = 0; j <= 1; ++j)
+        for (int i = 0; i <= 1; ++i) {
+          all.push_back(mesh.node_id(i, j, k));
+          (j == 1 ? top : bottom).push_back(mesh.node_id(i, j, k));
+        }
+  }
+  deck += fmt::format("*PART\nblock\n1,1,1\n*SECTION_SOLID\n1,{}\n", elform) + elastic_card() +
+          strain_card(c);
+  deck += node_set(1, all) + node_set(2, top) + node_set(3, bottom);
+  deck += "*BOUNDARY_SPC_SET\n1,0,0,1,1\n3,0,1,0,0\n*BOUNDARY_PRESCRIBED_MOTION_SET\n2,1,0,1,1.0\n";
+  return deck + strain_pull_curve(end_time) + "*END\n";
+}
+
+// One shell (NIP 3): equi-biaxial stretch of the unit square, or the unit square turned 45
+// degrees stretched along x in plane strain (node velocities proportional to X). Rotations and
+// z held.
+std::string stretched_shell(bool turned, Strain c, double end_time) {
+  const double h = std::sqrt(0.5);
+  std::string deck = "*KEYWORD\n*NODE\n";
+  deck += turned ? fmt::format("1,0,0,0\n2,{0},{1},0\n3,{2},0,0\n4,{0},{0},0\n", h, -h, 2.0 * h)
+                 : "1,0,0,0\n2,1,0,0\n3,1,1,0\n4,0,1,0\n";
+  deck += "*ELEMENT_SHELL\n1,1,1,2,3,4\n*PART\nsheet\n1,1,1\n*SECTION_SHELL\n1,2,0.8333333,3\n";
+  deck += "0.01,0.01,0.01,0.01\n" + elastic_card() + strain_card(c);
+  if (turned) {
+    deck +=
+        "*BOUNDARY_SPC_NODE\n1,0,1,1,1,1,1,1\n2,0,0,1,1,1,1,1\n3,0,0,1,1,1,1,1\n"
+        "4,0,0,1,1,1,1,1\n";
+    deck += fmt::format("*BOUNDARY_PRESCRIBED_MOTION_NODE\n2,1,0,1,{0}\n3,1,0,1,{1}\n4,1,0,1,{0}\n",
+                        h, 2.0 * h);
+  } else {
+    deck +=
+        "*BOUNDARY_SPC_NODE\n1,0,1,1,1,1,1,1\n2,0,0,1,1,1,1,1\n3,0,0,0,1,1,1,1\n"
+        "4,0,1,0,1,1,1,1\n";
+    deck +=
+        "*BOUNDARY_PRESCRIBED_MOTION_NODE\n2,1,0,1,1.0\n3,1,0,1,1.0\n3,2,0,1,1.0\n"
+        "4,2,0,1,1.0\n";
+  }
+  return deck + strain_pull_curve(end_time) + "*END\n";
+}
+
+std::string stretched_truss(Strain c, double end_time) {
+  std::string deck = "*KEYWORD\n*NODE\n1,0,0,0\n2,1,0,0\n*ELEMENT_BEAM\n1,1,1,2\n";
+  deck += "*PART\ntruss\n1,1,1\n*SECTION_BEAM\n1,3\n1e-4\n" + elastic_card() + strain_card(c);
+  deck += "*BOUNDARY_SPC_NODE\n1,0,1,1,1,0,0,0\n2,0,0,1,1,0,0,0\n";
+  deck += "*BOUNDARY_PRESCRIBED_MOTION_NODE\n2,1,0,1,1.0\n";
+  return deck + strain_pull_curve(end_time) + "*END\n";
+}
+
+struct StrainCase {
+  const char* name;
+  Strain criterion;
+  int kind;  // 1, 2, 10: solid ELFORM; -1 biaxial shell; -2 turned shell; -3 truss
+};
+
+class StrainCriteria : public ::testing::TestWithParam<StrainCase> {};
+
+TEST_P(StrainCriteria, ElementGoesWhenTheAnalyticStrainMeetsTheLimit) {
+  const StrainCase& k = GetParam();
+  const int which = static_cast<int>(k.criterion);
+  double displacement = 0.0;  // of the pull when the criterion is met
+  std::string text;
+  if (k.kind > 0) {
+    const double g = kStrainLimit / kPlaneStrainFactors[which];
+    displacement = 2.0 * std::sinh(g);  // gamma = 2 sinh(g), unit height
+  } else {
+    const double* factors = k.kind == -1   ? kBiaxialFactors
+                            : k.kind == -2 ? kPlaneStrainFactors
+                                           : kTrussFactors;
+    displacement = std::expm1(kStrainLimit / factors[which]);  // unit length
+  }
+  const double expected = time_of_displacement(displacement, kStrainPull, kStrainRamp);
+  const double end = 1.2 * expected;
+  if (k.kind > 0)
+    text = sheared_solid(k.kind, k.criterion, end);
+  else if (k.kind == -3)
+    text = stretched_truss(k.criterion, end);
+  else
+    text = stretched_shell(k.kind == -2, k.criterion, end);
+  solver::Simulation sim(read(text), {});
+  const double step = sim.state().dt;
+  const double time = run_to_erosion(sim);
+  std::printf("%s: eroded at %.6f s (analytic %.6f, step %.2e)\n", k.name, time, expected, step);
+  ASSERT_GT(time, 0.0) << "the element never eroded";
+  // The first cycle at or after the analytic time; the shells integrate the rate of
+  // deformation (midpoint rule): second order in the step, and the turned shell's frame turns
+  // with the shear it sees (0.1 % of the strain at 10 %).
+  // The step grows with the length of a stretched shell or truss (L/c): the failing cycle's
+  // step is at most the first one times 1 + u.
+  const double tolerance = k.kind == -2 ? 2e-3 * expected : 1e-5 * expected;
+  const double last_step = step * (k.kind > 0 ? 1.0 : 1.0 + displacement);
+  EXPECT_GE(time, expected - tolerance);
+  EXPECT_LE(time, expected + 1.01 * last_step + tolerance);
+  ASSERT_FALSE(sim.erosion().events().empty());
+  EXPECT_NE(sim.erosion().events().front().criterion.find("principal strains"), std::string::npos)
+      << sim.erosion().events().front().criterion;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Erosion, StrainCriteria,
+    ::testing::Values(
+        StrainCase{"hex_MXEPS", Strain::kMax, 1}, StrainCase{"hex_MNEPS", Strain::kMin, 1},
+        StrainCase{"hex_EFFEPS", Strain::kEffective, 1}, StrainCase{"hex_EPSSH", Strain::kShear, 1},
+        StrainCase{"hex2_MXEPS", Strain::kMax, 2}, StrainCase{"hex2_EFFEPS", Strain::kEffective, 2},
+        StrainCase{"tet_MNEPS", Strain::kMin, 10}, StrainCase{"tet_EPSSH", Strain::kShear, 10},
+        StrainCase{"shell_MXEPS", Strain::kMax, -1}, StrainCase{"shell_MNEPS", Strain::kMin, -1},
+        StrainCase{"shell_EFFEPS", Strain::kEffective, -1},
+        StrainCase{"shell_EPSSH", Strain::kShear, -1},
+        StrainCase{"turned_shell_MXEPS", Strain::kMax, -2},
+        StrainCase{"turned_shell_EFFEPS", Strain::kEffective, -2},
+        StrainCase{"truss_MXEPS", Strain::kMax, -3}, StrainCase{"truss_MNEPS", Strain::kMin, -3},
+        StrainCase{"truss_EFFEPS", Strain::kEffective, -3},
+        StrainCase{"truss_EPSSH", Strain::kShear, -3}),
+    [](const auto& info) { return std::string(info.param.name); });
+
 // --- Bad input ----------------------------------------------------------------------------------
 
 std::string cube_with(const std::string& extra) {
@@ -431,10 +674,28 @@ std::string cube_with(const std::string& extra) {
 }
 
 TEST(ErosionDeck, UnsupportedCriteriaAndBadCardsAreErrorsNamingTheField) {
+  // A positive MNEPS would fail every element at rest; negative MXEPS, EFFEPS, EPSSH are curves
+  // in LS-DYNA (not supported).
   EXPECT_NE(simulation_error_of(cube_with("*MAT_ADD_EROSION\n1,0,0,0.1\n")).find("MNEPS"),
             std::string::npos);
-  EXPECT_NE(simulation_error_of(cube_with("*MAT_ADD_EROSION\n1\n0,0,0,0.2\n")).find("MXEPS"),
+  EXPECT_NE(simulation_error_of(cube_with("*MAT_ADD_EROSION\n1\n0,0,0,-2\n")).find("MXEPS"),
             std::string::npos);
+  EXPECT_NE(simulation_error_of(cube_with("*MAT_ADD_EROSION\n1,0,0,0,-2\n")).find("EFFEPS"),
+            std::string::npos);
+  EXPECT_NE(simulation_error_of(cube_with("*MAT_ADD_EROSION\n1\n0,0,0,0,-2\n")).find("EPSSH"),
+            std::string::npos);
+  EXPECT_NE(simulation_error_of(cube_with("*MAT_ADD_EROSION\n1\n0,0,0,0,0,3e8\n")).find("SIGTH"),
+            std::string::npos);
+  // ERODE values LS-DYNA does not define.
+  EXPECT_NE(simulation_error_of(cube_with("*CONTROL_TIMESTEP\n0,0.9,0,0,0,0,2\n")).find("ERODE"),
+            std::string::npos);
+  // Beams other than trusses have no strain tensor at their section points.
+  const std::string beam =
+      "*KEYWORD\n*NODE\n1,0,0,0\n2,1,0,0\n*ELEMENT_BEAM\n1,1,1,2\n*PART\nbeam\n1,1,1\n"
+      "*SECTION_BEAM\n1,1\n0.01,0.01,0.01,0.01\n" +
+      elastic_card() + strain_card(Strain::kMax) + "*CONTROL_TERMINATION\n1e-3\n*END\n";
+  EXPECT_NE(simulation_error_of(beam).find("trusses (beam ELFORM 3)"), std::string::npos)
+      << simulation_error_of(beam);
   EXPECT_NE(
       simulation_error_of(cube_with("*MAT_ADD_EROSION\n1\n0,0,0,0,0,0,0,0\n7\n")).find("IDAM"),
       std::string::npos);

@@ -225,6 +225,17 @@ inline std::string shells_and_beams(double end_time, double dt2ms = 0.0) {
   return s;
 }
 
+// The shells-and-beams deck with a strain criterion on the *MAT_024 shells (part 1): the
+// integrated shell strain crosses the dump, and the elements whose effective strain reached
+// EFFEPS by 20 us erode then (NCS 2 with FAILTM): the strain the dump carries decides which.
+inline std::string shells_eroding_by_strain(double end_time, double effective_strain) {
+  std::string s = shells_and_beams(end_time);
+  s.replace(s.find("*END\n"), 5,
+            fmt::format("*MAT_ADD_EROSION\n1,0,0,0,{},0,1,2\n0,0,0,0,0,0,0,2e-5\n*END\n",
+                        effective_strain));
+  return s;
+}
+
 // The shells-and-beams deck with part switching: part 2 (shells, NIP 5, IHQ 5, *MAT_003 with a
 // back stress) and part 4 (resultant beams, sharing nodes with part 2) become one rigid body at
 // 8 us (paired CODE 0 sets) and deformable again at 26 us, while part 1 (shells) and part 3

@@ -269,6 +269,10 @@ const Case kCases[] = {
     // the rigid phase (12 us), through the release.
     {"shells_beams_switching", restart_decks::shells_and_beams_switching(4e-5), "", {}, 6e-6, 1},
     {"shells_beams_switching", restart_decks::shells_and_beams_switching(4e-5), "", {}, 6e-6, 2},
+    // Shells with a strain criterion (EFFEPS with FAILTM, NCS 2): the integrated shell strain
+    // across the dump decides which elements erode after it.
+    {"shell_strain_erosion", restart_decks::shells_eroding_by_strain(4e-5, 0.1), "", {}, 6e-6, 1},
+    {"shell_strain_erosion", restart_decks::shells_eroding_by_strain(4e-5, 0.1), "", {}, 6e-6, 2},
 };
 
 INSTANTIATE_TEST_SUITE_P(Restart, RestartBitwise, testing::ValuesIn(kCases), case_name);
@@ -309,6 +313,31 @@ TEST(Restart, ErodingDeckDeletesElementsBeforeAndAfterTheDump) {
   EXPECT_GT(at_dump.elements, 0);
   EXPECT_GT(at_end.elements, at_dump.elements);
   EXPECT_NEAR(sim.energy().ratio(), 1.0, 1e-2);
+}
+
+// The shell strain case: the *MAT_024 shells (part 1) integrate their strain (EFFEPS) from the
+// start, and elements erode by it only after the dump (12 us), at FAILTM (20 us): the strain the
+// dump carries decides which.
+TEST(Restart, ShellStrainDeckErodesOnlyAfterTheDump) {
+  solver::Simulation sim(read(restart_decks::shells_eroding_by_strain(4e-5, 0.1)), {});
+  auto largest_strain = [&] {
+    const auto& strain = sim.state().shell_blocks[0].strain;
+    double m = 0.0;
+    for (const double v : strain) m = std::max(m, std::abs(v));
+    return m;
+  };
+  while (sim.state().time < 1.2e-5) sim.cycle();
+  const auto at_dump = sim.erosion().ledger();
+  const double strain_at_dump = largest_strain();
+  while (!sim.finished()) sim.cycle();
+  std::printf(
+      "shell strain restart deck: largest strain component %.4g at the dump, %lld "
+      "elements eroded by then, %lld at the end\n",
+      strain_at_dump, static_cast<long long>(at_dump.elements),
+      static_cast<long long>(sim.erosion().ledger().elements));
+  EXPECT_GT(strain_at_dump, 0.0);
+  EXPECT_EQ(at_dump.elements, 0);
+  EXPECT_GT(sim.erosion().ledger().elements, 0);
 }
 
 // The plastic case flows plastically before the dump it restarts from (12 us) and after it,

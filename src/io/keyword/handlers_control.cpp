@@ -68,12 +68,20 @@ void control_timestep(const Block& block, ReaderContext& context) {
     ts.lctm = card->id(5, "LCTM");
     if (ts.lctm < 0) throw card->error("LCTM", "curve ID must not be negative");
     context.lctm_where = card->location();
+    // ERODE (docs/materials.md, "Failure and erosion"): elements whose step brings the run below
+    // TSMIN erode; the digits 1, 10, 100 name solids, shells, beams (LS-DYNA's values).
+    ts.erode = card->flag(6, "ERODE", 0);
+    if (ts.erode < 0 || ts.erode > 111 || ts.erode % 10 > 1 || ts.erode / 10 % 10 > 1) {
+      throw card->error("ERODE", fmt::format("value {} is not one of 0, 1, 10, 11, 100, 101, 110, "
+                                             "111 (solids 1, shells 10, beams 100)",
+                                             ts.erode));
+    }
     // ISDO and TSLIMT concern shells (ISDO 0: LS-DYNA's shell length; TSLIMT a lower bound on
-    // the shell step by mass scaling, not supported); ERODE and MS1ST erosion and mass scaling.
+    // the shell step by mass scaling, not supported); MS1ST mass scaling.
     ts.isdo = card->flag(2, "ISDO", 0);
     if (ts.isdo != 0) {
-      throw card->error("ISDO", fmt::format("shell step option ISDO {} is not supported (0)",
-                                            ts.isdo));
+      throw card->error("ISDO",
+                        fmt::format("shell step option ISDO {} is not supported (0)", ts.isdo));
     }
     if (card->real(3, "TSLIMT", 0.0) != 0.0) {
       throw card->error("TSLIMT", "TSLIMT (shell mass scaling) is not supported (leave 0)");
@@ -225,8 +233,8 @@ void control_shell(const Block& block, ReaderContext& context) {
     c.theory = card->flag(4, "THEORY", 2);
     if (c.theory == 0) c.theory = 2;
     if (c.theory != 2) {
-      throw card->error("THEORY", fmt::format("default shell theory {} is not supported (2)",
-                                              c.theory));
+      throw card->error("THEORY",
+                        fmt::format("default shell theory {} is not supported (2)", c.theory));
     }
     c.bwc = card->flag(5, "BWC", 2);
     if (c.bwc == 0) c.bwc = 2;
@@ -234,8 +242,9 @@ void control_shell(const Block& block, ReaderContext& context) {
     c.miter = card->flag(6, "MITER", 1);
     if (c.miter == 0) c.miter = 1;
     if (c.miter != 1 && c.miter != 2) {
-      throw card->error("MITER", "MITER 3 (non-iterative radial return) is not supported: "
-                                 "plane stress is iterated (1 or 2)");
+      throw card->error("MITER",
+                        "MITER 3 (non-iterative radial return) is not supported: "
+                        "plane stress is iterated (1 or 2)");
     }
     c.proj = card->flag(7, "PROJ", 0);
     if (c.proj != 0 && c.proj != 1) throw card->error("PROJ", "PROJ must be 0 or 1");
@@ -269,9 +278,9 @@ void control_shell(const Block& block, ReaderContext& context) {
       // IRQUAD concerns ELFORM 16's in-plane rule; W-MODE and STRETCH are warning thresholds.
       if (name == "IRQUAD" || name == "W-MODE" || name == "STRETCH") continue;
       if (v != fallback) {
-        throw card->error(kLater[k][i],
-                          fmt::format("value {} is not supported (only the default {})", v,
-                                      fallback));
+        throw card->error(
+            kLater[k][i],
+            fmt::format("value {} is not supported (only the default {})", v, fallback));
       }
     }
   }

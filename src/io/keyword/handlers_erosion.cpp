@@ -40,9 +40,26 @@ void mat_add_erosion(const Block& block, ReaderContext& context) {
     if (criterion(c, i, field))
       throw c.error(field, fmt::format("{} is not supported (leave it blank, 0 or EXCL)", what));
   };
+  // The strain criteria: LS-DYNA reads a negative MXEPS (and EPSSH, EFFEPS in some versions) as
+  // a load curve of the limit against the strain rate, which is not supported; a positive MNEPS
+  // would fail every element at rest.
+  auto positive_strain = [&](const Card& c, std::size_t i, const char* field,
+                             const char* what) -> std::optional<double> {
+    const std::optional<double> value = criterion(c, i, field);
+    if (value && *value < 0.0)
+      throw c.error(field, fmt::format("{} {} must be positive (a negative value, a curve of the "
+                                       "limit against the strain rate, is not supported)",
+                                       what, *value));
+    return value;
+  };
   erosion.mxpres = criterion(card, 2, "MXPRES");
-  refuse(card, 3, "MNEPS", "failure by the minimum principal strain");
-  refuse(card, 4, "EFFEPS", "failure by the effective strain");
+  erosion.mneps = criterion(card, 3, "MNEPS");
+  if (erosion.mneps && *erosion.mneps > 0.0)
+    throw card.error("MNEPS", fmt::format("minimum principal strain at failure {} must be negative "
+                                          "(a compressive strain): a positive limit fails every "
+                                          "element at rest",
+                                          *erosion.mneps));
+  erosion.effeps = positive_strain(card, 4, "EFFEPS", "effective strain at failure");
   erosion.voleps = criterion(card, 5, "VOLEPS");
   erosion.numfip = card.blank(6) ? 1.0 : card.real(6, "NUMFIP", 1.0);
   if (erosion.numfip == 0.0 || !std::isfinite(erosion.numfip))
@@ -67,8 +84,8 @@ void mat_add_erosion(const Block& block, ReaderContext& context) {
       throw c2->error("SIGVM",
                       "a negative SIGVM (a curve of the failure stress against the "
                       "strain rate) is not supported");
-    refuse(*c2, 3, "MXEPS", "failure by the maximum principal strain");
-    refuse(*c2, 4, "EPSSH", "failure by the shear strain");
+    erosion.mxeps = positive_strain(*c2, 3, "MXEPS", "maximum principal strain at failure");
+    erosion.epssh = positive_strain(*c2, 4, "EPSSH", "shear strain at failure");
     refuse(*c2, 5, "SIGTH", "Tuler-Butcher failure (SIGTH, IMPULSE)");
     refuse(*c2, 6, "IMPULSE", "Tuler-Butcher failure (SIGTH, IMPULSE)");
     erosion.failtm = criterion(*c2, 7, "FAILTM");
