@@ -457,6 +457,42 @@ TEST(Tet13Conservation, ErodedElementsLeaveTheAveragesAndTheBalanceCloses) {
   EXPECT_NEAR(sim.energy().ratio(), 1.0, 1e-6);
 }
 
+TEST(Tet13Conservation, SwitchedRigidAndBackKeepsMomentumAndDeformsAgain) {
+  // Part switching (*DEFORMABLE_TO_RIGID_AUTOMATIC, time-paired) of an ELFORM 13 part: rigid
+  // at 3 ms, deformable again at 6 ms; the averages restart from the motion after the release.
+  std::string deck = impact_deck(elastic_card(7850.0, 2.1e11, 0.3), 6.0, false);
+  deck.insert(deck.rfind("*CONTROL_TERMINATION"),
+              "*DEFORMABLE_TO_RIGID_AUTOMATIC\n10,0,0.003,0.004,0,0,20,1\n0,0,0,2.0e-5,1,0\n1\n"
+              "*DEFORMABLE_TO_RIGID_AUTOMATIC\n20,0,0.006,0,0,0,10,-1\n0,0,0,0,0,1\n1\n");
+  solver::Simulation sim(read(deck), {});
+  double p0 = 0.0;
+  std::vector<double> stress_at_release;
+  double max_momentum_error = 0.0;
+  while (sim.state().time < 0.009) {
+    sim.cycle();
+    if (sim.state().cycle == 1) p0 = sim.energy().momentum[0];
+    max_momentum_error =
+        std::max(max_momentum_error, std::abs(sim.energy().momentum[0] - p0) / std::abs(p0));
+    if (stress_at_release.empty() && sim.switch_events().size() == 2)
+      stress_at_release = sim.state().hex_blocks[0].stress;
+  }
+  ASSERT_EQ(sim.switch_events().size(), 2u);
+  double change = 0.0, scale = 0.0;
+  const auto& stress = sim.state().hex_blocks[0].stress;
+  for (std::size_t k = 0; k < stress.size(); ++k) {
+    scale = std::max(scale, std::abs(stress_at_release[k]));
+    change = std::max(change, std::abs(stress[k] - stress_at_release[k]));
+  }
+  std::printf(
+      "[measured] ELFORM 13 switched rigid and back: momentum %.2e, energy ratio %.10f, "
+      "stress change after the release %.3g of %.3g\n",
+      max_momentum_error, sim.energy().ratio(), change, scale);
+  EXPECT_LT(max_momentum_error, 1e-12);
+  EXPECT_NEAR(sim.energy().ratio(), 1.0, 1e-6);
+  EXPECT_GT(scale, 0.0);
+  EXPECT_GT(change, 1e-3 * scale);
+}
+
 // --- Input errors ---------------------------------------------------------------------------
 
 TEST(Tet13Input, HexahedronAndUnsupportedMaterialAreRefusedByName) {
