@@ -6,6 +6,8 @@
 //  - volumetric locking: a thick-walled cylinder under internal pressure in plane strain
 //    against Lame's solution (Timoshenko & Goodier, Theory of Elasticity, sec. 28), nu = 0.499:
 //    the constant-strain tetrahedron (ELFORM 10) locks, ELFORM 13 does not, and converges;
+//  - locking in plastic flow: the same cylinder, elastic-perfectly-plastic, expanded far into
+//    full plasticity, against the limit pressure (2 / sqrt 3) sigma_y ln(b / a) (Hill);
 //  - conservation: a free body with an internal impact keeps its momentum and angular momentum
 //    to round-off, glstat's balance closes, and the internal work equals Bonet & Burton's
 //    stored energy (deviatoric per element, volumetric per node) of the final configuration;
@@ -279,6 +281,88 @@ TEST(Tet13Locking, ThickCylinderUnderInternalPressureMatchesLameWhereElform10Loc
   const double compressible = load_cylinder(8, 10, 0.3).inner / lame_inner_displacement(0.3) - 1.0;
   std::printf("[measured] ELFORM 10, 8 x 8 cells, nu 0.3: error %+.3e\n", compressible);
   EXPECT_LT(std::abs(compressible), 0.03);
+}
+
+// The same quarter cylinder, elastic-perfectly-plastic (*MAT_PLASTIC_KINEMATIC, ETAN 0, nu 0.3):
+// the inner radius is driven outward at constant speed (after a short ramp) to u(a) = 0.04 a,
+// far beyond full plasticity (yield strain 2e-3). Plastic flow is isochoric, so here locking
+// comes from the plastic strain, not from nu. The pressure is the radial internal force on the
+// inner nodes over the inner surface; the reference is the limit pressure of the fully plastic
+// tube (Hill, The Mathematical Theory of Plasticity, ch. V; plane strain, von Mises),
+// p_L = (2 / sqrt 3) sigma_y ln(b / a), on the current radii.
+struct LimitResult {
+  double pressure = 0.0, limit = 0.0;
+};
+
+LimitResult expand_plastic_cylinder(int nr, int elform) {
+  constexpr double kYield = 2.0e4;  // E / 500
+  const double nu = 0.3;
+  const double mu = kYoung / (2.0 * (1.0 + nu));
+  const double omega = std::sqrt(mu * (1.0 / (kInner * kInner) - 1.0 / (kOuter * kOuter)) /
+                                 (kRho * std::log(kOuter / kInner)));
+  const double period = 2.0 * std::numbers::pi / omega;
+  const double end_time = 6.0 * period, ramp = period;
+  const double speed = 0.04 * kInner / (end_time - 0.5 * ramp);
+  std::string deck = cylinder_deck(nr, elform, nu, period, end_time, omega);
+  // No damping: at constant speed it would add its force m d v to the pressure.
+  const std::size_t damping = deck.find("*DAMPING_GLOBAL");
+  deck.erase(damping, deck.find("*CONTROL_BULK_VISCOSITY") - damping);
+  // Material, and prescribed inner motion instead of the pressure.
+  const std::string elastic = elastic_card(kRho, kYoung, nu);
+  deck.replace(deck.find(elastic), elastic.size(),
+               fmt::format("*MAT_PLASTIC_KINEMATIC\n1,{:.17g},{:.17g},{:.17g},{:.17g},0.0,1.0\n",
+                           kRho, kYoung, nu, kYield));
+  const std::size_t load = deck.find("*LOAD_SEGMENT");
+  deck.erase(load, deck.find("*DEFINE_CURVE") - load);
+  std::string motion = "*BOUNDARY_PRESCRIBED_MOTION_NODE\n";
+  for (int k = 0; k <= 1; ++k)
+    for (int j = 0; j <= nr; ++j) {
+      const double theta = 0.5 * std::numbers::pi * j / nr;
+      const int id = 1 + (nr + 1) * (j + (nr + 1) * k);  // node (0, j, k) of the grid
+      if (j < nr) motion += fmt::format("{},1,0,2,{:.17g}\n", id, speed * std::cos(theta));
+      if (j > 0) motion += fmt::format("{},2,0,2,{:.17g}\n", id, speed * std::sin(theta));
+    }
+  motion += fmt::format("*DEFINE_CURVE\n2\n0.0,0.0\n{:.17g},1.0\n1000.0,1.0\n", ramp);
+  deck.insert(deck.find("*DEFINE_CURVE"), motion);
+  solver::Simulation sim(read(deck), {});
+  while (!sim.finished()) sim.cycle();
+  const auto& n = sim.state().nodes;
+  double force = 0.0, inner = 0.0, outer = 0.0, thickness = 0.0;
+  int inner_count = 0, outer_count = 0;
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    const double r0 = std::hypot(n.x0.x[i], n.x0.y[i]);
+    const double r = std::hypot(n.x.x[i], n.x.y[i]);
+    thickness = std::max(thickness, n.x.z[i]);
+    if (std::abs(r0 - kInner) < 1e-9) {
+      force += (n.f_int.x[i] * n.x.x[i] + n.f_int.y[i] * n.x.y[i]) / r;
+      inner += r;
+      ++inner_count;
+    } else if (std::abs(r0 - kOuter) < 1e-9) {
+      outer += r;
+      ++outer_count;
+    }
+  }
+  inner /= inner_count;
+  outer /= outer_count;
+  LimitResult result;
+  result.pressure = force / (0.5 * std::numbers::pi * inner * thickness);
+  result.limit = 2.0 / std::sqrt(3.0) * kYield * std::log(outer / inner);
+  return result;
+}
+
+TEST(Tet13Locking, FullyPlasticCylinderReachesTheLimitPressureWhereElform10Locks) {
+  // Measured once on 16 x 16 cells as well: ELFORM 13 -0.11 %, ELFORM 10 +2.2 %.
+  for (const int nr : {4, 8}) {
+    const LimitResult t13 = expand_plastic_cylinder(nr, 13);
+    const LimitResult t10 = expand_plastic_cylinder(nr, 10);
+    const double error13 = t13.pressure / t13.limit - 1.0, error10 = t10.pressure / t10.limit - 1.0;
+    std::printf(
+        "[measured] plastic cylinder %d x %d cells: limit pressure %.5g; ELFORM 13 %.5g "
+        "(%+.3e), ELFORM 10 %.5g (%+.3e)\n",
+        nr, nr, t13.limit, t13.pressure, error13, t10.pressure, error10);
+    EXPECT_LT(std::abs(error13), nr >= 8 ? 0.005 : 0.02);
+    EXPECT_GT(error10, nr >= 8 ? 0.04 : 0.15);  // locked in plastic flow: too stiff
+  }
 }
 
 // --- Conservation ---------------------------------------------------------------------------
