@@ -65,6 +65,8 @@
 #include <utility>
 
 #include "element/hex_geometry.hpp"
+#include "element/solid_terms.hpp"
+#include "element/tet13_block.hpp"
 #include "material/elastic_update.hpp"
 #include "material/registry.hpp"
 #include "model/error.hpp"
@@ -371,26 +373,9 @@ void corotational_hourglass(const HexBlock& block, double dt, Lanes state[4][3],
   h.work = wsum * dt;
 }
 
-// The constants material M's update takes (material::ParametersOf).
-template <class M>
-inline const auto& update_parameters(const HexBlock& block) {
-  using P = typename material::ParametersOf<M>::type;
-  if constexpr (std::is_same_v<P, material::PlasticParameters>)
-    return block.plastic;
-  else if constexpr (std::is_same_v<P, material::JohnsonCookParameters>)
-    return block.johnson_cook;
-  else
-    return block.hyperelastic;
-}
-
 // History of material M for a batch: the fields' components gathered lane by lane into
-// h[0 .. history_size<M>()) in kHistory order (point `point` of `points` per element), and
-// written back for the lanes that hold real elements.
-template <class M>
-constexpr int history_slots() {
-  return material::history_size<M>() > 0 ? material::history_size<M>() : 1;
-}
-
+// h[0 .. history_size<M>()) in kHistory order, and written back for the lanes that hold real
+// elements.
 template <class M>
 inline void load_history(const HexBlock& block, const Batch& b, Lanes* h) {
   int slot = 0;
@@ -431,37 +416,13 @@ inline void density_and_length(const HexBlock& block, const Batch& b, Lanes volu
   length = r0 * volume_ratio_cbrt(volume / v0);
 }
 
-// Artificial bulk viscosity (LS-DYNA theory manual, "Artificial Bulk Viscosity"; von Neumann &
-// Richtmyer 1950 quadratic term, Landshoff 1955 linear term):
-//   q = rho l (Q1 l e_kk^2 - Q2 c e_kk)  for e_kk < 0,  q = 0 otherwise,
-// e_kk the volumetric strain rate, c the P-wave speed, l the element length. The manual names
-// l = V^{1/3}; we use the time-step length L_e = V / A_max (equal for a cube), because the
-// step formula below, Q = Q2 c + Q1 L_e |e_kk|, is the stability limit of exactly this q: a
-// 1-D element damped by q with length l has Q = (l / L_e)(Q2 c + Q1 l |e_kk|), so with
-// V^{1/3} > L_e (flat elements) the LS-DYNA step would be unstable (seen: a bar of 10:1 plates
-// blew up at TSSFAC 0.9). q is a pressure: it enters
-// the nodal forces as -q on the diagonal of the stress, never the stored stress. With
-// e = min(e_kk, 0) the formula is branch-free. The energy it dissipates over a step is
-// q |e_kk| V dt >= 0 (V the mid-step volume, where e_kk is evaluated).
-inline double bulk_viscosity_pressure(const BulkViscositySettings& bv, double wave_speed,
-                                      double density, double length, double ekk) {
-  const double e = ekk < 0.0 ? ekk : 0.0;
-  return density * length * (bv.q1 * length * e * e - bv.q2 * wave_speed * e);
-}
+// Batched forms of bulk_viscosity_pressure and viscous_time_step (element/solid_terms.hpp).
 inline Lanes bulk_viscosity_pressure(const BulkViscositySettings& bv, double wave_speed,
                                      Lanes density, Lanes length, Lanes ekk) {
   const Lanes e = ekk < 0.0 ? ekk : Lanes{};  // lane-wise select, no branch
   return density * length * (bv.q1 * length * e * e - bv.q2 * wave_speed * e);
 }
 
-// Critical step with bulk viscosity (LS-DYNA theory manual, "Time Step Control", solid
-// elements): dt_e = L_e / (Q + sqrt(Q^2 + c^2)), Q = Q2 c + Q1 L_e |e_kk| while e_kk < 0,
-// Q = 0 otherwise (then dt_e = L_e / sqrt(c^2) = L_e / c exactly, as without viscosity).
-inline double viscous_time_step(const BulkViscositySettings& bv, double c, double length,
-                                double ekk) {
-  const double q = ekk < 0.0 ? bv.q2 * c - bv.q1 * length * ekk : 0.0;
-  return length / (q + std::sqrt(q * q + c * c));
-}
 inline Lanes viscous_time_step(const BulkViscositySettings& bv, double c, Lanes length, Lanes ekk) {
   const Lanes linear = Lanes{} + bv.q2 * c;
   const Lanes q = ekk < 0.0 ? linear - bv.q1 * length * ekk : Lanes{};
@@ -812,6 +773,10 @@ int distinct_node_count(const std::int32_t* c) {
 }
 
 void initialize_hex_block(HexBlock& block, const NodalView& nodes) {
+  if (is_nodal_pressure_tetrahedron(block)) {
+    initialize_tet13_block(block, nodes);
+    return;
+  }
   const std::size_t n = block.size();
   if (block.conn.size() != 8 * n)
     throw SolverError(
@@ -844,6 +809,7 @@ void initialize_hex_block(HexBlock& block, const NodalView& nodes) {
 }
 
 KernelResult compute_hex_forces(HexBlock& block, const NodalView& nodes, double dt) {
+  if (is_nodal_pressure_tetrahedron(block)) return compute_tet13_forces(block, nodes, dt);
   std::array<Partial, kMaxThreads> partials;
   const std::int64_t n = static_cast<std::int64_t>(block.size());
   int threads = 1;

@@ -7,6 +7,7 @@
 
 #include "element/element_ownership.hpp"
 #include "element/erosion_state.hpp"
+#include "element/nodal_averaging.hpp"
 #include "material/elastic.hpp"
 #include "material/history.hpp"
 #include "material/hyperelastic.hpp"
@@ -62,8 +63,9 @@ struct BulkViscositySettings {
 struct HexBlock {
   model::Id part_id = 0;
   int part_index = 0;
-  int elform =
-      1;  // 1: one-point + hourglass; 2: selective-reduced (2x2x2 deviatoric, 1pt volumetric)
+  // 1: one-point + hourglass (also ELFORM 10 tetrahedra); 2: selective-reduced (2x2x2
+  // deviatoric, 1pt volumetric); 13: nodal-pressure tetrahedron (element/tet13_block.hpp)
+  int elform = 1;
   HourglassSettings hourglass;
   BulkViscositySettings bulk_viscosity;
   // Elastic constants of every material (wave speed, hourglass, contact stiffness), then the
@@ -101,7 +103,7 @@ struct HexBlock {
   std::vector<material::HistoryArray> history;
   // Accumulated hourglass generalized forces for the stiffness forms (IHQ 4,5,6): 12 per element.
   std::vector<double> hourglass_state;
-  std::vector<double> volume0;       // reference volume
+  std::vector<double> volume0;  // reference volume
   // sqrt(s_e) of mass scaling (solver/mass_scaling.hpp): the element's mass is s_e times its
   // physical mass, so its step is sqrt(s_e) times longer. Empty without mass scaling.
   std::vector<double> step_scale;
@@ -111,6 +113,8 @@ struct HexBlock {
   std::vector<double> force;
   // Shape detected from the connectivity (initialize_hex_block), one per element.
   std::vector<HexShape> shape;
+  // ELFORM 13 only: corners, node -> element lists and scratch of the nodal averaging.
+  NodalAveraging nodal_averaging;
 
   // Order > 1 only (see lagrange_hex.hpp). Per quadrature point: the inverse reference Jacobian
   // dxi/dX (9, row-major) and the weight w_q det(dX/dxi); per element: the critical step and the

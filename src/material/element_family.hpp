@@ -11,7 +11,11 @@ enum ElementFamily : unsigned {
   // elastic law runs in closed form there; the J2 laws run their 3D update with the thickness
   // strain rate iterated until sigma_zz = 0 (shell_block.cpp).
   kShell = 1u << 2,
-  kBeam = 1u << 3,         // beams and trusses, uniaxial (element/beam_block.hpp)
+  kBeam = 1u << 3,  // beams and trusses, uniaxial (element/beam_block.hpp)
+  // Nodal-pressure tetrahedra (*SECTION_SOLID ELFORM 13, element/tet13_block.hpp): the
+  // material gets the element's velocity gradient with a nodally averaged trace. Serves laws
+  // whose pressure follows the volume change alone (elastic, J2, the rubbers' F-bar form).
+  kTet13 = 1u << 4,
 };
 
 }  // namespace rf::material

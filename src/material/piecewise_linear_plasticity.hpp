@@ -16,7 +16,8 @@ namespace rf::material {
 
 struct PiecewiseLinearPlasticityMaterial {
   static constexpr model::MaterialKind kKind = model::MaterialKind::PiecewiseLinearPlasticity;
-  static constexpr unsigned kFamilies = kHex8 | kShell | kBeam;  // beams: truss and ELFORM 1
+  static constexpr unsigned kFamilies =
+      kHex8 | kShell | kBeam | kTet13;  // beams: truss and ELFORM 1
   static constexpr std::array<HistoryField, 1> kHistory{{{"effective_plastic_strain", 1, false}}};
 
   template <class T>

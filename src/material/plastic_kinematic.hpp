@@ -15,7 +15,8 @@ namespace rf::material {
 
 struct PlasticKinematicMaterial {
   static constexpr model::MaterialKind kKind = model::MaterialKind::PlasticKinematic;
-  static constexpr unsigned kFamilies = kHex8 | kShell | kBeam;  // beams: truss and ELFORM 1
+  static constexpr unsigned kFamilies =
+      kHex8 | kShell | kBeam | kTet13;  // beams: truss and ELFORM 1
   static constexpr std::array<HistoryField, 2> kHistory{
       {{"effective_plastic_strain", 1, false}, {"back_stress", 6, true}}};
 

@@ -626,7 +626,7 @@ StructuralMatrices assemble_structural_matrices(const model::Model& model,
     }
   }
   for (const auto& block : state.hex_blocks) {
-    if (block.order == 1 && block.elform != 2 && block.hourglass.ihq <= 3) {
+    if (block.order == 1 && block.elform != 2 && block.elform != 13 && block.hourglass.ihq <= 3) {
       out.warnings.push_back(fmt::format(
           "part {}: viscous hourglass control IHQ={} has no stiffness; the eigen analysis uses "
           "the Belytschko-Bindeman stiffness (IHQ 6, QM={:g}) so that hourglass modes are not "

@@ -359,8 +359,11 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
     // four nodes is linear), so the hourglass control is switched off (QM 0): LS-DYNA's IHQ 1-3
     // base vectors are not orthogonal to linear fields on a collapsed element and would resist
     // ordinary deformation.
-    const bool tetrahedra_only = sec_it->second.elform == 10;
-    block.elform = tetrahedra_only ? 1 : sec_it->second.elform;
+    // ELFORM 13, the nodal-pressure tetrahedron (element/tet13_block.hpp), keeps its number:
+    // the hexahedron kernels hand its blocks to their own kernel.
+    const int elform = sec_it->second.elform;
+    const bool tetrahedra_only = elform == 10 || elform == 13;
+    block.elform = elform == 10 ? 1 : elform;
     block.rigid = mat.kind == model::MaterialKind::Rigid;
     block.has_force_slots = !block.rigid;
     block.order = part_order(model, pid);
@@ -379,6 +382,15 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
                          fmt::format("part {} uses {} (material {}) on solid elements: this "
                                      "material is a plane-stress law for shells only",
                                      pid, mat.keyword, mat.id));
+      }
+      if (elform == 13 && !block.rigid && !material::serves(material_index, material::kTet13)) {
+        throw InputError(context_of(part.where, "MID"),
+                         fmt::format("part {} uses {} (material {}) with *SECTION_SOLID {} ELFORM "
+                                     "13, the nodal-pressure tetrahedron, which runs *MAT_ELASTIC, "
+                                     "*MAT_PLASTIC_KINEMATIC, *MAT_PIECEWISE_LINEAR_PLASTICITY, "
+                                     "*MAT_MOONEY-RIVLIN_RUBBER and *MAT_OGDEN_RUBBER only (use "
+                                     "ELFORM 10 for this material)",
+                                     pid, mat.keyword, mat.id, part.secid));
       }
       if (!material::serves(material_index, family)) {
         throw InputError(context_of(part.where, "MID"),
@@ -409,8 +421,9 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
         if (distinct != 4) {
           throw InputError(context_of(solid.where, "N1"),
                            fmt::format("element {} of part {} has {} distinct nodes, but its "
-                                       "section {} is ELFORM 10, the 4-node tetrahedron",
-                                       solid.id, pid, distinct, part.secid));
+                                       "section {} is ELFORM {}, the 4-node {}tetrahedron",
+                                       solid.id, pid, distinct, part.secid, elform,
+                                       elform == 13 ? "nodal-pressure " : ""));
         }
       }
       block.element_id.push_back(solid.id);

@@ -10,6 +10,7 @@
 
 #include "deck_builder.hpp"
 #include "shell_builder.hpp"
+#include "tet_mesh.hpp"
 
 namespace rf::test::restart_decks {
 
@@ -97,6 +98,33 @@ inline std::string rubber(double end_time) {
   replace("*MAT_ELASTIC\n1,7.85e-9,210000.0,0.3\n",
           "*MAT_MOONEY-RIVLIN_RUBBER\n1,7.85e-9,0.45,30000.0,5000.0\n0,0,0,0\n"
           "*MAT_OGDEN_RUBBER\n2,7.85e-9,0.45,0\n60000.0,2000.0,-1000.0\n2.0,4.0,-2.0\n");
+  return s;
+}
+
+// Nodal-pressure tetrahedra (ELFORM 13) of *MAT_PIECEWISE_LINEAR_PLASTICITY: the deformable
+// deck's block, spin, loads and prescribed node on an irregular 4 x 2 x 2 tetrahedral mesh
+// (same node numbering). Stresses and plastic strain cross the dump; the nodal averages are
+// recomputed every cycle and carried by nothing.
+inline std::string tetrahedra(double end_time) {
+  const TetGrid grid = tet_box(4, 2, 2, 4.0, 2.0, 2.0, 0.15);
+  std::string s = "*KEYWORD\n*TITLE\nrestart: nodal-pressure tetrahedra\n";
+  s += fmt::format("*CONTROL_TERMINATION\n{},0\n*CONTROL_TIMESTEP\n0,0.5\n", end_time);
+  s += output_cards(2e-7, 2e-6);
+  s += grid.text();
+  s += "*PART\ntetrahedra\n1,1,1\n*SECTION_SOLID\n1,13\n";
+  s += "*MAT_PIECEWISE_LINEAR_PLASTICITY\n1,7.85e-9,210000.0,0.3,0,0\n40.4,5.0,0,0,0\n"
+       "0,0.01,0.02,0.05,0.1,0.2,0.5,1.0\n100,110,120,135,150,165,185,200\n";
+  s += "*INITIAL_VELOCITY_GENERATION\n0,2,2.0e5,1000.0,-500.0,0.0\n1.0,1.0,1.0,0.0,0.0,1.0\n";
+  s += fmt::format("*LOAD_NODE_POINT\n{},3,1,50.0\n{},2,1,-30.0\n", grid.node(4, 2, 2),
+                   grid.node(4, 0, 2));
+  s += "*LOAD_BODY_Y\n2,1.0e6\n";
+  s += fmt::format("*BOUNDARY_PRESCRIBED_MOTION_NODE\n{},1,2,3,0.01\n", grid.node(0, 0, 0));
+  s += "*DEFINE_CURVE\n1\n0.0,0.0\n1.0e-5,1.0\n1.0,1.0\n";
+  s += "*DEFINE_CURVE\n2\n0.0,1.0\n1.0e-5,0.0\n1.0,-1.0\n";
+  s += "*DEFINE_CURVE\n3\n0.0,0.0\n1.0e-5,1.0\n1.0,1.0\n";
+  s += fmt::format("*DATABASE_HISTORY_NODE\n{},{},{}\n", grid.node(4, 2, 2), grid.node(2, 1, 1),
+                   grid.node(0, 0, 0));
+  s += "*END\n";
   return s;
 }
 

@@ -221,6 +221,9 @@ const Case kCases[] = {
     // Erosion: elements deleted before and after the dump (erosion.csv continued).
     {"erosion", restart_decks::eroding(4e-5), "", {}, 6e-6, 1},
     {"erosion", restart_decks::eroding(4e-5), "", {}, 6e-6, 2},
+    // Nodal-pressure tetrahedra (ELFORM 13), J2 plasticity.
+    {"tetrahedra13", restart_decks::tetrahedra(4e-5), "", {}, 6e-6, 1},
+    {"tetrahedra13", restart_decks::tetrahedra(4e-5), "", {}, 6e-6, 2},
     {"rubber", restart_decks::rubber(4e-5), "", {}, 6e-6, 1},
     {"rubber", restart_decks::rubber(4e-5), "", {}, 6e-6, 2},
     {"johnson_cook", restart_decks::johnson_cook(4e-5), "", {}, 6e-6, 1},

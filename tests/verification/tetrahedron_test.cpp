@@ -161,7 +161,7 @@ TEST(TetrahedronInput, Elform10RefusesOtherShapesAndOtherTetrahedronFormulations
     EXPECT_NE(what.find("ELFORM 10"), std::string::npos) << what;
     EXPECT_NE(what.find("verification.k:"), std::string::npos) << what;
   }
-  for (const int elform : {13, 16, 3}) {
+  for (const int elform : {16, 17, 3}) {
     try {
       read(tetrahedral_bar(2, elform) + "*CONTROL_TERMINATION\n1e-5\n*END\n");
       ADD_FAILURE() << "ELFORM " << elform << " must be refused";

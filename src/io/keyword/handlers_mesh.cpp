@@ -131,8 +131,9 @@ void element_shell(const Block& block, ReaderContext& context) {
       e.nodes[k] = card.id(2 + k, kNodeFields[k]);
       if (k == 3 && e.nodes[k] == 0) e.nodes[k] = e.nodes[2];  // three nodes: a triangle
       if (e.nodes[k] <= 0) {
-        throw card.error(kNodeFields[k], "a shell needs 4 positive node IDs (N3 = N4 or N4 "
-                                         "blank for a triangle)");
+        throw card.error(kNodeFields[k],
+                         "a shell needs 4 positive node IDs (N3 = N4 or N4 "
+                         "blank for a triangle)");
       }
     }
     for (std::size_t k = 4; k < 8; ++k) {
@@ -142,8 +143,9 @@ void element_shell(const Block& block, ReaderContext& context) {
     }
     if (e.nodes[0] == e.nodes[1] || e.nodes[1] == e.nodes[2] || e.nodes[0] == e.nodes[2] ||
         e.nodes[0] == e.nodes[3]) {
-      throw card.error("N1", "a shell repeats a node other than N3 = N4 (the only degenerate "
-                             "form is the triangle N1 N2 N3 N3)");
+      throw card.error("N1",
+                       "a shell repeats a node other than N3 = N4 (the only degenerate "
+                       "form is the triangle N1 N2 N3 N3)");
     }
     if (thickness_card) {
       const Card t = cursor.next(2, thickness_layout, "THIC1 THIC2 THIC3 THIC4 BETA");
@@ -197,8 +199,8 @@ void element_beam(const Block& block, ReaderContext& context) {
     }
     if (block.has_option("ORIENTATION")) {
       const Card v = cursor.next(2, vector_layout, "VX VY VZ");
-      e.orientation = std::array<double, 3>{v.real(0, "VX", 0.0), v.real(1, "VY", 0.0),
-                                            v.real(2, "VZ", 0.0)};
+      e.orientation =
+          std::array<double, 3>{v.real(0, "VX", 0.0), v.real(1, "VY", 0.0), v.real(2, "VZ", 0.0)};
     }
     const auto [it, inserted] = context.element_origin.try_emplace(
         e.id, std::pair{context.current_file_index, card.line_number()});
@@ -339,14 +341,15 @@ void section_solid(const Block& block, ReaderContext& context) {
     s.id = positive_id(card, 0, "SECID", "section");
     s.elform = card.flag(1, "ELFORM", 1);
     if (s.elform == 0) s.elform = 1;  // LS-DYNA: 0 means the default formulation 1
-    if (s.elform == 13 || s.elform == 16 || s.elform == 17) {
+    if (s.elform == 16 || s.elform == 17) {
       throw card.error("ELFORM", fmt::format("tetrahedron formulation {} is not supported "
-                                             "(supported: 10, the one-point 4-node tetrahedron)",
+                                             "(supported: 10, the one-point 4-node tetrahedron; "
+                                             "13, the nodal-pressure tetrahedron)",
                                              s.elform));
     }
-    if (s.elform != 1 && s.elform != 2 && s.elform != 10) {
-      throw card.error("ELFORM",
-                       fmt::format("value {} is not supported (supported: 1, 2, 10)", s.elform));
+    if (s.elform != 1 && s.elform != 2 && s.elform != 10 && s.elform != 13) {
+      throw card.error(
+          "ELFORM", fmt::format("value {} is not supported (supported: 1, 2, 10, 13)", s.elform));
     }
     s.where = card.location();
     check_unique(context.model.solid_sections, s.id, card, "SECID", "section");

@@ -1,0 +1,59 @@
+// Pieces the solid kernels share (hex_block.cpp, tet13_block.cpp): the constants a material's
+// update takes from a block, the size of its history buffer, and the scalar forms of the
+// artificial bulk viscosity and of the critical step with it (the batched forms live next to
+// the batched ELFORM 1 kernel).
+#pragma once
+
+#include <cmath>
+#include <type_traits>
+
+#include "element/hex_block.hpp"
+#include "material/registry.hpp"
+
+namespace rf::element {
+
+// The constants material M's update takes (material::ParametersOf).
+template <class M>
+inline const auto& update_parameters(const HexBlock& block) {
+  using P = typename material::ParametersOf<M>::type;
+  if constexpr (std::is_same_v<P, material::PlasticParameters>)
+    return block.plastic;
+  else if constexpr (std::is_same_v<P, material::JohnsonCookParameters>)
+    return block.johnson_cook;
+  else
+    return block.hyperelastic;
+}
+
+// Length of a buffer for material M's history components (at least 1: no zero-length arrays).
+template <class M>
+constexpr int history_slots() {
+  return material::history_size<M>() > 0 ? material::history_size<M>() : 1;
+}
+
+// Artificial bulk viscosity (LS-DYNA theory manual, "Artificial Bulk Viscosity"; von Neumann &
+// Richtmyer 1950 quadratic term, Landshoff 1955 linear term):
+//   q = rho l (Q1 l e_kk^2 - Q2 c e_kk)  for e_kk < 0,  q = 0 otherwise,
+// e_kk the volumetric strain rate, c the P-wave speed, l the element length. The manual names
+// l = V^{1/3}; we use the time-step length L_e = V / A_max (equal for a cube), because the
+// step formula below, Q = Q2 c + Q1 L_e |e_kk|, is the stability limit of exactly this q: a
+// 1-D element damped by q with length l has Q = (l / L_e)(Q2 c + Q1 l |e_kk|), so with
+// V^{1/3} > L_e (flat elements) the LS-DYNA step would be unstable (seen: a bar of 10:1 plates
+// blew up at TSSFAC 0.9). q is a pressure: it enters the nodal forces as -q on the diagonal of
+// the stress, never the stored stress. The energy it dissipates over a step is
+// q |e_kk| V dt >= 0 (V the mid-step volume, where e_kk is evaluated).
+inline double bulk_viscosity_pressure(const BulkViscositySettings& bv, double wave_speed,
+                                      double density, double length, double ekk) {
+  const double e = ekk < 0.0 ? ekk : 0.0;
+  return density * length * (bv.q1 * length * e * e - bv.q2 * wave_speed * e);
+}
+
+// Critical step with bulk viscosity (LS-DYNA theory manual, "Time Step Control", solid
+// elements): dt_e = L_e / (Q + sqrt(Q^2 + c^2)), Q = Q2 c + Q1 L_e |e_kk| while e_kk < 0,
+// Q = 0 otherwise (then dt_e = L_e / sqrt(c^2) = L_e / c exactly, as without viscosity).
+inline double viscous_time_step(const BulkViscositySettings& bv, double c, double length,
+                                double ekk) {
+  const double q = ekk < 0.0 ? bv.q2 * c - bv.q1 * length * ekk : 0.0;
+  return length / (q + std::sqrt(q * q + c * c));
+}
+
+}  // namespace rf::element
