@@ -968,10 +968,10 @@ void evaluate_pass_of(ContactInterface& contact, ContactPass& pass, const solver
     const auto& segment = master.segments[best_segment];
     // Stiffness (docs/contact.md): SOFT = 0, the smaller of the master segment's SLSFAC K A^2 / V
     // and that of the node's own segment that faces it most directly, each with its side's
-    // scale (SFM / SFS); SOFT = 1, at least the soft-constraint stiffness 0.5 SOFSCL m / dt_c^2
-    // with m the pair's reduced mass.
+    // scale (SFM / SFS) (PENOPT 1; 2 takes the segment's, 3 the node's); SOFT = 1, at least the
+    // soft-constraint stiffness 0.5 SOFSCL m / dt_c^2 with m the pair's reduced mass.
     double k = pass.master_scale * master.stiffness[best_segment];
-    {
+    if (contact.penopt != 2 || std::isinf(k)) {
       double most_opposed = 2.0;
       double k_slave = kInfinity;
       for (auto q = slave.node_segment_start[j]; q < slave.node_segment_start[j + 1]; ++q) {
@@ -990,7 +990,8 @@ void evaluate_pass_of(ContactInterface& contact, ContactPass& pass, const solver
           k_slave = slave.stiffness[slave.node_segments[q]];
         }
       }
-      k = std::min(k, pass.slave_scale * k_slave);
+      const double k_node = pass.slave_scale * k_slave;
+      k = contact.penopt == 3 && !std::isinf(k_node) ? k_node : std::min(k, k_node);
     }
     const double m_slave = mass[node];
     const double m_master = master.mass[best_segment];
@@ -1117,6 +1118,7 @@ ContactSystem build_contacts(const model::Model& model, const solver::NodeIndex&
         for (double& k : side.node_stiffness) k *= scale;
       }
     }
+    contact.penopt = model.contact_control.penopt;
     auto add_pass = [&](int slave_side, int master_side) {
       ContactPass pass;
       pass.slave_side = slave_side;

@@ -149,6 +149,9 @@ struct ContactInterface {
   int soft = 0;
   double sofscl = 0.1;
   double soft_dt = 0.0;  // SOFT = 1: the time step of the first evaluation with a step
+  // SOFT = 0 stiffness of a pair (*CONTROL_CONTACT PENOPT): 1 the smaller of the segment's and
+  // the node's, 2 the segment's, 3 the node's (each falling back on the other where it has none).
+  int penopt = 1;
   std::array<ContactSurface, 2> sides;  // slave, master (single surface: both the same)
   std::vector<ContactPass> passes;
   // Last evaluation: resultant force on the slave side's nodes (the master side's is its

@@ -146,6 +146,9 @@ struct SectionDiscrete {
 // where they cannot change it and refused where they would, io/keyword/handlers_contact.cpp).
 struct ContactControl {
   double slsfac = 0.1;  // scale of the SOFT = 0 penalty stiffness (contact/contact.cpp)
+  // PENOPT: which side's SOFT = 0 stiffness a pair takes: 1 the smaller of the master segment's
+  // and the slave node's (0 reads as 1), 2 the master segment's, 3 the slave node's.
+  int penopt = 1;
   SourceLocation where;
 };
 

@@ -17,6 +17,7 @@
 #include <memory>
 
 #include "contact/contact.hpp"
+#include "contact_fixture.hpp"
 #include "deck_builder.hpp"
 #include "shell_builder.hpp"
 #include "solver/build_state.hpp"
@@ -29,47 +30,8 @@ constexpr double kRho = 1000.0, kE = 1e7, kNu = 0.3;
 constexpr double kBulk = kE / (3.0 * (1.0 - 2.0 * kNu));
 constexpr double kSlsfac = 0.1;  // LS-DYNA's default penalty scale (*CONTROL_CONTACT)
 
-// A model read from a deck with its dense state; the contacts are built by build(), after a
-// test has enabled erosion on blocks (as the state builder does for failing materials).
-struct Fixture {
-  model::Model model;
-  solver::NodeIndex index;
-  solver::State state;
-  contact::ContactSystem contacts;
-
-  explicit Fixture(const std::string& deck)
-      : model(read(deck)), index(model), state(solver::build_state(model, index)) {}
-  void build() { contacts = contact::build_contacts(model, index, state); }
-
-  std::int32_t node(model::Id id) const { return index.at(id, {}, "node"); }
-  element::HexBlock& hex_part(model::Id pid) {
-    for (auto& b : state.hex_blocks)
-      if (b.part_id == pid) return b;
-    throw std::runtime_error("no such hex part");
-  }
-  element::ShellBlock& shell_part(model::Id pid) {
-    for (auto& b : state.shell_blocks)
-      if (b.part_id == pid) return b;
-    throw std::runtime_error("no such shell part");
-  }
-  Eigen::Vector3d force(model::Id id) const {
-    const auto i = static_cast<std::size_t>(index.at(id, {}, "node"));
-    return {contacts.force.x[i], contacts.force.y[i], contacts.force.z[i]};
-  }
-  Eigen::Vector3d total_force() const {
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    for (const auto i : contacts.nodes) {
-      sum += Eigen::Vector3d(contacts.force.x[i], contacts.force.y[i], contacts.force.z[i]);
-    }
-    return sum;
-  }
-  void move_node(model::Id id, const Eigen::Vector3d& p) {
-    const auto i = static_cast<std::size_t>(index.at(id, {}, "node"));
-    state.nodes.x.x[i] = p.x();
-    state.nodes.x.y[i] = p.y();
-    state.nodes.x.z[i] = p.z();
-  }
-};
+// Models come with ContactFixture (contact_fixture.hpp): the contacts are built by build(), after
+// a test has enabled erosion on blocks (as the state builder does for failing materials).
 
 template <class Block>
 void enable_erosion(Block& block) {
@@ -147,7 +109,7 @@ struct Hash {
 // at t = 0 (dt 0) and after three steps; hashes after each evaluation every nodal contact force,
 // each interface's resultant and count, and the per-pass state of the slave nodes that have one
 // (by node, the segment by its nodes: independent of how the segments are numbered).
-std::uint64_t golden_hash(Fixture& f) {
+std::uint64_t golden_hash(ContactFixture& f) {
   auto& n = f.state.nodes;
   for (std::size_t i = 0; i < n.size(); ++i) {
     const double s = static_cast<double>(i);
@@ -213,7 +175,7 @@ std::int64_t nodes_in_contact(const contact::ContactSystem& contacts) {
 }
 
 TEST(ContactErosion, ModelWithoutErosionGivesTheForcesOfTheCodeBeforeErosion) {
-  Fixture f(golden_deck());
+  ContactFixture f(golden_deck());
   f.build();
   const std::uint64_t hash = golden_hash(f);
   EXPECT_EQ(nodes_in_contact(f.contacts), 60);
@@ -224,7 +186,7 @@ TEST(ContactErosion, ModelWithoutErosionGivesTheForcesOfTheCodeBeforeErosion) {
 #endif
   // The same model with erosion enabled on every block and nothing eroded: the interior faces
   // are candidates but inactive, and the forces are the same bit for bit.
-  Fixture erodible(golden_deck());
+  ContactFixture erodible(golden_deck());
   for (auto& b : erodible.state.hex_blocks) enable_erosion(b);
   for (auto& b : erodible.state.shell_blocks) enable_erosion(b);
   erodible.state.nodes.removed.assign(erodible.state.nodes.size(), 0);
@@ -282,7 +244,7 @@ TEST(ContactErosion, NodeMeetsFaceExposedByErodedTopElementWithPenaltyForce) {
   constexpr model::Id kTopMiddle = 1 + 1 + 3 * (1 + 3 * 1);  // element (1, 1, 1)
   for (const bool separate : {false, true}) {
     SCOPED_TRACE(separate ? "bottom layer a part without erosion" : "one erodible part");
-    Fixture f(exposed_face_deck(separate));
+    ContactFixture f(exposed_face_deck(separate));
     auto& top = f.hex_part(1);
     enable_erosion(top);
     f.state.nodes.removed.assign(f.state.nodes.size(), 0);
@@ -315,7 +277,7 @@ TEST(ContactErosion, NodeMeetsFaceExposedByErodedTopElementWithPenaltyForce) {
 
     // A restart: contacts built from a state that has already eroded, then the update the
     // solver runs after reading the dump. Same force, bit for bit.
-    Fixture restarted(exposed_face_deck(separate));
+    ContactFixture restarted(exposed_face_deck(separate));
     auto& top2 = restarted.hex_part(1);
     enable_erosion(top2);
     erode(top2, element_index(top2, kTopMiddle));
@@ -354,7 +316,7 @@ TEST(ContactErosion, ErodedShellLetsNodePassWhileNeighbourShellStillPushes) {
       "*KEYWORD\n" + plate.text() + carrier(1001, 0.5 * kH) + carrier(2001, 1.5 * kH) +
       shell_part(1, t, kRho, kE, kNu) + elastic(2, kRho, kE, kNu) + node_set(10, {1001, 2001}) +
       "*CONTACT_AUTOMATIC_NODES_TO_SURFACE_ID\n1\n10,1,4,3\n0.2\n1,1\n" + termination_card(1.0);
-  Fixture f(deck);
+  ContactFixture f(deck);
   auto& shells = f.shell_part(1);
   enable_erosion(shells);
   f.state.nodes.removed.assign(f.state.nodes.size(), 0);
@@ -588,7 +550,7 @@ TEST(ContactErosion, RemovedNodesNeitherTakeNorExertForce) {
                            "*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE_ID\n1\n1,3,3,3\n0\n1,1\n"
                            "*CONTACT_AUTOMATIC_NODES_TO_SURFACE_ID\n2\n10,1,4,3\n0\n1,1\n" +
                            termination_card(1.0);
-  Fixture f(deck);
+  ContactFixture f(deck);
   auto& block = f.hex_part(1);
   auto& carriers = f.hex_part(2);
   enable_erosion(block);

@@ -181,12 +181,12 @@ void contact_automatic(const Block& block, ReaderContext& context) {
 }
 
 // *CONTROL_CONTACT (LS-DYNA Keyword User's Manual, *CONTROL_CONTACT; six optional cards). Each
-// field is one of: used (SLSFAC), what our contacts already do (PENOPT 0/1: the smaller of the
-// master segment's and the slave node's stiffness; ENMASS 0: nodes of eroded elements are
-// removed), no effect on them (checks, search tuning, output, options of contact types we do not
-// read), or refused when set, because it would change the physics (default friction and
-// damping for every contact, initial-penetration handling, rigid-wall penalties, spot-weld
-// options, thermal contact, symmetry planes, edge treatment). docs/keywords.md lists each.
+// field is one of: used (SLSFAC, PENOPT 0-3: which side's stiffness a pair takes), what our
+// contacts already do (ENMASS 0: nodes of eroded elements are removed), no effect on them
+// (checks, search tuning, output, options of contact types we do not read), or refused when set,
+// because it would change the physics (default friction and damping for every contact,
+// initial-penetration handling, rigid-wall penalties, spot-weld options, thermal contact, symmetry
+// planes, edge treatment). docs/keywords.md lists each.
 void control_contact(const Block& block, ReaderContext& context) {
   CardCursor cursor(block, context.parameters);
   model::ContactControl& control = context.model.contact_control;
@@ -208,11 +208,13 @@ void control_contact(const Block& block, ReaderContext& context) {
   refuse(c1, 1, "RWPNAL", 0.0,
          "rigid walls act by the constraint method here (penalty walls are not implemented)");
   const double penopt = c1.real(4, "PENOPT", 0.0);
-  if (penopt != 0.0 && penopt != 1.0)
-    throw c1.error("PENOPT", fmt::format("PENOPT {} is not supported: the contacts use the smaller "
-                                         "of the master segment's and the slave node's stiffness "
-                                         "(PENOPT 1; leave it blank, 0 or 1)",
+  if (penopt != 0.0 && penopt != 1.0 && penopt != 2.0 && penopt != 3.0)
+    throw c1.error("PENOPT", fmt::format("PENOPT {} is not supported (1 or blank: the smaller of "
+                                         "the master segment's and the slave node's stiffness, 2: "
+                                         "the master segment's, 3: the slave node's; the area- or "
+                                         "mass-weighted 4 and 5 are not implemented)",
                                          penopt));
+  control.penopt = penopt == 0.0 ? 1 : static_cast<int>(penopt);
   refuse(c1, 7, "ENMASS", 0.0,
          "nodes left without elements by erosion are removed from the model and from contact "
          "(ENMASS 0)");
