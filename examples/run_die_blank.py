@@ -77,21 +77,40 @@ def main():
     p.add_argument("--work", default=os.path.join(ROOT, "build", "die_blank"))
     p.add_argument("--images", default=None, help="folder for the PNG (default: WORK)")
     p.add_argument("--repeat", type=int, default=1, help="runs per variant (median CPU time)")
+    p.add_argument("--replot", action="store_true",
+                   help="run nothing: the tables and the plot again from WORK's results and "
+                   "WORK/die_blank_times.json")
     args, generator_args = p.parse_known_args()
     rigidflex = os.path.abspath(args.rigidflex)
     work = os.path.abspath(args.work)
     images = os.path.abspath(args.images) if args.images else work
     env = dict(os.environ, OMP_NUM_THREADS="1", OMP_WAIT_POLICY="passive")
 
-    subprocess.check_call([sys.executable, os.path.join(HERE, "make_die_blank.py"), "--out",
-                           work] + generator_args)
+    if not args.replot:
+        subprocess.check_call([sys.executable, os.path.join(HERE, "make_die_blank.py"), "--out",
+                               work] + generator_args)
     with open(os.path.join(work, "die_blank.json")) as f:
         model = json.load(f)
     os.chdir(work)
+    saved = {}
+    if args.replot:
+        with open("die_blank_times.json") as f:
+            saved = json.load(f)
+
+    def timed(key, command, log):
+        """CPU seconds (median of --repeat runs for the variants) and wall seconds."""
+        if args.replot:
+            return saved[key]
+        timings = [run(command, log, env) for _ in range(args.repeat if key in names else 1)]
+        saved[key] = (statistics.median(t[0] for t in timings),
+                      statistics.median(t[1] for t in timings), [t[0] for t in timings])
+        return saved[key]
+    names = [v["name"] for v in model["variants"]]
 
     # Step 1 of the paper's procedure: the preliminary analysis.
-    t_pre, _ = run([rigidflex, "eigen", "die_blank_eigen.k", "--parts", "1", "--modes", "20",
-                    "-o", "modes_check", "--quiet"], "modes_check.log", env)
+    t_pre = timed("eigen_check", [rigidflex, "eigen", "die_blank_eigen.k", "--parts", "1",
+                                  "--modes", "20", "-o", "modes_check", "--quiet"],
+                  "modes_check.log")[0]
     freqs = [r["frequency_hz"] for r in read_csv("modes_check/eigout.csv")]
     rigid = sum(1 for f in freqs if f < 1e-3 * max(freqs))
     if rigid != 6:
@@ -101,9 +120,9 @@ def main():
     print(f"eigen step 1: 6 rigid modes, first elastic mode {freqs[6]:.1f} Hz, "
           f"LFTEND = {lftend:.1f} Hz ({t_pre:.2f} s)")
     nmax = max(v["modes"] for v in model["variants"] if v["kind"] == "flexible")
-    t_eigen, _ = run([rigidflex, "eigen", "die_blank_eigen.k", "--parts", "1", "--modes",
-                      str(nmax), "--remove-rigid", repr(lftend), "-o", "modes", "--quiet"],
-                     "modes.log", env)
+    t_eigen = timed("eigen", [rigidflex, "eigen", "die_blank_eigen.k", "--parts", "1",
+                              "--modes", str(nmax), "--remove-rigid", repr(lftend), "-o",
+                              "modes", "--quiet"], "modes.log")[0]
     modes_freq = [r["frequency_hz"] for r in read_csv("modes/eigout.csv")]
     print(f"eigen step 2: {len(modes_freq)} elastic modes, {modes_freq[0]:.1f} to "
           f"{modes_freq[-1]:.1f} Hz ({t_eigen:.2f} s)")
@@ -111,10 +130,9 @@ def main():
     results = []
     for v in model["variants"]:
         out = "out_" + v["deck"][len("die_blank_"):-2]
-        timings = [run([rigidflex, "run", v["deck"], "-o", out, "--threads", "1", "--quiet"],
-                       out + ".log", env) for _ in range(args.repeat)]
-        seconds = statistics.median(t[0] for t in timings)
-        wall = statistics.median(t[1] for t in timings)
+        seconds, wall, all_seconds = timed(v["name"], [rigidflex, "run", v["deck"], "-o", out,
+                                                       "--threads", "1", "--quiet"],
+                                           out + ".log")
         times, disp, comp = die_history(out, model["bottom_node"], model["top_node"])
         glstat = read_csv(os.path.join(out, "glstat.csv"))
         ratio = max(abs(r["energy_ratio"] - 1.0) for r in glstat)
@@ -122,8 +140,7 @@ def main():
                     for r in read_csv(os.path.join(out, "rcforc.csv")) if r["contact"] == 1)
         with open(os.path.join(out, "run.json")) as f:
             info = json.load(f)
-        results.append(dict(v, out=out, seconds=seconds, wall=wall, all_seconds=[t[0] for t in
-                                                                                 timings],
+        results.append(dict(v, out=out, seconds=seconds, wall=wall, all_seconds=all_seconds,
                             times=times, disp=disp, comp=comp, peak=max(comp),
                             peak_time=times[comp.index(max(comp))], force=force, energy=ratio,
                             cycles=info.get("cycles", 0), dt=glstat[1]["dt"]))
@@ -131,6 +148,9 @@ def main():
               f"{info.get('cycles', 0)} cycles), peak compression {1e3 * max(comp):.3f} um, "
               f"contact force {1e-3 * force:.1f} kN, |energy ratio - 1| <= {ratio:.1e}")
 
+    if not args.replot:
+        with open("die_blank_times.json", "w") as f:
+            json.dump(saved, f, indent=1)
     ref = results[0]
     rigid_run = next(r for r in results if r["kind"] == "rigid")
     for r in results:
@@ -212,7 +232,7 @@ def main():
                 label=f"{r['modes']} modes")
     ax.set_title("z displacement of the die's bottom node (Fig. 7)")
     ax.set_ylabel("mm")
-    for ax, group, title in ((axes[1], form1, "FORM 1 (the paper's first order)"),
+    for ax, group, title in ((axes[1], form1, "FORM 1"),
                              (axes[2] if form0 else None, form0, "FORM 0")):
         if ax is None:
             continue
@@ -224,7 +244,7 @@ def main():
         for colour, r in zip(cols, group):
             ax.plot([1e3 * t for t in r["times"]], [1e3 * c for c in r["comp"]], "-",
                     color=colour, lw=1.0, label=f"{r['modes']} modes ({r['peak_error']:+.1f} %)")
-        ax.set_title(f"compression of the die at that node, {title}")
+        ax.set_title(f"the die's compression there, {title}")
         ax.set_ylabel("µm")
     for ax in axes:
         ax.set_xlabel("time (ms)")
