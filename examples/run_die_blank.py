@@ -3,7 +3,7 @@
 model 3):
 
   examples/run_die_blank.py [--rigidflex build/rigidflex] [--work build/die_blank]
-                            [--images docs/images] [--repeat N]
+                            [--images docs/images] [--repeat N] [--replot]
                             [generator options, e.g. --modes 10,40 --form0-modes '']
 
 1. writes the decks (examples/make_die_blank.py) into WORK;
@@ -19,8 +19,10 @@ model 3):
    node and the node above it on the die's top face (zero for a rigid die); the peak
    compression and its error against the deformable run, the RMS error of the whole history,
    the peak die/blank contact force (rcforc.csv) and the energy ratio (glstat.csv);
-5. writes WORK/die_blank_results.csv and .md, and the plot as IMAGES/die_blank_displacement.png
-   (with --images; otherwise into WORK).
+5. writes WORK/die_blank_results.csv and .md (with the share of the compression's static
+   compliance that the first N modes carry), WORK/die_blank_times.json, and the plot as
+   IMAGES/die_blank_displacement.png (with --images; otherwise into WORK). --replot runs
+   nothing and makes the tables and the plot again from those files.
 
 Builds nothing: it uses the solver that is there. Needs python3 with matplotlib for the plot.
 """
