@@ -470,12 +470,12 @@ TEST(Contact, ControlContactSlsfacScalesThePenaltyStiffness) {
     EXPECT_NEAR(bar.stiffness[s] / bar0.stiffness[s], 3.0, 1e-12);
 }
 
-// *CONTROL_CONTACT PENOPT: a node of a small cube (side c = 0.2 h, part 2) pressed g into the top
-// face of a cube of side h (part 1). The segment's stiffness is SLSFAC K1 A^2 / V = 0.1 K1 h,
-// the node's (its own bottom face, facing the segment) 0.1 K2 c: the pair takes the smaller
-// (PENOPT 0, 1), the segment's (2) or the node's (3); force k g on the node (dt = 0: no stability
-// cap). Once with the cube as stiff as the target (the node's is smaller) and once ten times
-// stiffer (the segment's is smaller).
+// *CONTROL_CONTACT PENOPT: a small cube (side c = 0.2 h, part 2, the slave part) pressed g into the
+// top face of a cube of side h (part 1); its corner node 1001. The segment's stiffness is SLSFAC K1
+// A^2 / V = 0.1 K1 h, the node's (its own bottom face, facing the segment) 0.1 K2 c: the pair takes
+// the smaller (PENOPT 0, 1), the segment's (2) or the node's (3); force k g on the node (dt = 0: no
+// stability cap). Once with the cube as stiff as the target (the node's is smaller) and once ten
+// times stiffer (the segment's is smaller).
 TEST(Contact, ControlContactPenoptChoosesWhoseStiffnessThePairTakes) {
   constexpr double h = 0.01, c = 0.2 * h, g = 1e-5, e1 = 1e7, nu = 0.3;
   const double bulk1 = e1 / (3.0 * (1.0 - 2.0 * nu));
@@ -491,16 +491,15 @@ TEST(Contact, ControlContactPenoptChoosesWhoseStiffnessThePairTakes) {
       cube.first_node = cube.first_element = 1001;
       const std::string deck = "*KEYWORD\n" + target.text() + cube.text() +
                                elastic(1, 1000.0, e1, nu) + elastic(2, 1000.0, stiffer * e1, nu) +
-                               node_set(10, {1001}) +
                                fmt::format("*CONTROL_CONTACT\n0.1,0,0,0,{}\n", penopt) +
-                               "*CONTACT_AUTOMATIC_NODES_TO_SURFACE_ID\n1\n10,1,4,3\n0\n1,1\n" +
+                               "*CONTACT_AUTOMATIC_NODES_TO_SURFACE_ID\n1\n2,1,3,3\n0\n1,1\n" +
                                "*CONTROL_TERMINATION\n1.0\n*END\n";
       ContactFixture f(deck);
       f.build();
       contact::compute_contact_forces(f.contacts, f.state, 0.0);
       const double k_segment = 0.1 * bulk1 * h, k_node = 0.1 * stiffer * bulk1 * c;
       const double k = penopt == 2 ? k_segment : penopt == 3 ? k_node : std::min(k_segment, k_node);
-      EXPECT_EQ(f.contacts.interfaces[0].active_nodes, 1);
+      EXPECT_EQ(f.contacts.interfaces[0].active_nodes, 4);  // the cube's bottom corners
       EXPECT_NEAR(f.force(1001).z(), k * g, 1e-9 * k * g);
     }
   }
