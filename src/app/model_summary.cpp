@@ -116,6 +116,8 @@ void print_model_summary(const model::Model& model, const solver::Simulation& si
                                   state.nodes.x.z.data(), state.nodes.v.x.data(),
                                   state.nodes.v.y.data(), state.nodes.v.z.data()};
     dt = element::block_critical_timestep(block, view).min_dt;
+    const int deck_elform = section_elform(model, part.secid, block.elform);
+    const bool tetrahedra = deck_elform == 10 || deck_elform == 13;
     fmt::print(
         out,
         "  part {} '{}': {} elements, {}, material {} {} "
@@ -123,12 +125,15 @@ void print_model_summary(const model::Model& model, const solver::Simulation& si
         part.id, part.title, block.size(),
         block.order > 1 ? fmt::format("order {} ({} nodes, GLL, total-Lagrangian neo-Hookean)",
                                       block.order, block.nodes_per_element())
-                        : fmt::format("section {} (ELFORM {})", part.secid,
-                                      section_elform(model, part.secid, block.elform)),
+                        : fmt::format("section {} (ELFORM {})", part.secid, deck_elform),
         mat.id, mat.keyword, mat.rho, mat.e, mat.pr,
         block.order > 1
             ? std::string()
-            : fmt::format(", hourglass IHQ {} QM {:g}, {}", block.hourglass.ihq, block.hourglass.qm,
+            : fmt::format(", {}, {}",
+                          // Tetrahedra (ELFORM 10, 13) have no hourglass modes: no control runs.
+                          tetrahedra ? std::string("no hourglass modes (tetrahedra)")
+                                     : fmt::format("hourglass IHQ {} QM {:g}", block.hourglass.ihq,
+                                                   block.hourglass.qm),
                           block.bulk_viscosity.on()
                               ? fmt::format("bulk viscosity Q1 {:g} Q2 {:g}",
                                             block.bulk_viscosity.q1, block.bulk_viscosity.q2)
