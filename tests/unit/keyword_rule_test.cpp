@@ -330,6 +330,22 @@ TEST(KeywordReader, FixedFormatValueWiderThanItsColumnIsExplained) {
   EXPECT_NE(message.find("long format"), std::string::npos) << message;
 }
 
+// A value whose digits run on into the next fields still parses there ("0.0040000000000000001"
+// as ENDTIM reads 0.00400000, ENDCYC 0000000000, DTMIN 01 = 1): the field that continues a digit
+// run with a leading zero is refused, with the columns and the fix. Fully packed fields of
+// ordinary numbers (no leading zero) stay valid.
+TEST(KeywordReader, DigitsRunningIntoTheNextFieldAreRefused) {
+  const std::string message =
+      rf::test::input_error_of(cube("*CONTROL_TERMINATION\n0.0040000000000000001\n"));
+  EXPECT_NE(message.find("card 1 field ENDCYC"), std::string::npos) << message;
+  EXPECT_NE(message.find("continues the digits"), std::string::npos) << message;
+  EXPECT_NE(message.find("columns 11-20"), std::string::npos) << message;
+  EXPECT_NE(message.find("free format"), std::string::npos) << message;
+  const Model packed =
+      read_deck_text(cube("*MAT_ELASTIC\n         27.85000e-92.1000e+050.30000000\n"));
+  EXPECT_DOUBLE_EQ(packed.materials.at(2).e, 2.1e5);
+}
+
 TEST(KeywordReader, FourNodeSolidIsATetrahedron) {
   const Model m = read_deck_text(cube("*ELEMENT_SOLID\n2,1,1,2,3,5\n"));
   ASSERT_EQ(m.solids.size(), 2u);

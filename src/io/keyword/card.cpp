@@ -217,6 +217,23 @@ std::string strip_parameter_marks(std::string_view expression) {
   return out;
 }
 
+namespace {
+
+// A digit run cut at a column boundary: "0.0040000000000000001" in a 10-column field reads
+// 0.00400000, then 0000000000, then 01, all valid numbers. A fixed-format field that touches the
+// field before it without a blank and starts with a zero followed by another digit is such a
+// continuation: nobody writes a number with a leading zero on purpose.
+bool continues_previous_field(std::string_view line, std::pair<std::size_t, std::size_t> columns,
+                              std::string_view value) {
+  const std::size_t first = columns.first;
+  if (first < 2 || first - 1 >= line.size() || value.size() < 2) return false;
+  const char before = line[first - 2], start = line[first - 1];
+  return before >= '0' && before <= '9' && start == '0' && value.front() == '0' &&
+         value[1] >= '0' && value[1] <= '9';
+}
+
+}  // namespace
+
 std::string Card::column_hint(std::size_t i) const {
   if (free_ || i >= columns_.size()) return {};
   const auto [first, last] = columns_[i];
@@ -245,6 +262,10 @@ double Card::real(std::size_t i, const char* name, double fallback) const {
   if (!parsed.value) {
     throw error(name, fmt::format("{} {}{}", quoted(t), parsed.reason, column_hint(i)));
   }
+  if (!free_ && i < columns_.size() && continues_previous_field(line_.text, columns_[i], t)) {
+    throw error(name, fmt::format("{} continues the digits of the field before it{}", quoted(t),
+                                  column_hint(i)));
+  }
   return *parsed.value;
 }
 
@@ -260,6 +281,10 @@ std::int64_t Card::integer(std::size_t i, const char* name, std::int64_t fallbac
   const auto parsed = parse_integer(t);
   if (!parsed.value) {
     throw error(name, fmt::format("{} {}{}", quoted(t), parsed.reason, column_hint(i)));
+  }
+  if (!free_ && i < columns_.size() && continues_previous_field(line_.text, columns_[i], t)) {
+    throw error(name, fmt::format("{} continues the digits of the field before it{}", quoted(t),
+                                  column_hint(i)));
   }
   return *parsed.value;
 }
