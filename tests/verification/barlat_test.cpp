@@ -306,7 +306,7 @@ std::string pulled_element(int pid, double y0, const std::string& material) {
 }
 
 std::string pull_controls(double end_time) {
-  return fmt::format("*DEFINE_CURVE\n1\n0,0\n2e-4,0.2\n1,0.2\n*CONTROL_TERMINATION\n{}\n",
+  return fmt::format("*DEFINE_CURVE\n1\n0,0\n2e-4,0.2\n1,0.2\n*CONTROL_TERMINATION\n{},\n",
                      end_time);
 }
 

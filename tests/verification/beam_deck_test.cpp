@@ -28,7 +28,7 @@ std::string cantilever(const std::string& section, int n, double length, int dof
   deck += fmt::format("*LOAD_NODE_POINT\n{},{},1,{:.17g}\n", n + 1, dof, load);
   deck += fmt::format("*DEFINE_CURVE\n1\n0,0\n{:.17g},1\n1e3,1\n", 0.3 * end);
   deck += fmt::format("*DAMPING_GLOBAL\n0,{:.17g}\n", damping);
-  deck += fmt::format("*CONTROL_TERMINATION\n{:.17g}\n*END\n", end);
+  deck += fmt::format("*CONTROL_TERMINATION\n{:.17g},\n*END\n", end);
   return deck;
 }
 
@@ -42,9 +42,8 @@ TEST(BeamDeck, ResultantBeamCantileverMatchesBeamTheory) {
   // 20 mm x 10 mm steel section, 1 m long; load in z bends about the section's weaker axis.
   const double a = 2e-4, i_weak = 0.02 * 1e-6 / 12.0, i_strong = 0.01 * 8e-6 / 12.0;
   const double j = 0.0;  // blank: ISS + ITT
-  const std::string section =
-      fmt::format("*SECTION_BEAM\n1,2,0.8333\n{:.17g},{:.17g},{:.17g},{:.17g}\n", a, i_weak,
-                  i_strong, j);
+  const std::string section = fmt::format(
+      "*SECTION_BEAM\n1,2,0.8333\n{:.17g},{:.17g},{:.17g},{:.17g}\n", a, i_weak, i_strong, j);
   const double load = 2.0, length = 1.0;
   // With the orientation vector (0, 1, 0) the s axis is y: ISS bends about s, i.e. in the x-z
   // plane. First mode omega = 3.52 sqrt(EI / (rho A L^4)) = 51 rad/s; d = 80 is 0.78 of critical.
@@ -75,7 +74,8 @@ TEST(BeamDeck, IntegratedBeamCantileverMatchesBeamTheory) {
 
 TEST(BeamDeck, TrussBarStretchesAsFLOverEA) {
   const double a = 1e-4, length = 2.0, load = 1e4;
-  std::string deck = "*KEYWORD\n*NODE\n1,0,0,0\n2,1,0,0\n3,2,0,0\n*ELEMENT_BEAM\n1,1,1,2\n2,1,2,3\n";
+  std::string deck =
+      "*KEYWORD\n*NODE\n1,0,0,0\n2,1,0,0\n3,2,0,0\n*ELEMENT_BEAM\n1,1,1,2\n2,1,2,3\n";
   deck += fmt::format("*PART\ntruss\n1,1,1\n*SECTION_BEAM\n1,3\n{}\n*MAT_ELASTIC\n1,{},{},{}\n", a,
                       kRho, kE, kNu);
   deck += "*BOUNDARY_SPC_NODE\n1,0,1,1,1\n2,0,0,1,1\n3,0,0,1,1\n";

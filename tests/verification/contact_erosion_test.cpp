@@ -57,7 +57,7 @@ std::string elastic_target(int pid) {
   return elastic(pid, kRho, kE, kNu);
 }
 std::string termination_card(double t) {
-  return fmt::format("*CONTROL_TERMINATION\n{}\n", t);
+  return fmt::format("*CONTROL_TERMINATION\n{},\n", t);
 }
 
 // ---------------------------------------------------------------------------------------

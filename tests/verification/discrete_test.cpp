@@ -52,7 +52,7 @@ std::string spring_mass_deck(const SpringMass& s) {
   const double l = std::hypot(s.tip[0], s.tip[1], s.tip[2]);
   deck += fmt::format("*INITIAL_VELOCITY_NODE\n2,{:.17g},{:.17g},{:.17g}\n", s.v0 * s.tip[0] / l,
                       s.v0 * s.tip[1] / l, s.v0 * s.tip[2] / l);
-  deck += fmt::format("*CONTROL_TIMESTEP\n0.0,{:.17g}\n*CONTROL_TERMINATION\n{:.17g}\n*END\n",
+  deck += fmt::format("*CONTROL_TIMESTEP\n0.0,{:.17g}\n*CONTROL_TERMINATION\n{:.17g},\n*END\n",
                       s.tssfac, s.end);
   return deck;
 }

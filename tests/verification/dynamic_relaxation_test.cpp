@@ -53,7 +53,7 @@ std::string cantilever_deck(int sidr, const std::string& control, double end_tim
     deck += fmt::format("*LOAD_NODE_POINT\n{},3,1,{}\n", id, kLoad / 2);
   deck += fmt::format("*DEFINE_CURVE\n1,{}\n0,{}\n0.05,1\n10,1\n", sidr, ramp ? 0 : 1);
   deck += control;
-  deck += fmt::format("*CONTROL_TERMINATION\n{}\n*END\n", end_time);
+  deck += fmt::format("*CONTROL_TERMINATION\n{},\n*END\n", end_time);
   return deck;
 }
 

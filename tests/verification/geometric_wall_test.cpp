@@ -43,7 +43,7 @@ std::string point_mass(const Vector3d& x, const Vector3d& v, double m) {
 std::string run_for(double t_end, double dt) {
   return fmt::format(
       "*CONTROL_TIMESTEP\n{0:.17g},0.9,0,0,0,77\n*DEFINE_CURVE\n77\n0,{0:.17g}\n1e3,{0:.17g}\n"
-      "*CONTROL_TERMINATION\n{1:.17g}\n",
+      "*CONTROL_TERMINATION\n{1:.17g},\n",  // free format: 17 digits are wider than 10 columns
       dt, t_end);
 }
 
@@ -287,7 +287,7 @@ TEST(GeometricWall, ElasticBarReboundsFromFlatWall) {
       "*INITIAL_VELOCITY_GENERATION\n1,2,0,0,0,-0.1\n0,0,0,0,0,0\n"
       "*CONTROL_BULK_VISCOSITY\n0.0,0.0\n"
       "*RIGIDWALL_GEOMETRIC_FLAT\n0\n0,0,0,0,0,1\n1,0,0,0,0\n" +
-      fmt::format("*CONTROL_TERMINATION\n{:.17g}\n", gap / v0 + 1.5 * contact_time);
+      fmt::format("*CONTROL_TERMINATION\n{:.17g},\n", gap / v0 + 1.5 * contact_time);
   solver::Simulation sim(read(deck), {});
   double mass = 0.0, pz0 = 0.0;
   for (std::size_t i = 0; i < sim.state().nodes.size(); ++i) {
@@ -358,7 +358,7 @@ TEST(GeometricWall, CoulombFrictionDeceleratesSlidingBlockAtMuG) {
       fmt::format("*LOAD_BODY_Z\n99,1.0\n*DEFINE_CURVE\n99\n0,{0}\n1e3,{0}\n", g) +
       "*INITIAL_VELOCITY_GENERATION\n1,2,0,1.0,0,0\n0,0,0,0,0,0\n" +
       fmt::format("*RIGIDWALL_GEOMETRIC_FLAT\n0\n0,0,0,0,0,1,{}\n1,0,0,0,0\n", mu) +
-      fmt::format("*CONTROL_TERMINATION\n{:.17g}\n", 0.7 * stop_time);
+      fmt::format("*CONTROL_TERMINATION\n{:.17g},\n", 0.7 * stop_time);
   solver::Simulation sim(read(deck), {});
   double mass = 0.0;
   for (const double mi : sim.state().nodes.mass) mass += mi;

@@ -105,7 +105,7 @@ TEST(Pressure, FollowerPressureTurnsWithASpinningPlate) {
   deck += "*SET_SHELL\n5\n1,2,3,4\n*LOAD_SHELL_SET\n5,1," + fmt::format("{:.17g}", p) + "\n";
   deck += "*DEFINE_CURVE\n1\n0,1\n10,1\n";
   deck += fmt::format("*INITIAL_VELOCITY_GENERATION\n1,2,{:.17g}\n0,0,0,1,0,0\n", omega);
-  deck += fmt::format("*CONTROL_TIMESTEP\n1e-5\n*CONTROL_TERMINATION\n{:.17g}\n*END\n", end);
+  deck += fmt::format("*CONTROL_TIMESTEP\n1e-5\n*CONTROL_TERMINATION\n{:.17g},\n*END\n", end);
   solver::Simulation sim(read(deck), {});
   sim.run();
   const double t = sim.state().time;

@@ -407,7 +407,7 @@ CantileverRun cantilever(const std::string& material, int elform, double end,
         deck += fmt::format("{},0,0,{:.17g}\n", mesh.node_id(i, j, k),
                             0.1 * xi * xi * (3.0 - xi) / 2.0);
       }
-  deck += fmt::format("*CONTROL_TIMESTEP\n0,0.5\n*CONTROL_TERMINATION\n{}\n*END\n", end);
+  deck += fmt::format("*CONTROL_TIMESTEP\n0,0.5\n*CONTROL_TERMINATION\n{},\n*END\n", end);
   solver::Simulation sim(read(deck), {});
   const auto& nodes = sim.state().nodes;
   const std::size_t tip = static_cast<std::size_t>(mesh.node_id(mesh.nx, 1, 1) - 1);

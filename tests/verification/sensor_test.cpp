@@ -263,7 +263,8 @@ TEST(Sensors, FunctionSensorsEvaluateTheirExpression) {
 // the list (the manual: '601, 602' with NREP 3 means '601, 602, 601, 602, 601, 602').
 
 std::string static_cube_deck(double end_time, const std::string& extra) {
-  return fmt::format("*KEYWORD\n*CONTROL_TERMINATION\n{}\n*CONTROL_TIMESTEP\n0.0,0.5\n", end_time) +
+  return fmt::format("*KEYWORD\n*CONTROL_TERMINATION\n{},\n*CONTROL_TIMESTEP\n0.0,0.5\n",
+                     end_time) +
          cube(1, 1, 0.0, 0.0, 0.0, 1.0) +
          "*PART\ncube\n1,1,1\n*SECTION_SOLID\n1,1\n*MAT_ELASTIC\n1,1.0,1.0e4,0.3\n" + extra;
 }
@@ -381,7 +382,7 @@ TEST(Sensors, ElementSensorsMeasureUniaxialStress) {
         fmt::format("{:.17g},{:.17g}\n", t, kU * (t / kT - std::sin(2 * kPi * t / kT) / (2 * kPi)));
   }
   const std::string deck =
-      fmt::format("*KEYWORD\n*CONTROL_TERMINATION\n{}\n", kT) + mesh.keyword_text() +
+      fmt::format("*KEYWORD\n*CONTROL_TERMINATION\n{},\n", kT) + mesh.keyword_text() +
       elastic_part(kRho, kE, kNu, 1, 4) + node_set(1, mesh.face_x(0)) + node_set(2, y0) +
       node_set(3, z0) + node_set(4, mesh.face_x(mesh.nx)) +
       "*BOUNDARY_SPC_SET\n1,0,1,0,0\n2,0,0,1,0\n3,0,0,0,1\n"

@@ -363,7 +363,7 @@ TEST(ShellContact, BlockSlidesDownInclinedShellWithCoulombFriction) {
       "*KEYWORD\n" + block.text() + plane.text() + elastic(1, 1000.0, 1e7, 0.3) +
       fixed_rigid_shell(2, t, 2700.0, 7e10, 0.3) + gravity() +
       fmt::format("*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE\n1,2,3,3\n{0},{0},0,0,20\n1,1\n1\n", mu) +
-      fmt::format("*CONTROL_TIMESTEP\n0,0.5\n*CONTROL_TERMINATION\n{}\n*END\n", t_end);
+      fmt::format("*CONTROL_TIMESTEP\n0,0.5\n*CONTROL_TERMINATION\n{},\n*END\n", t_end);
   solver::Simulation sim(read(deck), {});
   auto centre = [&] {
     const auto& n = sim.state().nodes;

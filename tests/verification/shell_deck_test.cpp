@@ -47,7 +47,8 @@ TEST(ShellDeck, CantileverStaticTipDeflectionMatchesBeamTheory) {
   deck += strip.clamped(p);
   // Load ramped over 0.2 s and held; mass-proportional damping near critical for mode 1
   // (omega_1 = 51 rad/s) lets the strip settle to the static answer by 0.6 s.
-  for (const int id : p.column(p.nx)) deck += fmt::format("*LOAD_NODE_POINT\n{},3,1,{}\n", id, load / 2);
+  for (const int id : p.column(p.nx))
+    deck += fmt::format("*LOAD_NODE_POINT\n{},3,1,{}\n", id, load / 2);
   deck += "*DEFINE_CURVE\n1\n0,0\n0.2,1\n10,1\n*DAMPING_GLOBAL\n0,50.0\n";
   deck += "*CONTROL_TERMINATION\n0.6\n*END\n";
   solver::Simulation sim(read(deck), {});
@@ -73,10 +74,12 @@ TEST(ShellDeck, CantileverFirstFrequencyMatchesBeamTheory) {
   const double sigma = (std::sinh(beta * strip.length) - std::sin(beta * strip.length)) /
                        (std::cosh(beta * strip.length) + std::cos(beta * strip.length));
   auto mode = [&](double x) {
-    return std::cosh(beta * x) - std::cos(beta * x) - sigma * (std::sinh(beta * x) - std::sin(beta * x));
+    return std::cosh(beta * x) - std::cos(beta * x) -
+           sigma * (std::sinh(beta * x) - std::sin(beta * x));
   };
   auto slope = [&](double x) {
-    return beta * (std::sinh(beta * x) + std::sin(beta * x) - sigma * (std::cosh(beta * x) - std::cos(beta * x)));
+    return beta * (std::sinh(beta * x) + std::sin(beta * x) -
+                   sigma * (std::cosh(beta * x) - std::cos(beta * x)));
   };
   const double tip_mode = mode(strip.length);
   std::string deck = "*KEYWORD\n" + p.text() + shell_part(1, strip.thickness, kRho, kE, 0.0);
@@ -86,11 +89,11 @@ TEST(ShellDeck, CantileverFirstFrequencyMatchesBeamTheory) {
     for (int i = 1; i <= p.nx; ++i) {
       const double x = strip.length * i / p.nx;
       // v_z = 0.01 phi / phi(L); the section turns with -d v_z / dx about y.
-      deck += fmt::format("{},0,0,{:.17g},0,{:.17g},0\n", p.node_id(i, j), 0.01 * mode(x) / tip_mode,
-                          -0.01 * slope(x) / tip_mode);
+      deck += fmt::format("{},0,0,{:.17g},0,{:.17g},0\n", p.node_id(i, j),
+                          0.01 * mode(x) / tip_mode, -0.01 * slope(x) / tip_mode);
     }
   const double end = 3.2 / f1;
-  deck += fmt::format("*CONTROL_TERMINATION\n{:.17g}\n*END\n", end);
+  deck += fmt::format("*CONTROL_TERMINATION\n{:.17g},\n*END\n", end);
   solver::Simulation sim(read(deck), {});
   // Zero crossings of the tip velocity's z component (downward) mark whole periods.
   const auto tip = static_cast<std::size_t>(p.node_id(p.nx, 0) - 1);
@@ -106,7 +109,8 @@ TEST(ShellDeck, CantileverFirstFrequencyMatchesBeamTheory) {
     previous_time = t;
   });
   ASSERT_GE(crossings.size(), 3u);
-  const double period = (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+  const double period =
+      (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
   RecordProperty("frequency_ratio", std::to_string(1.0 / period / f1));
   EXPECT_NEAR(1.0 / period / f1, 1.0, 0.02) << "f " << 1.0 / period << " beam theory " << f1;
   EXPECT_NEAR(sim.energy().ratio(), 1.0, 2e-3);
@@ -254,12 +258,15 @@ TEST(ShellDeck, RigidShellBodyTakesTheMomentsOfAttachedShells) {
   const double p_scale = std::abs(e0.momentum[2]);
   for (int k = 0; k < 3; ++k) {
     EXPECT_NEAR(e.momentum[k], e0.momentum[k], 1e-9 * p_scale) << k;
-    EXPECT_NEAR(e.angular_momentum[k], e0.angular_momentum[k], 1e-6 * (std::abs(e0.angular_momentum[0]) + std::abs(e0.angular_momentum[1]))) << k;
+    EXPECT_NEAR(e.angular_momentum[k], e0.angular_momentum[k],
+                1e-6 * (std::abs(e0.angular_momentum[0]) + std::abs(e0.angular_momentum[1])))
+        << k;
   }
   EXPECT_NEAR(e.ratio(), 1.0, 2e-3);
   ASSERT_EQ(sim.rigid_bodies().bodies.size(), 1u);
   const auto& w = sim.rigid_bodies().bodies.front().state.angular_velocity;
-  EXPECT_GT(std::abs(w.x()) + std::abs(w.y()), 1e-3) << "the plate's moments did not reach the body";
+  EXPECT_GT(std::abs(w.x()) + std::abs(w.y()), 1e-3)
+      << "the plate's moments did not reach the body";
   EXPECT_LT(std::abs(e.hourglass), 0.1 * e0.kinetic);
 }
 
@@ -275,7 +282,7 @@ TEST(ShellDeck, SpinningRigidShellBodyCarriesDeformableShells) {
   const double omega = 5.0;
   std::string deck = rigid_and_soft_deck(omega, m.rigid, m.soft);
   const double end = 0.25;
-  deck += fmt::format("*CONTROL_TERMINATION\n{}\n*END\n", end);
+  deck += fmt::format("*CONTROL_TERMINATION\n{},\n*END\n", end);
   solver::Simulation sim(read(deck), {});
   const auto& state0 = sim.state().nodes;
   double mass = 0.0;
@@ -289,7 +296,8 @@ TEST(ShellDeck, SpinningRigidShellBodyCarriesDeformableShells) {
   const auto e0 = sim.energy();
   sim.run();
   const auto& e = sim.energy();
-  EXPECT_NEAR(e.angular_momentum[2], e0.angular_momentum[2], 1e-6 * std::abs(e0.angular_momentum[2]));
+  EXPECT_NEAR(e.angular_momentum[2], e0.angular_momentum[2],
+              1e-6 * std::abs(e0.angular_momentum[2]));
   EXPECT_NEAR(e.ratio(), 1.0, 2e-3);
   const auto& x = sim.state().nodes;
   const std::size_t corner = static_cast<std::size_t>(std::distance(
@@ -383,15 +391,18 @@ TEST(ShellDeck, BadInputNamesKeywordAndField) {
   expect_error(mat + "*SECTION_SHELL\n1,2,1,2\n0.01\n*ELEMENT_SHELL\n9,1,1,1,3,4\n",
                "*ELEMENT_SHELL", "N1");
   // Beams: zero length, an orientation node on the axis, unsupported releases.
-  const std::string beam_part = "*MAT_ELASTIC\n2,7800,2e11,0.3\n*PART\nb\n2,2,2\n"
-                                "*SECTION_BEAM\n2,2\n1e-4,1e-8,1e-8,2e-8\n*SECTION_SHELL\n1,2,1,2\n0.01\n"
-                                "*MAT_ELASTIC\n1,7800,2e11,0.3\n*PART\np\n1,1,1\n";
+  const std::string beam_part =
+      "*MAT_ELASTIC\n2,7800,2e11,0.3\n*PART\nb\n2,2,2\n"
+      "*SECTION_BEAM\n2,2\n1e-4,1e-8,1e-8,2e-8\n*SECTION_SHELL\n1,2,1,2\n0.01\n"
+      "*MAT_ELASTIC\n1,7800,2e11,0.3\n*PART\np\n1,1,1\n";
   expect_error(beam_part + "*ELEMENT_BEAM\n20,2,1,1\n", "*ELEMENT_BEAM", "N2");
-  expect_error(beam_part + "*NODE\n50,2.0,0,0\n*ELEMENT_BEAM\n20,2,1,2,50\n", "*ELEMENT_BEAM", "N3");
+  expect_error(beam_part + "*NODE\n50,2.0,0,0\n*ELEMENT_BEAM\n20,2,1,2,50\n", "*ELEMENT_BEAM",
+               "N3");
   expect_error(beam_part + "*ELEMENT_BEAM\n20,2,1,2,3,1\n", "*ELEMENT_BEAM", "RT1");
-  expect_error("*MAT_ELASTIC\n2,7800,2e11,0.3\n*PART\nb\n2,2,2\n*SECTION_BEAM\n2,2\n0,1e-8,1e-8\n"
-               "*ELEMENT_BEAM\n20,2,1,2\n",
-               "*SECTION_BEAM", "A");
+  expect_error(
+      "*MAT_ELASTIC\n2,7800,2e11,0.3\n*PART\nb\n2,2,2\n*SECTION_BEAM\n2,2\n0,1e-8,1e-8\n"
+      "*ELEMENT_BEAM\n20,2,1,2\n",
+      "*SECTION_BEAM", "A");
 }
 
 }  // namespace

@@ -119,7 +119,7 @@ std::string shell_plate_deck(const std::string& switching, double end_time,
   } else {
     deck += velocities;
   }
-  return deck + switching + fmt::format("*CONTROL_TERMINATION\n{}\n*END\n", end_time);
+  return deck + switching + fmt::format("*CONTROL_TERMINATION\n{},\n*END\n", end_time);
 }
 
 // A free straight beam along x from -0.5 to 0.5 m, 8 resultant beams (ELFORM 2; A 5e-3, ISS
@@ -138,7 +138,7 @@ std::string beam_deck(const std::string& switching, double end_time, int elform 
   for (int k = 0; k <= 8; ++k) {
     deck += node_velocity(k + 1, Vector3d(-0.5 + k / 8.0, 0, 0), true, spin);
   }
-  return deck + switching + fmt::format("*CONTROL_TERMINATION\n{}\n*END\n", end_time);
+  return deck + switching + fmt::format("*CONTROL_TERMINATION\n{},\n*END\n", end_time);
 }
 
 double largest_magnitude(const std::vector<double>& values) {
