@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "element/hex_geometry.hpp"
+#include "element/kernel_partials.hpp"
 #include "material/elastic_update.hpp"
 #include "model/error.hpp"
 #include "model/error_context.hpp"
@@ -66,14 +67,17 @@ void volume_preserving_strains(double xx, double yy, double xy, double out[3]) {
   material::principal_values(e, out);
 }
 
-// Per family: the principal logarithmic strains at point q of element e (the strain criteria).
+// Per family: the principal logarithmic strains of every stress point of element e (the strain
+// criteria), out[q] for q < points_per_element() (at most kMaxStrainPoints, checked at set-up).
 // Solids: from the deformation gradient F = I + sum_n u_n (x) dN_n/dX on the reference geometry
-// (the element's mean gradients for one point, the 2x2x2 Gauss point's for ELFORM 2), exact for
+// (the element's mean gradients for one point, each 2x2x2 Gauss point's for ELFORM 2), exact for
 // any deformation. Shells: the integrated co-rotational rate of deformation (shell block
 // `strain`), the thickness strain volume-preserving (the thickness is fixed, ISTUPD 0).
 // Trusses: ln(L/L0) along the axis, lateral strains volume-preserving.
-void principal_strains(const element::HexBlock& b, const NodalState& nodes, std::size_t e, int q,
-                       double out[3]) {
+constexpr int kMaxStrainPoints = 10;  // hexahedra 8, shells NIP <= 10 (ELFORM 2), trusses 1
+
+void principal_strains(const element::HexBlock& b, const NodalState& nodes, std::size_t e,
+                       double out[][3]) {
   double x0[3][8], u[3][8];
   for (int n = 0; n < 8; ++n) {
     const std::size_t i = static_cast<std::size_t>(b.conn[8 * e + static_cast<std::size_t>(n)]);
@@ -84,39 +88,48 @@ void principal_strains(const element::HexBlock& b, const NodalState& nodes, std:
     u[1][n] = nodes.x.y[i] - x0[1][n];
     u[2][n] = nodes.x.z[i] - x0[2][n];
   }
+  auto from_gradients = [&](const double dndx[3][8], double strain[3]) {
+    double f[3][3];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        double sum = i == j ? 1.0 : 0.0;
+        for (int n = 0; n < 8; ++n) sum += u[i][n] * dndx[j][n];
+        f[i][j] = sum;
+      }
+    auto c = [&](int i, int j) {
+      return f[0][i] * f[0][j] + f[1][i] * f[1][j] + f[2][i] * f[2][j];
+    };
+    const double cauchy_green[6] = {c(0, 0), c(1, 1), c(2, 2), c(0, 1), c(1, 2), c(2, 0)};
+    log_strains_of_cauchy_green(cauchy_green, strain);
+  };
   double dndx[3][8];
   if (b.points_per_element() == 1) {
     element::hex::Geometry g;
     element::hex::compute_geometry(x0, g);
     for (int j = 0; j < 3; ++j)
       for (int n = 0; n < 8; ++n) dndx[j][n] = g.b[j][n] / g.volume;
-  } else {
-    double a[8][3];
-    element::hex::base_vectors(x0, a);
-    element::hex::gauss_gradients(a, q, dndx);
+    from_gradients(dndx, out[0]);
+    return;
   }
-  double f[3][3];
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      double sum = i == j ? 1.0 : 0.0;
-      for (int n = 0; n < 8; ++n) sum += u[i][n] * dndx[j][n];
-      f[i][j] = sum;
-    }
-  auto c = [&](int i, int j) { return f[0][i] * f[0][j] + f[1][i] * f[1][j] + f[2][i] * f[2][j]; };
-  const double cauchy_green[6] = {c(0, 0), c(1, 1), c(2, 2), c(0, 1), c(1, 2), c(2, 0)};
-  log_strains_of_cauchy_green(cauchy_green, out);
+  double a[8][3];
+  element::hex::base_vectors(x0, a);
+  for (int q = 0; q < b.points_per_element(); ++q) {
+    element::hex::gauss_gradients(a, q, dndx);
+    from_gradients(dndx, out[q]);
+  }
 }
-void principal_strains(const element::ShellBlock& b, const NodalState&, std::size_t e, int q,
-                       double out[3]) {
-  const double* s = &b.strain[3 * (static_cast<std::size_t>(b.points_per_element()) * e +
-                                   static_cast<std::size_t>(q))];
-  volume_preserving_strains(s[0], s[1], s[2], out);
+void principal_strains(const element::ShellBlock& b, const NodalState&, std::size_t e,
+                       double out[][3]) {
+  const int points = b.points_per_element();
+  const double* s = &b.strain[3 * static_cast<std::size_t>(points) * e];
+  for (int q = 0; q < points; ++q)
+    volume_preserving_strains(s[3 * q], s[3 * q + 1], s[3 * q + 2], out[q]);
 }
-void principal_strains(const element::BeamBlock& b, const NodalState&, std::size_t e, int,
-                       double out[3]) {
+void principal_strains(const element::BeamBlock& b, const NodalState&, std::size_t e,
+                       double out[][3]) {
   const double axial =
       b.length0[e] > 0.0 && b.length[e] > 0.0 ? std::log(b.length[e] / b.length0[e]) : 0.0;
-  volume_preserving_strains(axial, -0.5 * axial, 0.0, out);
+  volume_preserving_strains(axial, -0.5 * axial, 0.0, out[0]);
 }
 
 // How many *MAT_ADD_EROSION criteria a point meets (element-level ones, the volumetric strain
@@ -238,12 +251,6 @@ double log_volume_ratio(const element::BeamBlock&, std::size_t) {
   return 0.0;
 }
 
-// The element's step with mass scaling (its step_scale), from the raw step TDEL reads.
-template <class Block>
-double scaled_step(const Block& b, const double* raw, std::size_t e) {
-  return b.step_scale.empty() ? raw[e] : raw[e] * b.step_scale[e];
-}
-
 enum FailureCode : std::uint8_t {
   kAlive = 0,
   kPlasticStrain = 1,
@@ -268,17 +275,20 @@ std::uint8_t evaluate(const Block& b, const NodalState& nodes, std::size_t e, do
   }
   if (c.add_erosion() && points > 0) {
     const double lv = log_volume_ratio(b, e);
+    double strains[kMaxStrainPoints][3] = {};
+    if (c.strain_criteria()) principal_strains(b, nodes, e, strains);
     int failed = 0;
     for (int q = 0; q < points; ++q) {
-      double s[6], strain[3] = {0.0, 0.0, 0.0};
+      double s[6];
       voigt_of(b, e, q, s);
-      if (c.strain_criteria()) principal_strains(b, nodes, e, q, strain);
-      if (criteria_met(c, s, strain, lv, time) >= c.criteria_at_once) ++failed;
+      if (criteria_met(c, s, strains[q], lv, time) >= c.criteria_at_once) ++failed;
     }
     if (failed >= required_points(c, points)) return kAddErosion;
   }
   if (c.tdel > 0.0 && step && step[e] > 0.0 && step[e] < c.tdel) return kTimeStep;
-  if (c.below_minimum_step && minimum_step > 0.0 && step && scaled_step(b, step, e) < minimum_step)
+  // ERODE compares the step with mass scaling (TDEL above the raw one).
+  if (c.below_minimum_step && minimum_step > 0.0 && step &&
+      element::scaled_step(b.step_scale, static_cast<std::int64_t>(e), step[e]) < minimum_step)
     return kMinimumStep;
   return kAlive;
 }
@@ -302,7 +312,8 @@ std::string describe(const Block& b, const NodalState& nodes, std::size_t e, std
       return fmt::format("element step {:.6g} < TDEL {:.6g}", step[e], c.tdel);
     case kMinimumStep:
       return fmt::format("element step {:.6g} below TSMIN / TSSFAC = {:.6g} (ERODE)",
-                         scaled_step(b, step, e), minimum_step);
+                         element::scaled_step(b.step_scale, static_cast<std::int64_t>(e), step[e]),
+                         minimum_step);
     case kAddErosion: {
       double s[6];
       voigt_of(b, e, 0, s);
@@ -312,8 +323,9 @@ std::string describe(const Block& b, const NodalState& nodes, std::size_t e, std
           "{:.6g}, time {:.6g}",
           p.pressure, p.von_mises, log_volume_ratio(b, e), time);
       if (c.strain_criteria()) {
-        double strain[3];
-        principal_strains(b, nodes, e, 0, strain);
+        double strains[kMaxStrainPoints][3];
+        principal_strains(b, nodes, e, strains);
+        const double* strain = strains[0];
         text += fmt::format(", principal strains {:.6g} {:.6g} {:.6g}, effective {:.6g}", strain[0],
                             strain[1], strain[2], effective_strain(strain));
       }
@@ -408,6 +420,11 @@ void Erosion::setup(const model::Model& model, State& state) {
                         "trusses (beam ELFORM 3); the section points of this beam carry no strain "
                         "tensor",
                         block.part_id, mat.id));
+      if (c.strain_criteria() && block.points_per_element() > kMaxStrainPoints)
+        throw InputError(context_of(a.where, "MID"),
+                         fmt::format("part {} has {} stress points per element; the strain "
+                                     "criteria handle at most {}",
+                                     block.part_id, block.points_per_element(), kMaxStrainPoints));
       if (c.criteria_at_once > 1) {
         const int defined = c.defined();
         if (defined < c.criteria_at_once)
