@@ -161,10 +161,16 @@ void print_model_summary(const model::Model& model, const solver::Simulation& si
                block.rule == element::ThroughThicknessRule::kLobatto ? "Lobatto" : "Gauss",
                block.shear_factor, block.thickness.empty() ? 0.0 : block.thickness.front(), mat.id,
                mat.keyword, mat.rho, mat.e, mat.pr,
-               block.rigid ? std::string(", rigid")
-                           : fmt::format(", hourglass IHQ {} QM {:g}, element step {:.4g}",
-                                         block.hourglass.ihq, block.hourglass.qm,
-                                         element::shell_critical_timestep(block, view).min_dt));
+               block.rigid
+                   ? std::string(", rigid")
+                   : fmt::format(", hourglass IHQ {} QM {:g}{}, element step {:.4g}",
+                                 block.hourglass.ihq, block.hourglass.qm,
+                                 block.bulk_viscosity.on()
+                                     ? fmt::format(", membrane bulk viscosity Q1 {:g} "
+                                                   "Q2 {:g}",
+                                                   block.bulk_viscosity.q1, block.bulk_viscosity.q2)
+                                     : std::string(),
+                                 element::shell_critical_timestep(block, view).min_dt));
     fmt::print(out, "{}", erosion_line(block.erosion));
   }
   for (const auto& block : state.beam_blocks) {

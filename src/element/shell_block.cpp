@@ -116,6 +116,21 @@
 //    free element but not for a clamped strip one element wide at TSSFAC 0.9 (the uniform-
 //    rotation shear mode then sits at about 0.91 of the membrane limit, sqrt(8 SHRF G / rho) / h
 //    against 2 c / h, and coupled with w it went unstable): A0 / 4 puts it at 0.65.
+//
+// 10. Bulk viscosity (*CONTROL_BULK_VISCOSITY TYPE -1/-2; block.bulk_viscosity). LS-DYNA lists
+//    shells under TYPE -1/-2 but publishes no shell formula, so this is our own, the solids'
+//    von Neumann-Richtmyer/Landshoff pressure (solid_terms.hpp) carried over to the membrane:
+//      q = rho l (Q1 l e_A^2 - Q2 c e_A)  while e_A < 0,  q = 0 otherwise,
+//    with e_A = d_x + d_y the mid-surface area rate (the dilatation of a plane-stress membrane:
+//    its in-plane compression waves are what steepen into shocks), c the plate wave speed and
+//    l = L_s the step length of section 8 at x^{n+1}, rho = rho0 A0 / A (constant thickness).
+//    q acts as a pressure on the in-plane normal stresses through the thickness, N_x and N_y
+//    -= q t; sigma_zz stays 0 and the stored stresses never see q. Bending is left alone (a
+//    compression-only viscosity per thickness point would make the bending response
+//    asymmetric). Its power is -q e_A t A >= 0 (mid-step A, where e_A is taken), reported as
+//    bulk viscosity work. For a 1-D membrane element this is the solids' damped element with c
+//    and L_e replaced by the plate speed and L_s, so the same stable step holds:
+//    dt = L_s / (Q + sqrt(Q^2 + c^2)), Q = Q2 c + Q1 L_s |e_A| while e_A < 0.
 #include "element/shell_block.hpp"
 
 #include "element/kernel_partials.hpp"
@@ -522,6 +537,23 @@ void shell_batch(ShellBlock& block, const BlockConstants& k, std::size_t first, 
     Q[1] += wt * sp[4];
   }
 
+  // Membrane bulk viscosity (section 10), its length the step's L_s at x^{n+1} (section 8).
+  const bool bulk = block.bulk_viscosity.on();
+  T step_length{}, area_rate{}, bulk_work{};
+  if (bulk) {
+    const BulkViscositySettings& bv = block.bulk_viscosity;
+    step_length = (f.area + tri * f.area) / tsqrt(max_side_squared(p));
+    area_rate = em[0] + em[1];
+    const T compression = area_rate < 0.0 ? area_rate : T{};
+    const T density = block.material.rho * area0 / f.area;
+    const T q =
+        density * step_length *
+        (bv.q1 * step_length * compression * compression - bv.q2 * k.wave_speed * compression);
+    N[0] -= q * t;
+    N[1] -= q * t;
+    bulk_work = -q * area_rate * t * fm.area * dt;
+  }
+
   // Hourglass generalised forces (quadrilaterals only: scaled by 1 - tri).
   T hq[5] = {};
   T work{};
@@ -613,7 +645,14 @@ void shell_batch(ShellBlock& block, const BlockConstants& k, std::size_t first, 
   }
   // Squared step (one square root per block, after the minimum: compute_shell_forces).
   const T length = A + tri * A;  // (1 + beta) A
-  const T dt2 = length * length / (max_side_squared(p) * (k.wave_speed * k.wave_speed));
+  T dt2 = length * length / (max_side_squared(p) * (k.wave_speed * k.wave_speed));
+  if (bulk) {  // section 10: L_s / (Q + sqrt(Q^2 + c^2)) while the area shrinks
+    const BulkViscositySettings& bv = block.bulk_viscosity;
+    const double c = k.wave_speed;
+    const T q = area_rate < 0.0 ? bv.q2 * c - bv.q1 * step_length * area_rate : T{};
+    const T step = step_length / (q + tsqrt(q * q + c * c));
+    dt2 = step * step;
+  }
 
   // Write back lane by lane in element order (first failure and the work sum as an element loop).
   for (int l = 0; l < count; ++l) {
@@ -630,7 +669,10 @@ void shell_batch(ShellBlock& block, const BlockConstants& k, std::size_t first, 
     }
     for (int c = 0; c < kShellSlot; ++c) o[c] = material::get_lane(out[c], l);
     part.hourglass_work += material::get_lane(work, l);
-    if (block.erosion.enabled) block.erosion.artificial_work[e] += material::get_lane(work, l);
+    part.bulk_viscosity_work += material::get_lane(bulk_work, l);
+    if (block.erosion.enabled)
+      block.erosion.artificial_work[e] +=
+          material::get_lane(work, l) + material::get_lane(bulk_work, l);
     if (!std::isfinite(material::get_lane(sum, l))) part.record_failure(ie, area_end);
     // Squared steps here: the mass scale enters squared.
     const double scale = block.step_scale.empty() ? 1.0 : block.step_scale[e];

@@ -46,6 +46,9 @@ struct ShellBlock {
   int part_index = 0;
   int elform = 2;  // 2: Belytschko-Lin-Tsay (one point in the plane); 16: fully integrated
   HourglassSettings hourglass;
+  // *CONTROL_BULK_VISCOSITY TYPE -1/-2 (with the part's *HOURGLASS Q1/Q2): the membrane bulk
+  // viscosity of shell_block.cpp, section 10. Off (both zero) with TYPE 1, as in LS-DYNA.
+  BulkViscositySettings bulk_viscosity;
   material::ElasticConstants material;
   int material_index = 0;  // index in material::SolidMaterials (registry.hpp)
   material::PlasticParameters plastic;
@@ -120,7 +123,8 @@ KernelResult compute_shell_forces(ShellBlock& block, const NodalView& nodes,
 
 // Critical step of each element at the current configuration (no TSSFAC), minimum reported:
 // dt = L_s / c, L_s = (1 + beta) A / max(side), beta = 0 quads, 1 triangles (LS-DYNA ISDO 0),
-// c = sqrt(E / (rho (1 - nu^2))).
+// c = sqrt(E / (rho (1 - nu^2))). (At rest: the bulk viscosity, which compute_shell_forces
+// includes, acts only while an element's area shrinks.)
 // `raw_steps` (optional) receives every element's step without mass scaling (0 where failed).
 KernelResult shell_critical_timestep(const ShellBlock& block, const NodalView& nodes,
                                      std::vector<double>* raw_steps = nullptr);

@@ -941,7 +941,7 @@ struct HourglassControl {
 struct BulkViscosityControl {
   double q1 = 1.5;       // quadratic coefficient
   double q2 = 0.06;      // linear coefficient
-  int type = 1;          // 1, or -1/-2 (LS-DYNA: also shells; accepted only without shells)
+  int type = 1;          // 1 (solids), -1/-2 (also shells ELFORM 2)
   int btype = 0;         // beams (0 only when the model has beams)
   SourceLocation where;  // the card, when the deck has one
 };

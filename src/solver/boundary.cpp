@@ -163,6 +163,72 @@ std::vector<std::int32_t> resolve_nodes(const model::Model& model, const NodeInd
   return out;
 }
 
+namespace {
+
+// *BOUNDARY_PRESCRIBED_MOTION DOF 4 (along VID) and 5-8 (rotation about x, y, z, VID) on nodes.
+void add_prescribed_direction(const model::Model& model, const NodeIndex& node_index,
+                              const State& state, const std::vector<std::int32_t>& body_of_node,
+                              const model::PrescribedMotion& pm, Boundary& b) {
+  const bool rotation = pm.dof >= 5;
+  std::array<double, 3> n{};
+  if (pm.dof == 4 || pm.dof == 8) {
+    const auto it = model.vectors.find(pm.vid);
+    if (pm.vid == 0 || it == model.vectors.end()) {
+      throw InputError(context_of(pm.where, "VID"),
+                       fmt::format("DOF {} acts along a vector, but VID {} is not a "
+                                   "*DEFINE_VECTOR",
+                                   pm.dof, pm.vid));
+    }
+    const auto& d = it->second.direction;
+    const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (!(len > 0.0)) {
+      throw InputError(context_of(pm.where, "VID"),
+                       fmt::format("vector {} has zero length", pm.vid));
+    }
+    for (int k = 0; k < 3; ++k) n[k] = d[k] / len;
+  } else {
+    n[pm.dof - 5] = 1.0;
+  }
+  const char* field = pm.target == model::Target::Node ? "NID" : "NSID";
+  const auto nodes = resolve_nodes(model, node_index, state, pm.target, pm.id, pm.where, field);
+  const ScaledCurve value =
+      make_time_function(model, pm.lcid, pm.function, pm.sf, pm.birth, pm.where);
+  const double death = pm.death <= 0.0 ? 1e28 : pm.death;
+  for (const auto i : nodes) {
+    if (!body_of_node.empty() && body_of_node[static_cast<std::size_t>(i)] >= 0) {
+      throw InputError(context_of(pm.where, field),
+                       fmt::format("node {} moves with a rigid body (rigid part, extra node or "
+                                   "nodal rigid body); prescribe the motion of the body with "
+                                   "*BOUNDARY_PRESCRIBED_MOTION_RIGID",
+                                   state.nodes.id[i]));
+    }
+    PrescribedDirection p{i, -1, n, pm.vad, value, pm.birth, death};
+    if (rotation) {
+      p.rotation = state.rotations.index(i);
+      if (p.rotation < 0) {
+        throw InputError(context_of(pm.where, field),
+                         fmt::format("DOF {} is a rotation, but node {} has no rotational degrees "
+                                     "of freedom (only nodes of shells and beams have them)",
+                                     pm.dof, state.nodes.id[i]));
+      }
+      if (b.rotation_fixed[static_cast<std::size_t>(p.rotation)] != 0) {
+        throw InputError(context_of(pm.where, "DOF"),
+                         fmt::format("node {} has a prescribed rotation (DOF {}) but a rotation "
+                                     "of it is also fixed by an SPC or *NODE RC",
+                                     state.nodes.id[i], pm.dof));
+      }
+    } else if (b.fixed[i] != 0) {
+      throw InputError(context_of(pm.where, "DOF"),
+                       fmt::format("node {} moves along a vector (DOF 4) but a translation of it "
+                                   "is also fixed by an SPC or *NODE TC",
+                                   state.nodes.id[i]));
+    }
+    b.prescribed_directions.push_back(p);
+  }
+}
+
+}  // namespace
+
 Boundary resolve_boundary(const model::Model& model, const NodeIndex& node_index,
                           const State& state, const std::vector<std::int32_t>& body_of_node,
                           std::vector<model::Warning>& warnings) {
@@ -225,6 +291,10 @@ Boundary resolve_boundary(const model::Model& model, const NodeIndex& node_index
     }
   }
   for (const auto& pm : model.prescribed_motions) {
+    if (pm.dof >= 4 && pm.dof <= 8) {
+      add_prescribed_direction(model, node_index, state, body_of_node, pm, b);
+      continue;
+    }
     const bool rotation = pm.dof >= 9 && pm.dof <= 11;
     const int axis = rotation ? pm.dof - 9 : translation_axis(pm.dof, pm.where);
     if (rotation && pm.vad == 1) {
@@ -309,6 +379,8 @@ Boundary resolve_boundary(const model::Model& model, const NodeIndex& node_index
   set_body_force_masses(b, state.nodes, body_of_node);
   b.damping = resolve_mass_damping(model, state);
   for (const auto& p : b.prescribed) b.constrained_nodes.push_back(p.node);
+  for (const auto& p : b.prescribed_directions)
+    if (p.rotation < 0) b.constrained_nodes.push_back(p.node);
   std::sort(b.constrained_nodes.begin(), b.constrained_nodes.end());
   b.constrained_nodes.erase(std::unique(b.constrained_nodes.begin(), b.constrained_nodes.end()),
                             b.constrained_nodes.end());
@@ -411,6 +483,13 @@ void constrain_accelerations(const Boundary& boundary, double t_n, State& state)
   for (const auto& p : boundary.prescribed) {
     if (p.vad == 1 && p.active(t_n)) a[p.axis][p.node] = p.value(t_n);
   }
+  for (const auto& p : boundary.prescribed_directions) {
+    if (p.rotation >= 0 || p.vad != 1 || !p.active(t_n)) continue;
+    const std::int32_t i = p.node;
+    const auto& n = p.direction;
+    const double along = p.value(t_n) - (a[0][i] * n[0] + a[1][i] * n[1] + a[2][i] * n[2]);
+    for (int k = 0; k < 3; ++k) a[k][i] += along * n[k];
+  }
 }
 
 namespace {
@@ -466,6 +545,65 @@ void constrain_velocities(const Boundary& boundary, double t_n, double dt, State
       v[p.axis][p.node] = (p.value(t_end) - u_now) / dt;
     }
   }
+  // DOF 4: the velocity component along the vector; the normal components stay free.
+  for (const auto& p : boundary.prescribed_directions) {
+    if (p.rotation >= 0) continue;
+    const std::int32_t i = p.node;
+    const auto& n = p.direction;
+    double target = 0.0;
+    if (p.vad == 0 && p.active(t_mid)) {
+      target = p.value(t_mid);
+    } else if (p.vad == 2 && p.active(t_end)) {
+      double u_now = 0.0;
+      for (int k = 0; k < 3; ++k) u_now += (x[k][i] - x0[k][i]) * n[k];
+      target = (p.value(t_end) - u_now) / dt;
+    } else {
+      continue;
+    }
+    const double along = target - (v[0][i] * n[0] + v[1][i] * n[1] + v[2][i] * n[2]);
+    for (int k = 0; k < 3; ++k) v[k][i] += along * n[k];
+  }
+}
+
+double constrain_rotations(const Boundary& boundary, double t_n, double dt, double dt_avg,
+                           State& state) {
+  RotationalState& rot = state.rotations;
+  double* w[3] = {rot.w.x.data(), rot.w.y.data(), rot.w.z.data()};
+  const double* w0[3] = {rot.w_previous.x.data(), rot.w_previous.y.data(), rot.w_previous.z.data()};
+  const double* m_int[3] = {rot.m_int.x.data(), rot.m_int.y.data(), rot.m_int.z.data()};
+  const double* m_ext[3] = {rot.m_ext.x.data(), rot.m_ext.y.data(), rot.m_ext.z.data()};
+  const double t_mid = t_n + 0.5 * dt, t_end = t_n + dt;
+  double work = 0.0;
+  for (const auto& p : boundary.prescribed_directions) {
+    if (p.rotation < 0) continue;
+    const auto r = static_cast<std::size_t>(p.rotation);
+    const auto& n = p.direction;
+    auto along = [&](const double* const f[3]) {
+      return f[0][r] * n[0] + f[1][r] * n[1] + f[2][r] * n[2];
+    };
+    double target = 0.0;
+    if (p.vad == 0 && p.active(t_mid)) {
+      target = p.value(t_mid);
+    } else if (p.vad == 1 && p.active(t_n)) {
+      target = along(w0) + dt_avg * p.value(t_n);
+    } else if (p.vad == 2 && p.active(t_end)) {
+      target = (p.value(t_end) - (p.active(t_n) ? p.value(t_n) : 0.0)) / dt;
+    } else {
+      continue;
+    }
+    const double change = target - along(w);
+    for (int k = 0; k < 3; ++k) w[k][r] += change * n[k];
+    // Reaction moment along the axis: I (omega_new - omega_old) / dt_avg minus the applied
+    // moments, working through the step's rotation dt_avg (omega_old + omega_new) / 2 (the
+    // global balance's rotation, Simulation::update_rotations).
+    if (dt_avg > 0.0) {
+      const double w_new = along(w), w_old = along(w0);
+      const double reaction =
+          rot.inertia[r] * (w_new - w_old) / dt_avg - (along(m_ext) - along(m_int));
+      work += reaction * 0.5 * dt_avg * (w_old + w_new);
+    }
+  }
+  return work;
 }
 
 }  // namespace rf::solver

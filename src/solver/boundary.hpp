@@ -59,6 +59,22 @@ struct PrescribedDof {
   bool active(double t) const { return t >= birth && t <= death; }
 };
 
+// *BOUNDARY_PRESCRIBED_MOTION DOF 4 (translation along VID) and DOF 5, 6, 7, 8 (rotation about
+// x, y, z or VID, on a node with rotational degrees of freedom): the component of the node's
+// velocity (angular velocity) along `direction` follows the curve, the components normal to it
+// stay free. VAD 0 velocity, 1 acceleration, 2 displacement (DOF 4: of x - x0 along the
+// direction; DOF 5-8: the angle's increments over each step, see constrain_rotations).
+struct PrescribedDirection {
+  std::int32_t node = 0;              // dense node index
+  std::int32_t rotation = -1;         // rotational index (DOF 5-8), -1 for DOF 4
+  std::array<double, 3> direction{};  // unit vector, global
+  int vad = 0;
+  ScaledCurve value;
+  double birth = 0.0;
+  double death = 1e28;
+  bool active(double t) const { return t >= birth && t <= death; }
+};
+
 struct NodalForce {
   std::int32_t node = 0;
   int axis = 0;
@@ -105,6 +121,7 @@ struct Boundary {
   // DOFRX..DOFRZ on nodes that have rotations (shells, beams).
   std::vector<std::uint8_t> rotation_fixed;
   std::vector<PrescribedDof> prescribed;
+  std::vector<PrescribedDirection> prescribed_directions;  // DOF 4 and 5-8 on nodes
   std::vector<NodalForce> nodal_forces;
   std::vector<NodalMoment> nodal_moments;  // *LOAD_NODE DOF 5-7 (solver/pressure_loads.hpp)
   PressureLoads pressure;                  // *LOAD_SEGMENT*, *LOAD_SHELL*
@@ -160,5 +177,15 @@ void constrain_accelerations(const Boundary& boundary, double t_n, State& state)
 // the mid-step t^n + dt/2; prescribed displacement (VAD 2) gives the velocity that lands the
 // node exactly on u(t^n + dt) at the end of the step.
 void constrain_velocities(const Boundary& boundary, double t_n, double dt, State& state);
+
+// After the angular velocity update (omega^{n+1/2} = omega^{n-1/2} + dt_avg alpha^n, rotation
+// SPCs applied): each prescribed rotation (DOF 5-8) sets the component of omega^{n+1/2} along its
+// axis to the curve's angular velocity at t^n + dt/2 (VAD 0), to that of the previous half step
+// plus dt_avg times the angular acceleration at t^n (VAD 1), or to the angle's increment
+// (theta(t^n + dt) - theta(t^n)) / dt (VAD 2: the angle counts from the birth, as the node
+// carries no total rotation). Returns the work of the reaction moments over the step (the
+// moment each constraint applies, along its axis, times the step's rotation about it).
+double constrain_rotations(const Boundary& boundary, double t_n, double dt, double dt_avg,
+                           State& state);
 
 }  // namespace rf::solver

@@ -267,16 +267,9 @@ std::int32_t NodeIndex::at(model::Id id, const model::SourceLocation& where,
 }
 
 State build_state(const model::Model& model, const NodeIndex& node_index) {
-  // LS-DYNA's TYPE -1/-2 add bulk viscosity to shells and BTYPE 1/2 to beams; RigidFlex applies
-  // it to solids only, so those values are accepted only where they change nothing.
+  // LS-DYNA's BTYPE 1/2 add bulk viscosity to beams, which RigidFlex does not do: accepted only
+  // where it changes nothing. (TYPE -1/-2 act on shells: build_structural.cpp.)
   const model::BulkViscosityControl& bulk = model.bulk_viscosity;
-  if (bulk.type < 0 && !model.shells.empty()) {
-    throw InputError(context_of(bulk.where, "TYPE"),
-                     fmt::format("bulk viscosity TYPE {} also acts on shells, which is not "
-                                 "supported (the model has {} shell elements): use TYPE 1 "
-                                 "(solids only)",
-                                 bulk.type, model.shells.size()));
-  }
   if (bulk.btype != 0 && !model.beams.empty()) {
     throw InputError(context_of(bulk.where, "BTYPE"),
                      fmt::format("bulk viscosity in beams (BTYPE {}) is not supported (the model "

@@ -24,6 +24,10 @@ class NodeIndex {
 
 // Hourglass settings of a part (its HGID, else *CONTROL_HOURGLASS); IHQ outside 1-6 is an error.
 element::HourglassSettings resolve_hourglass(const model::Model& model, const model::Part& part);
+// The bulk viscosity coefficients of a part's solids (*CONTROL_BULK_VISCOSITY, the part's
+// *HOURGLASS Q1/Q2); shells take them only with TYPE -1/-2 (build_structural.cpp).
+element::BulkViscositySettings resolve_bulk_viscosity(const model::Model& model,
+                                                      const model::Part& part);
 
 // A part's material as the kernels use it; errors when the material is undefined, not
 // simulated, or does not run on the element family (`family`: a material::ElementFamily bit).

@@ -89,6 +89,10 @@ void build_shell_blocks(const model::Model& model, const NodeIndex& node_index, 
                                      "{} (1-5)",
                                      block.hourglass.ihq, pid));
       }
+      // TYPE -1 and -2 differ in LS-DYNA only in whether the shells' viscous dissipation enters
+      // the energy balance (-2) or not (-1); RigidFlex always accounts it (glstat's bulk
+      // viscosity energy), so both act the same.
+      if (model.bulk_viscosity.type < 0) block.bulk_viscosity = resolve_bulk_viscosity(model, part);
     }
     block.shear_factor = section.shrf;
     block.nip = section.nip;

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "model/error.hpp"
 #include "model/error_context.hpp"
@@ -58,15 +59,20 @@ void Simulation::start_distributed_run() {
   // rigidwall_switching_block.k drifts 0.36 % from one process after the first switch (2 ranks
   // and runs without viscosity agree to 1e-14). Refused until found (docs/parallel.md).
   if (model.switching.flagged) {
-    for (const auto& block : state_.hex_blocks) {
-      if (block.bulk_viscosity.on()) {
+    std::vector<std::pair<model::Id, bool>> viscous_parts;
+    for (const auto& block : state_.hex_blocks)
+      viscous_parts.emplace_back(block.part_id, block.bulk_viscosity.on());
+    for (const auto& block : state_.shell_blocks)
+      viscous_parts.emplace_back(block.part_id, block.bulk_viscosity.on());
+    for (const auto& [part_id, viscous] : viscous_parts) {
+      if (viscous) {
         throw InputError(
             model::context_of(model.timestep.where, ""),
             fmt::format("part switching (*DEFORMABLE_TO_RIGID...) together with the bulk viscosity "
                         "of part {} is not supported in a distributed run yet (stage 1, "
                         "docs/parallel.md): run it on one rank, or switch the viscosity off "
                         "(*CONTROL_BULK_VISCOSITY 0.0,0.0)",
-                        block.part_id));
+                        part_id));
       }
     }
   }
@@ -94,7 +100,7 @@ void Simulation::sum_partial_forces_across_ranks() {
       continue;
     energy_.hourglass += rank_block_work_[b];
     energy_.bulk_viscosity += rank_block_work_[blocks + b];
-    if (hex && part_histories_)
+    if (part_histories_)
       part_histories_->add_hourglass(b, rank_block_work_[b], rank_block_work_[blocks + b]);
   }
   parallel::StepAgreement a;

@@ -10,6 +10,8 @@ namespace rf::solver {
 PartHistories::PartHistories(const State& state, const RigidSystem& rigid) {
   std::map<model::Id, int> index;
   for (const element::HexBlock& block : state.hex_blocks) index[block.part_id] = 0;
+  for (const element::ShellBlock& block : state.shell_blocks) index[block.part_id] = 0;
+  for (const element::BeamBlock& block : state.beam_blocks) index[block.part_id] = 0;
   for (const RigidBody& body : rigid.bodies) {
     if (!body.weld) index[body.id] = 0;  // a spot weld is no part: its nodes count with theirs
   }
@@ -17,14 +19,19 @@ PartHistories::PartHistories(const State& state, const RigidSystem& rigid) {
     k = static_cast<int>(parts_.size());
     parts_.push_back(pid);
   }
+  // Blocks in the solver's order (hexahedra, shells, beams), which is also the order of the
+  // block slots add_hourglass takes.
   owner_of_node_.assign(state.nodes.size(), -1);
-  for (const element::HexBlock& block : state.hex_blocks) {
+  auto add_block = [&](const auto& block) {
     const int part = index.at(block.part_id);
     part_of_block_.push_back(part);
     for (const std::int32_t node : block.conn) {
-      if (owner_of_node_[node] < 0) owner_of_node_[node] = part;
+      if (node >= 0 && owner_of_node_[node] < 0) owner_of_node_[node] = part;
     }
-  }
+  };
+  for (const element::HexBlock& block : state.hex_blocks) add_block(block);
+  for (const element::ShellBlock& block : state.shell_blocks) add_block(block);
+  for (const element::BeamBlock& block : state.beam_blocks) add_block(block);
   internal_work_.assign(parts_.size(), 0.0);
   hourglass_.assign(parts_.size(), 0.0);
   bulk_viscosity_.assign(parts_.size(), 0.0);
@@ -65,22 +72,68 @@ void PartHistories::add_step_work(const State& state, const RigidSystem& rigid, 
     displacement_.y[i] = dy;
     displacement_.z[i] = dz;
   }
-  for (std::size_t b = 0; b < state.hex_blocks.size(); ++b) {
-    const element::HexBlock& block = state.hex_blocks[b];
-    if (block.rigid || block.force.empty()) continue;
-    const std::size_t npe = static_cast<std::size_t>(block.nodes_per_element());
+  // The rotation of the step of every node with rotations, as the global balance takes it
+  // (Simulation::update_rotations): the mean of the half-step angular velocities times dt_avg,
+  // and on a flexible body the body's turn plus the modes' share.
+  const RotationalState& rot = state.rotations;
+  if (!rot.empty()) {
+    rotation_increment_.resize(rot.size());
+    const double* modal_work = rigid.modal_rotation_work_velocity.empty()
+                                   ? nullptr
+                                   : rigid.modal_rotation_work_velocity.data();
+    const std::int64_t count = static_cast<std::int64_t>(rot.size());
+#pragma omp parallel for schedule(static)
+    for (std::int64_t r = 0; r < count; ++r) {
+      double dx = 0.5 * dt_avg * (rot.w_previous.x[r] + rot.w.x[r]);
+      double dy = 0.5 * dt_avg * (rot.w_previous.y[r] + rot.w.y[r]);
+      double dz = 0.5 * dt_avg * (rot.w_previous.z[r] + rot.w.z[r]);
+      const std::int32_t i = rot.node[r];
+      if (modal_work && body_of && body_of[i] >= 0) {
+        const Eigen::Vector3d& w_mid = rigid.bodies[body_of[i]].mid_angular_velocity;
+        dx = dt_avg * (w_mid.x() + modal_work[3 * r]);
+        dy = dt_avg * (w_mid.y() + modal_work[3 * r + 1]);
+        dz = dt_avg * (w_mid.z() + modal_work[3 * r + 2]);
+      }
+      rotation_increment_.x[r] = dx;
+      rotation_increment_.y[r] = dy;
+      rotation_increment_.z[r] = dz;
+    }
+  }
+  // Element forces (and moments) times the step's displacements (and rotations), per block.
+  // `per_node`: 3 (forces) or 6 (forces, then moments) entries per node in the force slot.
+  std::size_t slot = 0;
+  auto add_block_work = [&](const auto& block, int nodes_per_element, int per_node,
+                            const std::vector<std::int32_t>* rotation_conn) {
+    const std::size_t b = slot++;
+    if (block.rigid || block.force.empty()) return;
+    const std::size_t npe = static_cast<std::size_t>(nodes_per_element);
+    const std::size_t stride = npe * static_cast<std::size_t>(per_node);
+    const bool rotations = rotation_conn && !rotation_conn->empty() && per_node == 6;
     double work = 0.0;
     for (std::size_t e = 0; e < block.size(); ++e) {
-      const double* f = &block.force[3 * npe * e];
+      const double* f = &block.force[stride * e];
       const std::int32_t* c = &block.conn[npe * e];
       for (std::size_t a = 0; a < npe; ++a) {
         const std::int32_t i = c[a];
-        work += f[3 * a] * displacement_.x[i] + f[3 * a + 1] * displacement_.y[i] +
-                f[3 * a + 2] * displacement_.z[i];
+        if (i < 0) continue;
+        const double* fa = f + static_cast<std::size_t>(per_node) * a;
+        work +=
+            fa[0] * displacement_.x[i] + fa[1] * displacement_.y[i] + fa[2] * displacement_.z[i];
+        if (!rotations) continue;
+        const std::int32_t r = (*rotation_conn)[npe * e + a];
+        if (r < 0) continue;
+        work += fa[3] * rotation_increment_.x[r] + fa[4] * rotation_increment_.y[r] +
+                fa[5] * rotation_increment_.z[r];
       }
     }
     internal_work_[part_of_block_[b]] += work;
-  }
+  };
+  for (const element::HexBlock& block : state.hex_blocks)
+    add_block_work(block, block.nodes_per_element(), 3, nullptr);
+  for (const element::ShellBlock& block : state.shell_blocks)
+    add_block_work(block, 4, element::kShellSlot / 4, &block.rotation_conn);
+  for (const element::BeamBlock& block : state.beam_blocks)
+    add_block_work(block, 2, element::kBeamSlot / 2, &block.rotation_conn);
 }
 
 std::vector<PartSummary> PartHistories::summaries(const State& state,
@@ -104,6 +157,16 @@ std::vector<PartSummary> PartHistories::summaries(const State& state,
     const double v[3] = {nodes.v.x[i], nodes.v.y[i], nodes.v.z[i]};
     rows[p].kinetic_energy += 0.5 * m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     for (int k = 0; k < 3; ++k) rows[p].momentum[k] += m * v[k];
+  }
+  // Rotary kinetic energy of shell and beam nodes, with their node's part (body nodes: the body
+  // holds it, as in glstat).
+  const RotationalState& rot = state.rotations;
+  for (std::size_t r = 0; r < rot.size(); ++r) {
+    const std::int32_t i = rot.node[r];
+    const int p = owner_of_node_[static_cast<std::size_t>(i)];
+    if (p < 0 || rigid.is_rigid(i)) continue;
+    const double wx = rot.w.x[r], wy = rot.w.y[r], wz = rot.w.z[r];
+    rows[p].kinetic_energy += 0.5 * rot.inertia[r] * (wx * wx + wy * wy + wz * wz);
   }
   for (const RigidBody& body : rigid.bodies) {
     // Bodies can come and go with part switching: found by their lead part's ID.

@@ -25,10 +25,11 @@ struct PartSummary {
 };
 
 // Energy bookkeeping per part, the parts' shares of glstat's internal, hourglass and kinetic
-// energy and momentum. Internal work of a part: sum over its elements of the element nodal
-// forces times the nodal displacement of the step, the same displacement the global balance
-// uses, so the parts' values add up to glstat's to round-off. Kinetic energy and momentum of a
-// node shared by several parts count for the first part (in block order) that uses it; rigid
+// energy and momentum. Internal work of a part: sum over its elements (solids, shells, beams)
+// of the element nodal forces (and moments) times the nodal displacement (and rotation) of the
+// step, the same the global balance uses, so the parts' values add up to glstat's to round-off.
+// Kinetic energy (rotary included) and momentum of a node shared by several parts count for the
+// first part (in block order: solids, shells, beams) that uses it; rigid
 // bodies count for their lead part (nodal rigid bodies under their PID).
 class PartHistories {
  public:
@@ -38,10 +39,11 @@ class PartHistories {
   // (v_previous = v^{n-1/2}, state.nodes.v = v^{n+1/2}, dt_average as in the global balance).
   void add_step_work(const State& state, const RigidSystem& rigid, const Vec3Array& v_previous,
                      double dt_average);
-  // Hourglass and bulk viscosity work of hex block `block` in the last force evaluation.
-  void add_hourglass(std::size_t block, double work, double bulk_viscosity_work) {
-    hourglass_[part_of_block_[block]] += work;
-    bulk_viscosity_[part_of_block_[block]] += bulk_viscosity_work;
+  // Hourglass and bulk viscosity work of block `slot` in the last force evaluation; slots count
+  // the hexahedron blocks, then the shell blocks, then the beam blocks.
+  void add_hourglass(std::size_t slot, double work, double bulk_viscosity_work) {
+    hourglass_[part_of_block_[slot]] += work;
+    bulk_viscosity_[part_of_block_[slot]] += bulk_viscosity_work;
   }
 
   std::vector<PartSummary> summaries(const State& state, const RigidSystem& rigid) const;
@@ -53,12 +55,13 @@ class PartHistories {
 
  private:
   std::vector<model::Id> parts_;       // ascending part IDs (then nodal rigid body PIDs)
-  std::vector<int> part_of_block_;     // hex block -> index into parts_
+  std::vector<int> part_of_block_;     // block slot (hexahedra, shells, beams) -> parts_ index
   std::vector<int> owner_of_node_;     // node -> index into parts_ (-1: no element)
   std::vector<double> internal_work_;  // per part, hourglass included
   std::vector<double> hourglass_;      // per part
   std::vector<double> bulk_viscosity_;  // per part
   Vec3Array displacement_;             // scratch: the step's work displacement per node
+  Vec3Array rotation_increment_;       // scratch: the step's work rotation per rotational index
 };
 
 // Reaction force of a constrained node (SPC, *NODE TC, prescribed motion) at the output time t^n:

@@ -1062,6 +1062,11 @@ std::array<double, 6> Simulation::update_rotations(double dt_avg) {
     if (f & 2) rot.w.y[r] = 0.0;
     if (f & 4) rot.w.z[r] = 0.0;
   }
+  // Prescribed rotations (DOF 5-8 on nodes); their reaction moments' work is external work.
+  const double reaction_work =
+      boundary_.prescribed_directions.empty()
+          ? 0.0
+          : constrain_rotations(boundary_, state_.time, state_.dt, dt_avg, state_);
   out = deterministic_sum<6>(
       count, reduction_scratch_rotations_, [&](std::int64_t r, std::array<double, 6>& acc) {
         const double wx = rot.w.x[r], wy = rot.w.y[r], wz = rot.w.z[r];
@@ -1086,6 +1091,7 @@ std::array<double, 6> Simulation::update_rotations(double dt_avg) {
         acc[4] += I * wy;
         acc[5] += I * wz;
       });
+  out[2] += reaction_work;
   return out;
 }
 
@@ -1424,10 +1430,16 @@ void Simulation::compute_structural_forces() {
   const element::RotationalView rotations{rot.w.x.data(), rot.w.y.data(), rot.w.z.data()};
   std::size_t slot = state_.hex_blocks.size();  // rank_block_work_: shells, then beams
   auto account = [&](const element::KernelResult& r, const auto& block, const char* kind) {
-    if (distribution_)
-      rank_block_work_[slot++] = r.hourglass_work;
-    else
+    const std::size_t b = slot++;
+    if (distribution_) {  // summed over the ranks first (viscosity in the second half)
+      rank_block_work_[b] = r.hourglass_work;
+      rank_block_work_[rank_block_work_.size() / 2 + b] = r.bulk_viscosity_work;
+    } else {
       energy_.hourglass += r.hourglass_work;
+      energy_.bulk_viscosity += r.bulk_viscosity_work;
+      if (part_histories_)
+        part_histories_->add_hourglass(b, r.hourglass_work, r.bulk_viscosity_work);
+    }
     record_kernel_result(r, block.element_id, [&](model::Id element) {
       return fmt::format(
           "{} element {} of part {} has a degenerate shape (non-positive area or "

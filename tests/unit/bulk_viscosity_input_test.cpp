@@ -1,6 +1,7 @@
 // *CONTROL_BULK_VISCOSITY and the *HOURGLASS Q1/Q2 fields: defaults (on, as in LS-DYNA),
 // per-part overrides, the IMPETUS dialect (off), and bad values as errors naming file, line,
 // keyword and field.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <string>
@@ -97,6 +98,38 @@ TEST(BulkViscosityInput, ImpetusDecksHaveNone) {
   EXPECT_FALSE(settings(s, 2).on());
 }
 
+// A shell part (3, with HGID 3 when `hourglass` is given) next to the two hexahedra.
+std::string shell_deck(const std::string& control, const std::string& hourglass = "") {
+  return deck(control + "*SECTION_SHELL\n3,2\n0.01\n" +
+              (hourglass.empty() ? "*PART\nsheet\n3,3,1\n"
+                                 : "*PART\nsheet\n3,3,1,0,3\n*HOURGLASS\n" + hourglass) +
+              "*ELEMENT_SHELL\n10,3,1,2,3,4\n");
+}
+
+const element::BulkViscositySettings& shell_settings(const solver::State& s) {
+  return s.shell_blocks.at(0).bulk_viscosity;
+}
+
+// LS-DYNA's TYPE 1 (the default) leaves shells without bulk viscosity; TYPE -1 and -2 give them
+// the control card's coefficients, or their part's *HOURGLASS Q1/Q2.
+TEST(BulkViscosityInput, ShellsTakeItOnlyWithANegativeType) {
+  EXPECT_FALSE(shell_settings(build(io::read_deck_text(shell_deck(""), "bv.k"))).on());
+  EXPECT_FALSE(shell_settings(build(io::read_deck_text(
+                                  shell_deck("*CONTROL_BULK_VISCOSITY\n1.5,0.06,1\n"), "bv.k")))
+                   .on());
+  for (const char* type : {"-1", "-2"}) {
+    const solver::State s = build(io::read_deck_text(
+        shell_deck(fmt::format("*CONTROL_BULK_VISCOSITY\n1.2,0.05,{}\n", type)), "bv.k"));
+    EXPECT_EQ(shell_settings(s).q1, 1.2) << type;
+    EXPECT_EQ(shell_settings(s).q2, 0.05) << type;
+    EXPECT_EQ(settings(s, 1).q1, 1.2) << "solids keep theirs";
+  }
+  const solver::State s = build(io::read_deck_text(
+      shell_deck("*CONTROL_BULK_VISCOSITY\n1.5,0.06,-2\n", "3,4,0.05,0,2.0,0.1\n"), "bv.k"));
+  EXPECT_EQ(shell_settings(s).q1, 2.0);
+  EXPECT_EQ(shell_settings(s).q2, 0.1);
+}
+
 struct ErrorCase {
   std::string name;
   std::string text;
@@ -133,11 +166,10 @@ INSTANTIATE_TEST_SUITE_P(
         ErrorCase{"HourglassNegativeQ1",
                   deck("", "1,1,0.1,0,-2.0\n"),
                   {"*HOURGLASS card 1 field Q1", "must not be negative"}},
-        ErrorCase{
-            "ShellsWithTypeMinus1",
-            deck("*CONTROL_BULK_VISCOSITY\n1.5,0.06,-1\n*SECTION_SHELL\n3,2\n0.01\n"
-                 "*PART\nsheet\n3,3,1\n*ELEMENT_SHELL\n10,3,1,2,3,4\n"),
-            {"bv.k:29: *CONTROL_BULK_VISCOSITY", "field TYPE", "TYPE -1", "shells", "use TYPE 1"}}),
+        ErrorCase{"BeamsWithBtype1",
+                  deck("*CONTROL_BULK_VISCOSITY\n1.5,0.06,1,1\n*SECTION_BEAM\n3,3\n1.0e-4\n"
+                       "*PART\nbar\n3,3,1\n*ELEMENT_BEAM\n10,3,1,9\n"),
+                  {"bv.k:29: *CONTROL_BULK_VISCOSITY", "field BTYPE", "beams", "use BTYPE 0"}}),
     [](const auto& info) { return info.param.name; });
 
 }  // namespace

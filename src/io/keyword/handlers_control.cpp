@@ -176,9 +176,9 @@ void control_hourglass(const Block& block, ReaderContext& context) {
   warn_unread_lines(block, cursor, context);
 }
 
-// *CONTROL_BULK_VISCOSITY Q1 Q2 TYPE BTYPE TSTYPE (docs/keywords.md). TYPE -1/-2 add shells
-// in LS-DYNA, which RigidFlex does not do: they are accepted only for models without shells
-// (checked when the model is built, as is BTYPE for beams). TYPE 2 (2-D solids) is an error.
+// *CONTROL_BULK_VISCOSITY Q1 Q2 TYPE BTYPE TSTYPE (docs/keywords.md). TYPE -1/-2 add the
+// shells (element/shell_block.cpp, section 10); BTYPE 1/2 (beams) is accepted only for models
+// without beams (checked when the model is built). TYPE 2 (2-D solids) is an error.
 void control_bulk_viscosity(const Block& block, ReaderContext& context) {
   CardCursor cursor(block, context.parameters);
   auto& b = context.model.bulk_viscosity;
@@ -190,9 +190,8 @@ void control_bulk_viscosity(const Block& block, ReaderContext& context) {
     b.type = card->flag(2, "TYPE", 1);
     if (b.type == 0) b.type = 1;
     if (b.type != 1 && b.type != -1 && b.type != -2) {
-      throw card->error("TYPE", fmt::format("bulk viscosity type {} is not supported (1; -1 and "
-                                            "-2 only for models without shells; 2 is for 2-D "
-                                            "solids)",
+      throw card->error("TYPE", fmt::format("bulk viscosity type {} is not supported (1: solids; "
+                                            "-1, -2: solids and shells; 2 is for 2-D solids)",
                                             b.type));
     }
     b.btype = card->flag(3, "BTYPE", 0);

@@ -93,11 +93,14 @@ void boundary_prescribed_motion(const Block& block, ReaderContext& context) {
     m.id = card.id(0, id_field);
     if (m.id <= 0) throw card.error(id_field, "a positive ID is required");
     const int dof = card.flag(1, "DOF", 0);
-    if (dof == 4 || dof == -4) {
-      throw card.error("DOF",
-                       "motion along a vector (DOF 4 with VID) is not supported; "
-                       "use DOF 1, 2 or 3");
+    if (dof <= -4 && dof >= -8) {
+      throw card.error("DOF", fmt::format("DOF {} is not supported; DOF {} (along the vector "
+                                          "VID, or about x, y, z, VID) is",
+                                          dof, -dof));
     }
+    // 4: translation along VID; 5, 6, 7: rotation about x, y, z; 8: rotation about VID (nodes
+    // with rotational DOFs; checked when the model is built, as is VID).
+    const bool along_axis = dof >= 4 && dof <= 8;
     const bool rotation = std::abs(dof) >= 9 && std::abs(dof) <= 11;
     if (rotation && dof < 0) {
       throw card.error("DOF", fmt::format("DOF {} (rotation about an axis with the radial motion "
@@ -105,10 +108,11 @@ void boundary_prescribed_motion(const Block& block, ReaderContext& context) {
                                           "is",
                                           dof, -dof));
     }
-    m.dof = rotation ? dof
-                     : translational_dof(card, "DOF", dof,
-                                         "; 9, 10, 11 for a rotation about an axis parallel to "
-                                         "x, y, z");
+    m.dof = rotation || along_axis
+                ? dof
+                : translational_dof(card, "DOF", dof,
+                                    "; 4 along VID; 5, 6, 7, 8 rotation about x, y, z, VID; 9, "
+                                    "10, 11 for a rotation about an axis parallel to x, y, z");
     m.vad = card.flag(2, "VAD", 0);
     if (m.vad < 0 || m.vad > 2) {
       throw card.error("VAD", fmt::format("value {} is not supported (supported: 0 velocity, "
