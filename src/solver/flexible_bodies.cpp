@@ -340,7 +340,7 @@ void attach_flexible_bodies(const model::Model& model, const NodeIndex& node_ind
         }
         for (const auto& block : state.hex_blocks) {
           if (std::find(body.parts.begin(), body.parts.end(), block.part_id) == body.parts.end() ||
-              block.order != 1) {
+              block.order != 1 || block.quadratic_tetrahedra()) {
             continue;
           }
           for (const std::int32_t i : block.conn) input.hexahedra.push_back(position.at(i));
