@@ -400,6 +400,35 @@ TEST(Tet10Conservation, SwitchedRigidAndBackKeepsMomentumAndDeformsAgain) {
   EXPECT_GT(change, 1e-3 * scale);
 }
 
+TEST(Tet10Conservation, MassScalingHoldsTheTargetStepAndTheBalanceCloses) {
+  // *CONTROL_TIMESTEP DT2MS < 0: mass is added to the elements whose step is below TSSFAC |DT2MS|
+  // (solver/mass_scaling.hpp) through the ELFORM 16 step and lumped shares; no bulk viscosity,
+  // so the step is the scaled elastic one.
+  double physical_step = 0.0;
+  {
+    solver::Simulation plain(read(impact_deck(elastic_card(7850.0, 2.1e11, 0.3), 6.0, false)), {});
+    plain.cycle();
+    physical_step = plain.state().dt;
+  }
+  const double target = 3.0 * physical_step / 0.9;  // TSSFAC |DT2MS| = three physical steps
+  std::string deck = impact_deck(elastic_card(7850.0, 2.1e11, 0.3), 6.0, false);
+  deck.insert(deck.rfind("*CONTROL_TERMINATION"),
+              fmt::format("*CONTROL_TIMESTEP\n0.0,0.9,0,0.0,{:.17g}\n", -target));
+  solver::Simulation sim(read(deck), {});
+  double worst = 0.0;
+  for (int cycle = 0; cycle < 200; ++cycle) {
+    sim.cycle();
+    worst = std::max(worst, std::abs(sim.state().dt / (0.9 * target) - 1.0));
+  }
+  std::printf(
+      "[measured] ELFORM 16 mass scaling: step %.4g (target %.4g, physical %.4g), largest "
+      "deviation %.2e, energy ratio %.10f\n",
+      sim.state().dt, 0.9 * target, physical_step, worst, sim.energy().ratio());
+  EXPECT_LT(physical_step, 0.9 * target);  // the scaling has work to do
+  EXPECT_LT(worst, 1e-3);
+  EXPECT_NEAR(sim.energy().ratio(), 1.0, 1e-6);
+}
+
 TEST(Tet10Contact, TwoBarsCollideThroughTheirTriangulatedFaces) {
   // Bar A (part 1, x in [0, 1]) at 20 m/s into bar B (part 2, x in [1.001, 2.001]) at rest, both
   // ELFORM 16, *CONTACT_AUTOMATIC_SURFACE_TO_SURFACE between the parts: each 6-node face is 4
