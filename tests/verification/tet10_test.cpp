@@ -586,6 +586,15 @@ TEST(Tet10Input, InvertedAndMisorderedElementsAreRefused) {
   EXPECT_NE(what.find("*MAT_JOHNSON_COOK"), std::string::npos) << what;
   EXPECT_NE(what.find("ELFORM 16"), std::string::npos) << what;
   EXPECT_NE(what.find("element 7"), std::string::npos) << what;
+  // *PART_MODES flexible bodies of ELFORM 16 parts are refused (not verified).
+  what = simulation_error_of("*KEYWORD\n" + kTetNodes +
+                             "*ELEMENT_SOLID\n7,1\n1,2,3,4,5,6,7,8,9,10\n*SECTION_SOLID\n1,16\n"
+                             "*PART\nblock\n1,1,1\n*MAT_RIGID\n1,7850.0,2.1e11,0.3\n"
+                             "*PART_MODES\n1,3,0,0,3,0\nno_such_modes.h5\n"
+                             "*CONTROL_TIMESTEP\n1e-4\n*CONTROL_TERMINATION\n1e-3\n*END\n");
+  EXPECT_NE(what.find("part 1"), std::string::npos) << what;
+  EXPECT_NE(what.find("*PART_MODES"), std::string::npos) << what;
+  EXPECT_NE(what.find("ELFORM 16"), std::string::npos) << what;
   // Erosion (here *MAT_024 FAIL) is refused for ELFORM 16, naming the part and material.
   what = simulation_error_of(
       "*KEYWORD\n" + kTetNodes +
