@@ -1,16 +1,19 @@
 // Throughput of the tetrahedron kernels on an N^3 grid of cells split into six tetrahedra each
 // (LS-DYNA's connectivity n1 n2 n3 n4 n4 n4 n4 n4): ELFORM 10 (the ELFORM 1 kernel with the
 // hourglass control off, as build_state sets it up) against ELFORM 13 (the nodal-pressure
-// tetrahedron: three passes, one of them over the nodes). Run with OMP_NUM_THREADS=1 for the
-// per-core figure; "ns_per_element" is the time of one element-cycle.
+// tetrahedron: three passes, one of them over the nodes) and ELFORM 16 (the 10-node quadratic
+// tetrahedron, 4 points; the same tetrahedra with a mid-side node on each edge). Run with
+// OMP_NUM_THREADS=1 for the per-core figure; "ns_per_element" is the time of one element-cycle.
 #include <benchmark/benchmark.h>
 
 #include <array>
 #include <cmath>
+#include <map>
 #include <utility>
 #include <vector>
 
 #include "element/hex_block.hpp"
+#include "element/kernels.hpp"
 #include "material/registry.hpp"
 
 namespace {
@@ -67,6 +70,28 @@ Block make_block(int n, int elform, bool bulk, bool plastic) {
           for (int s = 0; s < 8; ++s)
             b.block.conn.push_back(id(v[static_cast<std::size_t>(std::min(s, 3))]));
         }
+  if (elform == 16) {
+    // One mid-side node per edge (shared), at the edge's midpoint with the mean velocity.
+    std::vector<std::int32_t> conn;
+    std::map<std::pair<std::int32_t, std::int32_t>, std::int32_t> midside;
+    static constexpr int kEdge[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
+    for (std::size_t e = 0; e < b.block.element_id.size(); ++e) {
+      const std::int32_t* c = &b.block.conn[8 * e];
+      conn.insert(conn.end(), c, c + 4);
+      for (const auto& edge : kEdge) {
+        const std::int32_t p = c[edge[0]], q = c[edge[1]];
+        const auto [it, inserted] = midside.try_emplace({std::min(p, q), std::max(p, q)},
+                                                        static_cast<std::int32_t>(b.x.size()));
+        if (inserted) {
+          for (auto* a : {&b.x, &b.y, &b.z, &b.vx, &b.vy, &b.vz})
+            a->push_back(0.5 *
+                         ((*a)[static_cast<std::size_t>(p)] + (*a)[static_cast<std::size_t>(q)]));
+        }
+        conn.push_back(it->second);
+      }
+    }
+    b.block.conn = std::move(conn);
+  }
   b.block.material = rf::material::make_elastic(7800.0, 2.0e11, 0.3);
   if (plastic) {
     b.block.material_index =
@@ -79,14 +104,14 @@ Block make_block(int n, int elform, bool bulk, bool plastic) {
   b.block.elform = elform == 10 ? 1 : elform;
   b.block.hourglass.qm = 0.0;                      // ELFORM 10: no hourglass modes (build_state)
   if (bulk) b.block.bulk_viscosity = {1.5, 0.06};  // LS-DYNA's defaults
-  rf::element::initialize_hex_block(b.block, b.view());
+  rf::element::initialize_block(b.block, b.view());
   return b;
 }
 
 void run(benchmark::State& state, int elform, bool bulk, bool plastic = false) {
   Block b = make_block(static_cast<int>(state.range(0)), elform, bulk, plastic);
   for (auto _ : state) {
-    auto r = rf::element::compute_hex_forces(b.block, b.view(), 1e-7);
+    auto r = rf::element::compute_block_forces(b.block, b.view(), 1e-7);
     benchmark::DoNotOptimize(r);
     benchmark::ClobberMemory();
   }
@@ -115,11 +140,24 @@ void BM_TetElform13Mat024(benchmark::State& s) {
   run(s, 13, true, true);
 }
 
+void BM_TetElform16(benchmark::State& s) {
+  run(s, 16, false);
+}
+void BM_TetElform16Bulk(benchmark::State& s) {
+  run(s, 16, true);
+}
+void BM_TetElform16Mat024(benchmark::State& s) {
+  run(s, 16, true, true);
+}
+
 BENCHMARK(BM_TetElform10)->Arg(24)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TetElform13)->Arg(24)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TetElform10Bulk)->Arg(24)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TetElform13Bulk)->Arg(24)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TetElform10Mat024)->Arg(24)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TetElform13Mat024)->Arg(24)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TetElform16)->Arg(24)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TetElform16Bulk)->Arg(24)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TetElform16Mat024)->Arg(24)->Unit(benchmark::kMillisecond);
 
 }  // namespace

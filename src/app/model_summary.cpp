@@ -52,6 +52,7 @@ int section_elform(const model::Model& model, model::Id secid, int kernel_elform
 }
 
 const char* shape_of(const model::SolidElement& e) {
+  if (e.ten_node) return "10-node tetrahedron";
   std::set<model::Id> distinct(e.nodes.begin(), e.nodes.end());
   switch (distinct.size()) {
     case 4:
@@ -94,8 +95,9 @@ void print_model_summary(const model::Model& model, const solver::Simulation& si
     fmt::print(out, " (after merging {} duplicated nodes)", model.merged_node_count);
   }
   if (state.generated_node_count > 0) {
-    fmt::print(out, ", plus {} created by *CHANGE_P-ORDER ({} in all)", state.generated_node_count,
-               state.nodes.size());
+    fmt::print(out,
+               ", plus {} created by *CHANGE_P-ORDER or *ELEMENT_SOLID_TET4TOTET10 ({} in all)",
+               state.generated_node_count, state.nodes.size());
   }
   fmt::print(out, "\n");
   fmt::print(out, "solid elements: {}\n", model.solids.size());
@@ -117,7 +119,7 @@ void print_model_summary(const model::Model& model, const solver::Simulation& si
                                   state.nodes.v.y.data(), state.nodes.v.z.data()};
     dt = element::block_critical_timestep(block, view).min_dt;
     const int deck_elform = section_elform(model, part.secid, block.elform);
-    const bool tetrahedra = deck_elform == 10 || deck_elform == 13;
+    const bool tetrahedra = deck_elform == 10 || deck_elform == 13 || deck_elform == 16;
     fmt::print(
         out,
         "  part {} '{}': {} elements, {}, material {} {} "

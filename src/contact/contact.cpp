@@ -8,6 +8,7 @@
 #include <map>
 #include <set>
 
+#include "element/tet10_block.hpp"
 #include "mesh/vec3_ops.hpp"
 #include "model/error.hpp"
 #include "model/error_context.hpp"
@@ -93,7 +94,30 @@ struct FaceRef {
   int other_side = 0;
 };
 
+// 10-node tetrahedra (ELFORM 16): face s has corners kTetFace[s] (local 0..3), and its 6-node
+// face is split into 4 linear triangles through the mid-side nodes (corner, mid, mid) x 3 and
+// (mid, mid, mid), each a contact segment with its third node repeated, as LS-DYNA's triangles.
+constexpr int kTetFace[4][3] = {{0, 1, 2}, {0, 1, 3}, {1, 2, 3}, {0, 2, 3}};
+
+// Local index (4..9) of the mid-side node of the edge between corners i and j.
+int tet10_midside(int i, int j) {
+  for (int m = 0; m < 6; ++m) {
+    const int a = element::kTet10Edge[m][0], b = element::kTet10Edge[m][1];
+    if ((a == i && b == j) || (a == j && b == i)) return 4 + m;
+  }
+  return -1;
+}
+
+int side_count(const element::HexBlock& block) {
+  return block.quadratic_tetrahedra() ? 4 : 6;
+}
+
 std::array<std::int32_t, 4> corners_of(const element::HexBlock& block, std::size_t e, int s) {
+  if (block.quadratic_tetrahedra()) {
+    const std::int32_t* conn = block.conn.data() + e * element::kTet10Nodes;
+    const int* f = kTetFace[s];
+    return {conn[f[0]], conn[f[1]], conn[f[2]], conn[f[2]]};
+  }
   const int p = block.order;
   return {block_node(block, e, side_node(s, p, 0, 0)), block_node(block, e, side_node(s, p, p, 0)),
           block_node(block, e, side_node(s, p, p, p)), block_node(block, e, side_node(s, p, 0, p))};
@@ -107,7 +131,7 @@ std::map<FaceKey, FaceRef> face_table(const solver::State& state,
     if (!use_block[b]) continue;
     const auto& block = state.hex_blocks[b];
     for (std::size_t e = 0; e < block.size(); ++e) {
-      for (int s = 0; s < 6; ++s) {
+      for (int s = 0; s < side_count(block); ++s) {
         const auto key = face_key(corners_of(block, e, s));
         if (!key) continue;
         auto [it, inserted] = faces.try_emplace(
@@ -125,9 +149,54 @@ std::map<FaceKey, FaceRef> face_table(const solver::State& state,
 
 // Adds the segments of face `s` of element e: the face itself (order 1) or the p x p linear
 // sub-quads of its node grid, each ordered so that its normal points out of the element.
+void add_segment(const solver::State& state, const element::HexBlock& block,
+                 std::array<std::int32_t, 4> q, const Vec& outward, double depth,
+                 double half_thickness, ContactSurface& surface);
+
+// The 4 triangles of face `face.side` of a 10-node tetrahedron. Penalty stiffness as for a
+// p = 2 hexahedron face: each sub-triangle takes the element's depth normal to the face over 2,
+// V / (2 A_face), so that the face's total stiffness is SLSFAC K A_face^2 / V (LS-DYNA's
+// k = SLSFAC K A^2 / V) when the sub-triangles are equal.
+void add_tet10_face_segments(const solver::State& state, const FaceRef& face, double half_thickness,
+                             ContactSurface& surface) {
+  const auto& block = state.hex_blocks[face.block];
+  const std::size_t e = static_cast<std::size_t>(face.element);
+  const std::int32_t* conn = block.conn.data() + e * element::kTet10Nodes;
+  const auto& x = state.nodes.x;
+  Vec centre{0, 0, 0}, face_centre{0, 0, 0};
+  for (int a = 0; a < 4; ++a) {
+    const Vec c = position(x, conn[a]);
+    for (int d = 0; d < 3; ++d) centre[d] += c[d] / 4.0;
+  }
+  const int* f = kTetFace[face.side];
+  for (int a = 0; a < 3; ++a) {
+    const Vec c = position(x, conn[f[a]]);
+    for (int d = 0; d < 3; ++d) face_centre[d] += c[d] / 3.0;
+  }
+  const Vec outward = sub(face_centre, centre);
+  const Vec p0 = position(x, conn[f[0]]), p1 = position(x, conn[f[1]]),
+            p2 = position(x, conn[f[2]]);
+  const double face_area = 0.5 * norm(cross(sub(p1, p0), sub(p2, p0)));
+  double volume = (e < block.volume0.size()) ? block.volume0[e] : 0.0;
+  if (!(volume > 0.0)) volume = face_area * std::sqrt(face_area);
+  const double depth = volume / (face_area * 2.0);
+  const std::int32_t c0 = conn[f[0]], c1 = conn[f[1]], c2 = conn[f[2]];
+  const std::int32_t m01 = conn[tet10_midside(f[0], f[1])];
+  const std::int32_t m12 = conn[tet10_midside(f[1], f[2])];
+  const std::int32_t m20 = conn[tet10_midside(f[2], f[0])];
+  const std::array<std::array<std::int32_t, 4>, 4> triangles = {
+      {{c0, m01, m20, m20}, {m01, c1, m12, m12}, {m20, m12, c2, c2}, {m01, m12, m20, m20}}};
+  for (const auto& t : triangles)
+    add_segment(state, block, t, outward, depth, half_thickness, surface);
+}
+
 void add_face_segments(const solver::State& state, const FaceRef& face, double half_thickness,
                        ContactSurface& surface) {
   const auto& block = state.hex_blocks[face.block];
+  if (block.quadratic_tetrahedra()) {
+    add_tet10_face_segments(state, face, half_thickness, surface);
+    return;
+  }
   const std::size_t e = static_cast<std::size_t>(face.element);
   const int p = block.order;
   const auto& x = state.nodes.x;
@@ -154,7 +223,6 @@ void add_face_segments(const solver::State& state, const FaceRef& face, double h
   // Penalty stiffness of a solid segment, LS-DYNA Theory Manual (contact, penalty method):
   // k = SLSFAC K A^2 / V. A sub-quad of a higher-order face takes the element's thickness
   // normal to the face divided by p as its depth (V / (A_face p)); for p = 1 the formula.
-  const double bulk = block.material.bulk;
   const double depth = volume / (face_area * p);
   for (int u = 0; u < p; ++u) {
     for (int v = 0; v < p; ++v) {
@@ -172,24 +240,33 @@ void add_face_segments(const solver::State& state, const FaceRef& face, double h
       }
       if (count < 3) continue;
       if (count == 3) distinct[3] = distinct[2];
-      q = distinct;
-      const Vec n = diagonal_normal(position(x, q[0]), position(x, q[1]), position(x, q[2]),
-                                    position(x, q[3]));
-      if (dot(n, outward) < 0.0) std::swap(q[1], q[3]);
-      const double area = 0.5 * norm(n);
-      surface.segments.push_back(q);
-      surface.stiffness.push_back(bulk > 0.0 && depth > 0.0 ? kSlsfac * bulk * area / depth
-                                                            : kInfinity);
-      surface.two_sided.push_back(0);
-      surface.half_thickness.push_back(half_thickness);
-      surface.size.push_back(std::sqrt(area));
-      surface.part.push_back(block.part_id);
-      // A rigid part's segment moves with the whole body: as heavy as it gets.
-      double m = 0.0;
-      for (const auto node : q) m += state.nodes.mass[node] / 4.0;
-      surface.mass.push_back(block.rigid ? kInfinity : m);
+      add_segment(state, block, distinct, outward, depth, half_thickness, surface);
     }
   }
+}
+
+// One segment q of a solid face (a triangle repeats its third node), turned so that its normal
+// points along `outward`, with the penalty stiffness SLSFAC K A / depth.
+void add_segment(const solver::State& state, const element::HexBlock& block,
+                 std::array<std::int32_t, 4> q, const Vec& outward, double depth,
+                 double half_thickness, ContactSurface& surface) {
+  const auto& x = state.nodes.x;
+  const double bulk = block.material.bulk;
+  const Vec n =
+      diagonal_normal(position(x, q[0]), position(x, q[1]), position(x, q[2]), position(x, q[3]));
+  if (dot(n, outward) < 0.0) std::swap(q[1], q[3]);
+  const double area = 0.5 * norm(n);
+  surface.segments.push_back(q);
+  surface.stiffness.push_back(bulk > 0.0 && depth > 0.0 ? kSlsfac * bulk * area / depth
+                                                        : kInfinity);
+  surface.two_sided.push_back(0);
+  surface.half_thickness.push_back(half_thickness);
+  surface.size.push_back(std::sqrt(area));
+  surface.part.push_back(block.part_id);
+  // A rigid part's segment moves with the whole body: as heavy as it gets.
+  double m = 0.0;
+  for (const auto node : q) m += state.nodes.mass[node] / 4.0;
+  surface.mass.push_back(block.rigid ? kInfinity : m);
 }
 
 // The contact thickness of one side (SST or MST) and the scale of its shell thickness (SFST or

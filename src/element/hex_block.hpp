@@ -64,7 +64,8 @@ struct HexBlock {
   model::Id part_id = 0;
   int part_index = 0;
   // 1: one-point + hourglass (also ELFORM 10 tetrahedra); 2: selective-reduced (2x2x2
-  // deviatoric, 1pt volumetric); 13: nodal-pressure tetrahedron (element/tet13_block.hpp)
+  // deviatoric, 1pt volumetric); 13: nodal-pressure tetrahedron (element/tet13_block.hpp);
+  // 16: 10-node quadratic tetrahedron, 4-point rule (element/tet10_block.hpp)
   int elform = 1;
   HourglassSettings hourglass;
   BulkViscositySettings bulk_viscosity;
@@ -109,7 +110,8 @@ struct HexBlock {
   std::vector<double> step_scale;
   std::vector<double> volume0_cbrt;  // V0^{1/3}, scales the viscous hourglass coefficient
   std::vector<double> volume;        // current volume
-  // Element nodal forces of the last evaluation, 24 per element (node-major: f0x,f0y,f0z,...).
+  // Element nodal forces of the last evaluation, 3 * nodes_per_element() per element (node-major:
+  // f0x,f0y,f0z,...).
   std::vector<double> force;
   // Shape detected from the connectivity (initialize_hex_block), one per element.
   std::vector<HexShape> shape;
@@ -128,12 +130,19 @@ struct HexBlock {
   // Nodes of one element in conn: 8 for order 1 (degenerate shapes repeat IDs), (p+1)^3 above,
   // numbered in tensor order i + (p+1) (j + (p+1) k) along the reference axes xi, eta, zeta
   // (xi from hex node 1 to 2, eta from 1 to 4, zeta from 1 to 5).
-  int nodes_per_element() const { return order == 1 ? 8 : (order + 1) * (order + 1) * (order + 1); }
-  // Stress points: 1 (ELFORM 1), 8 (ELFORM 2), (p+1)^3 GLL points (order > 1).
+  // ELFORM 16: 10, corners N1..N4 then the mid-side nodes of edges 1-2, 2-3, 3-1, 1-4, 2-4, 3-4.
+  int nodes_per_element() const {
+    if (elform == 16) return 10;
+    return order == 1 ? 8 : (order + 1) * (order + 1) * (order + 1);
+  }
+  // Stress points: 1 (ELFORM 1), 8 (ELFORM 2), 4 (ELFORM 16), (p+1)^3 GLL points (order > 1).
   int points_per_element() const {
+    if (elform == 16) return 4;
     if (order > 1) return nodes_per_element();
     return elform == 2 ? 8 : 1;
   }
+  // Whether the block holds 10-node quadratic tetrahedra (ELFORM 16, element/tet10_block.hpp).
+  bool quadratic_tetrahedra() const { return elform == 16; }
 };
 
 // What one pass of a kernel over a block reports back to the solver.

@@ -16,7 +16,7 @@ struct ElasticMaterial {
   // The 8-node hexahedra use this update; the p > 1 Lagrange hexahedra are total-Lagrangian
   // and use their own neo-Hookean law with the same Lame constants (lagrange_hex.hpp); shells
   // use the plane-stress closed form with the same E, nu (shell_block.cpp).
-  static constexpr unsigned kFamilies = kHex8 | kLagrangeHex | kShell | kBeam | kTet13;
+  static constexpr unsigned kFamilies = kHex8 | kLagrangeHex | kShell | kBeam | kTet13 | kTet10;
   static constexpr std::array<HistoryField, 0> kHistory{};
 
   template <class T>

@@ -16,6 +16,10 @@ enum ElementFamily : unsigned {
   // material gets the element's velocity gradient with a nodally averaged trace. Serves laws
   // whose pressure follows the volume change alone (elastic, J2, the rubbers' F-bar form).
   kTet13 = 1u << 4,
+  // 10-node quadratic tetrahedra (*SECTION_SOLID ELFORM 16, element/tet10_block.hpp): the
+  // material runs at each of the four integration points with that point's velocity gradient,
+  // as at the eight points of ELFORM 2.
+  kTet10 = 1u << 5,
 };
 
 }  // namespace rf::material

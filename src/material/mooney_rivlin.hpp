@@ -21,7 +21,7 @@ namespace rf::material {
 
 struct MooneyRivlinMaterial {
   static constexpr model::MaterialKind kKind = model::MaterialKind::MooneyRivlinRubber;
-  static constexpr unsigned kFamilies = kHex8 | kTet13;
+  static constexpr unsigned kFamilies = kHex8 | kTet13 | kTet10;
   static constexpr std::array<HistoryField, 1> kHistory{{kLeftCauchyGreenField}};
   using Parameters = HyperelasticParameters;
 

@@ -62,7 +62,7 @@ inline void ogden_stress(const HyperelasticParameters& p, const double beta[6], 
 
 struct OgdenMaterial {
   static constexpr model::MaterialKind kKind = model::MaterialKind::OgdenRubber;
-  static constexpr unsigned kFamilies = kHex8 | kTet13;
+  static constexpr unsigned kFamilies = kHex8 | kTet13 | kTet10;
   static constexpr std::array<HistoryField, 1> kHistory{{kLeftCauchyGreenField}};
   using Parameters = HyperelasticParameters;
 

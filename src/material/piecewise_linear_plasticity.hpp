@@ -17,7 +17,7 @@ namespace rf::material {
 struct PiecewiseLinearPlasticityMaterial {
   static constexpr model::MaterialKind kKind = model::MaterialKind::PiecewiseLinearPlasticity;
   static constexpr unsigned kFamilies =
-      kHex8 | kShell | kBeam | kTet13;  // beams: truss and ELFORM 1
+      kHex8 | kShell | kBeam | kTet13 | kTet10;  // beams: truss and ELFORM 1
   static constexpr std::array<HistoryField, 1> kHistory{{{"effective_plastic_strain", 1, false}}};
 
   template <class T>

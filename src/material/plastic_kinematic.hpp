@@ -16,7 +16,7 @@ namespace rf::material {
 struct PlasticKinematicMaterial {
   static constexpr model::MaterialKind kKind = model::MaterialKind::PlasticKinematic;
   static constexpr unsigned kFamilies =
-      kHex8 | kShell | kBeam | kTet13;  // beams: truss and ELFORM 1
+      kHex8 | kShell | kBeam | kTet13 | kTet10;  // beams: truss and ELFORM 1
   static constexpr std::array<HistoryField, 2> kHistory{
       {{"effective_plastic_strain", 1, false}, {"back_stress", 6, true}}};
 

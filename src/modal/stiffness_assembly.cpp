@@ -107,6 +107,8 @@ model::Model extract_parts(const model::Model& model, const std::vector<model::I
     if (!all && keep.count(solid.pid) == 0) continue;
     sub.solids.push_back(solid);
     for (const model::Id n : solid.nodes) used_nodes.insert(n);
+    for (const model::Id n : solid.midside)  // 10-node tetrahedra (0: none, or created later)
+      if (n != 0) used_nodes.insert(n);
   }
   for (const auto& shell : model.shells) {
     if (!all && keep.count(shell.pid) == 0) continue;
@@ -626,7 +628,8 @@ StructuralMatrices assemble_structural_matrices(const model::Model& model,
     }
   }
   for (const auto& block : state.hex_blocks) {
-    if (block.order == 1 && block.elform != 2 && block.elform != 13 && block.hourglass.ihq <= 3) {
+    if (block.order == 1 && block.elform != 2 && block.elform != 13 &&
+        !block.quadratic_tetrahedra() && block.hourglass.ihq <= 3) {
       out.warnings.push_back(fmt::format(
           "part {}: viscous hourglass control IHQ={} has no stiffness; the eigen analysis uses "
           "the Belytschko-Bindeman stiffness (IHQ 6, QM={:g}) so that hourglass modes are not "

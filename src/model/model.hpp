@@ -32,10 +32,15 @@ struct Node {
 
 // 8-node hexahedron as written in *ELEMENT_SOLID. Degenerate shapes (wedge, pyramid,
 // tetrahedron) are written with repeated node IDs per the LS-DYNA conventions.
+// A 10-node tetrahedron (N1..N10 on the second card, for *SECTION_SOLID ELFORM 16) keeps its
+// corners as the degenerate hexahedron N1 N2 N3 N4 N4 N4 N4 N4 in `nodes` and its mid-side nodes
+// N5..N10 (edges 1-2, 2-3, 3-1, 1-4, 2-4, 3-4) in `midside`; `ten_node` says which it is.
 struct SolidElement {
   Id id = 0;
   Id pid = 0;
   std::array<Id, 8> nodes{};
+  std::array<Id, 6> midside{};
+  bool ten_node = false;
   SourceLocation where;
 };
 
@@ -79,7 +84,8 @@ struct Part {
 struct SectionSolid {
   Id id = 0;
   int elform = 1;  // 1: one-point reduced + hourglass control; 2: selective-reduced 2x2x2
-                   // 10: one-point 4-node tetrahedron (constant strain)
+                   // 10: one-point 4-node tetrahedron (constant strain); 13: nodal-pressure
+                   // tetrahedron; 16: 10-node quadratic tetrahedron, 4 points
   SourceLocation where;
 };
 

@@ -61,7 +61,8 @@ void write_words(const fs::path& path, const char* mode, std::int64_t offset,
 }
 
 // The solids as written: 8 dense node indices and the block they come from. Elements of order
-// p > 1 become their p^3 sub-hexahedra between neighbouring tensor nodes.
+// p > 1 become their p^3 sub-hexahedra between neighbouring tensor nodes; 10-node tetrahedra
+// their corner tetrahedron.
 template <class Visit>
 void for_each_written_solid(const solver::State& state, const Visit& visit) {
   for (const element::HexBlock& block : state.hex_blocks) {
@@ -69,6 +70,14 @@ void for_each_written_solid(const solver::State& state, const Visit& visit) {
     const std::size_t npe = static_cast<std::size_t>(block.nodes_per_element());
     for (std::size_t e = 0; e < block.size(); ++e) {
       const std::int32_t* c = &block.conn[npe * e];
+      if (block.quadratic_tetrahedra()) {
+        // 10-node tetrahedra: the corner tetrahedron in LS-DYNA's degenerate form n1 n2 n3 n4 n4
+        // n4 n4 n4 (the 8-node solid record; the mid-side nodes are in the node list with their
+        // motion, but no 10-node connectivity record is written).
+        const std::int32_t corners[8] = {c[0], c[1], c[2], c[3], c[3], c[3], c[3], c[3]};
+        visit(block, e, corners);
+        continue;
+      }
       if (p <= 1) {
         visit(block, e, c);
         continue;

@@ -369,7 +369,12 @@ void FieldWriter::write_frame(const solver::State& state, const FrameOptions& op
       VtkCell cell;
       const std::int32_t* nodes_of_cell = cell.nodes.data();
       int cell_nodes = 0;
-      if (p > 1) {
+      if (block.quadratic_tetrahedra()) {
+        // N1..N4, then the mid-side nodes of edges 1-2, 2-3, 3-1, 1-4, 2-4, 3-4: VTK's order.
+        cell.type = VtkCellType::kQuadraticTetra;
+        nodes_of_cell = &block.conn[npe * e];
+        cell_nodes = static_cast<int>(npe);
+      } else if (p > 1) {
         // Curved cells: ParaView draws them with their true (polynomial) geometry. VTK places
         // Lagrange points equispaced in the cell; ours sit on GLL points, so the drawn surface
         // passes through every node but is parametrised slightly differently inside a cell.

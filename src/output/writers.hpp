@@ -284,6 +284,7 @@ enum class VtkCellType : std::uint8_t {
   kHexahedron = 12,
   kWedge = 13,
   kPyramid = 14,
+  kQuadraticTetra = 24,      // VTK_QUADRATIC_TETRA: 10 points, LS-DYNA's ELFORM 16 node order
   kLagrangeHexahedron = 72,  // VTK_LAGRANGE_HEXAHEDRON: (p+1)^3 points, order from the count
 };
 

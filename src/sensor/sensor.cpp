@@ -34,6 +34,12 @@ std::vector<double> average_gradient(const element::HexBlock& block, std::size_t
   const int npe = block.nodes_per_element();
   std::vector<double> g(3 * static_cast<std::size_t>(npe), 0.0);
   const std::int32_t* conn = &block.conn[static_cast<std::size_t>(npe) * e];
+  if (block.quadratic_tetrahedra()) {
+    throw InputError(context_of(s.where, "ELEMID"),
+                     fmt::format("element {} is a 10-node tetrahedron (ELFORM 16): element strain "
+                                 "sensors serve hexahedra and 4-node tetrahedra only",
+                                 s.element));
+  }
   if (block.order == 1) {
     // The uniform-strain operator b_iI = (1/V) dV/dx_iI (Flanagan & Belytschko 1981) evaluated
     // on the reference coordinates is exactly this average for a trilinear hexahedron.

@@ -61,6 +61,8 @@ ScaledCurve make_time_function(const model::Model& model, model::Id lcid, model:
 std::vector<std::int32_t> select_geometry(const State& state, const model::GeometrySeed& seed) {
   std::vector<mesh::HexView> hexes;
   for (const auto& block : state.hex_blocks) {
+    // 10-node tetrahedra have no hexahedral faces to offer (docs/elements.md, ELFORM 16).
+    if (block.quadratic_tetrahedra()) continue;
     const auto npe = static_cast<std::size_t>(block.nodes_per_element());
     for (std::size_t e = 0; e < block.size(); ++e) {
       hexes.push_back({block.order, &block.conn[npe * e], block.part_id});

@@ -8,6 +8,8 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <string>
+#include <utility>
 
 #include "element/kernels.hpp"
 #include "material/hyperelastic_setup.hpp"
@@ -166,6 +168,67 @@ void elevate_blocks(const model::Model& model, State& state) {
   state.generated_node_count = static_cast<std::int64_t>(x.size() - old_count);
 }
 
+// Mid-side nodes created for *ELEMENT_SOLID_TET4TOTET10 elements: one per edge (a pair of
+// dense corner indices), shared by every element on that edge, numbered in the order they are
+// first needed (parts in ID order, elements in input order, edges 1-2, 2-3, 3-1, 1-4, 2-4, 3-4)
+// with user IDs above every node ID of the deck, so that they cannot clash with one.
+struct MidsideNodes {
+  std::map<std::pair<std::int32_t, std::int32_t>, std::int32_t> of_edge;
+  model::Id next_id = 0;
+  std::size_t node_count = 0;
+};
+
+// Appends the 10 dense node indices of a 10-node tetrahedron (LS-DYNA order) to conn, creating
+// its mid-side nodes if it came from *ELEMENT_SOLID_TET4TOTET10 (midside all 0), and checks its
+// shape (element/tet10_block.hpp, tet10_geometry_problem) with the element's file and line.
+void append_quadratic_tetrahedron(const model::SolidElement& solid, model::Id pid,
+                                  const NodeIndex& node_index, MidsideNodes& generated,
+                                  NodalState& nodes, std::vector<std::int32_t>& conn) {
+  static const char* const kNodeFields[] = {"N1", "N2", "N3", "N4", "N5",
+                                            "N6", "N7", "N8", "N9", "N10"};
+  std::int32_t dense[10];
+  for (int k = 0; k < 4; ++k) dense[k] = node_index.at(solid.nodes[k], solid.where, kNodeFields[k]);
+  const bool convert = solid.midside[0] == 0;
+  for (int m = 0; m < 6; ++m) {
+    if (!convert) {
+      dense[4 + m] = node_index.at(solid.midside[m], solid.where, kNodeFields[4 + m]);
+      continue;
+    }
+    const std::int32_t a = dense[element::kTet10Edge[m][0]], b = dense[element::kTet10Edge[m][1]];
+    const auto key = std::minmax(a, b);
+    const auto [it, inserted] = generated.of_edge.try_emplace({key.first, key.second}, 0);
+    if (inserted) {
+      if (generated.next_id == 0)
+        for (const model::Id id : nodes.id) generated.next_id = std::max(generated.next_id, id);
+      const auto ua = static_cast<std::size_t>(a), ub = static_cast<std::size_t>(b);
+      const double mid[3] = {0.5 * (nodes.x0.x[ua] + nodes.x0.x[ub]),
+                             0.5 * (nodes.x0.y[ua] + nodes.x0.y[ub]),
+                             0.5 * (nodes.x0.z[ua] + nodes.x0.z[ub])};
+      it->second = static_cast<std::int32_t>(nodes.id.size());
+      nodes.id.push_back(++generated.next_id);
+      nodes.x0.x.push_back(mid[0]);
+      nodes.x0.y.push_back(mid[1]);
+      nodes.x0.z.push_back(mid[2]);
+      ++generated.node_count;
+    }
+    dense[4 + m] = it->second;
+  }
+  double x[10][3];
+  for (int k = 0; k < 10; ++k) {
+    const auto i = static_cast<std::size_t>(dense[k]);
+    x[k][0] = nodes.x0.x[i];
+    x[k][1] = nodes.x0.y[i];
+    x[k][2] = nodes.x0.z[i];
+  }
+  const std::string problem = element::tet10_geometry_problem(x);
+  if (!problem.empty()) {
+    throw InputError(context_of(solid.where, "N1"),
+                     fmt::format("element {} of part {} (ELFORM 16, 10-node tetrahedron): {}",
+                                 solid.id, pid, problem));
+  }
+  conn.insert(conn.end(), dense, dense + 10);
+}
+
 }  // namespace
 
 element::HourglassSettings resolve_hourglass(const model::Model& model, const model::Part& part) {
@@ -299,6 +362,7 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
     nodes.x0.z[i] = model.nodes[i].x[2];
   }
 
+  MidsideNodes generated;
   // Group elements by part in part-ID order; input order is kept within a part so that
   // results do not depend on how the deck interleaves parts.
   std::map<model::Id, std::vector<std::size_t>> elements_of_part;
@@ -356,10 +420,18 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
     // the hexahedron kernels hand its blocks to their own kernel.
     const int elform = sec_it->second.elform;
     const bool tetrahedra_only = elform == 10 || elform == 13;
+    const bool quadratic = elform == 16;
     block.elform = elform == 10 ? 1 : elform;
     block.rigid = mat.kind == model::MaterialKind::Rigid;
     block.has_force_slots = !block.rigid;
     block.order = part_order(model, pid);
+    if (quadratic && block.order != 1) {
+      throw InputError(context_of(part.where, "SECID"),
+                       fmt::format("part {} has *SECTION_SOLID {} ELFORM 16 (10-node "
+                                   "tetrahedra) and *CHANGE_P-ORDER order {}: p-elevation "
+                                   "serves hexahedra only",
+                                   pid, part.secid, block.order));
+    }
     // Rigid parts: the section and hourglass do not matter; E and PR only for contact later.
     if (!block.rigid) block.hourglass = resolve_hourglass(model, part);
     if (tetrahedra_only) block.hourglass.qm = 0.0;
@@ -385,6 +457,16 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
                                      "ELFORM 10 for this material)",
                                      pid, mat.keyword, mat.id, part.secid));
       }
+      if (quadratic && !material::serves(material_index, material::kTet10)) {
+        throw InputError(
+            context_of(part.where, "MID"),
+            fmt::format("part {} uses {} (material {}) with *SECTION_SOLID {} ELFORM "
+                        "16, the 10-node tetrahedron, which runs *MAT_ELASTIC, "
+                        "*MAT_PLASTIC_KINEMATIC, *MAT_PIECEWISE_LINEAR_PLASTICITY, "
+                        "*MAT_MOONEY-RIVLIN_RUBBER and *MAT_OGDEN_RUBBER only (element "
+                        "{} is the first of the part)",
+                        pid, mat.keyword, mat.id, part.secid, first.id));
+      }
       if (!material::serves(material_index, family)) {
         throw InputError(context_of(part.where, "MID"),
                          fmt::format("part {} uses {} (material {}) on order {} elements, which "
@@ -404,9 +486,27 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
             material::make_johnson_cook_parameters(model, part, mat, block.material);
     }
     block.element_id.reserve(element_indices.size());
-    block.conn.reserve(element_indices.size() * 8);
+    block.conn.reserve(element_indices.size() * static_cast<std::size_t>(quadratic ? 10 : 8));
     for (const std::size_t e : element_indices) {
       const auto& solid = model.solids[e];
+      if (solid.ten_node != quadratic) {
+        throw InputError(
+            context_of(solid.where, quadratic ? "N1" : "N9"),
+            quadratic
+                ? fmt::format("element {} of part {} has 8 node fields (a hexahedron or 4-node "
+                              "tetrahedron), but its section {} is ELFORM 16, the 10-node "
+                              "tetrahedron: write N1..N10 on the second card or use "
+                              "*ELEMENT_SOLID_TET4TOTET10",
+                              solid.id, pid, part.secid)
+                : fmt::format("element {} of part {} has 10 nodes, but its section {} is ELFORM "
+                              "{}; 10-node tetrahedra need ELFORM 16",
+                              solid.id, pid, part.secid, elform));
+      }
+      if (quadratic) {
+        block.element_id.push_back(solid.id);
+        append_quadratic_tetrahedron(solid, pid, node_index, generated, nodes, block.conn);
+        continue;
+      }
       if (tetrahedra_only) {
         std::array<model::Id, 8> sorted = solid.nodes;
         std::sort(sorted.begin(), sorted.end());
@@ -431,6 +531,7 @@ State build_state(const model::Model& model, const NodeIndex& node_index) {
 
   // p-elevation appends nodes; the nodal arrays are sized once all nodes exist.
   elevate_blocks(model, state);
+  state.generated_node_count += static_cast<std::int64_t>(generated.node_count);
   const std::size_t total = nodes.id.size();
   nodes.x = nodes.x0;
   nodes.v.resize(total);

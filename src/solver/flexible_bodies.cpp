@@ -264,6 +264,15 @@ void attach_flexible_bodies(const model::Model& model, const NodeIndex& node_ind
                           !model.switching.at_start.empty() || !model.switching.automatic.empty();
 
   for (const auto& [pid, card] : model.part_modes) {
+    // 10-node tetrahedra (ELFORM 16) have not been verified as flexible bodies (their mode
+    // shapes, stiffening and switching): refused rather than run untested.
+    for (const auto& block : state.hex_blocks) {
+      if (block.part_id == pid && block.quadratic_tetrahedra())
+        throw InputError(context_of(card.where, "PID"),
+                         fmt::format("part {} has 10-node tetrahedra (*SECTION_SOLID ELFORM 16): "
+                                     "*PART_MODES flexible bodies are not supported for them",
+                                     pid));
+    }
     // A deformable part becomes a flexible body when it is switched to rigid
     // (switching/flexible_switching.hpp).
     if (model.materials.at(model.parts.at(pid).mid).kind != model::MaterialKind::Rigid) continue;
@@ -340,7 +349,7 @@ void attach_flexible_bodies(const model::Model& model, const NodeIndex& node_ind
         }
         for (const auto& block : state.hex_blocks) {
           if (std::find(body.parts.begin(), body.parts.end(), block.part_id) == body.parts.end() ||
-              block.order != 1) {
+              block.order != 1 || block.quadratic_tetrahedra()) {
             continue;
           }
           for (const std::int32_t i : block.conn) input.hexahedra.push_back(position.at(i));

@@ -9,6 +9,7 @@
 #include "element/beam_block.hpp"
 #include "element/hex_block.hpp"
 #include "element/shell_block.hpp"
+#include "element/tet10_block.hpp"
 #include "model/error.hpp"
 #include "model/error_context.hpp"
 
@@ -29,6 +30,7 @@ double element_mass(const element::BeamBlock& b, std::size_t e) {
 
 element::KernelResult critical_steps(const element::HexBlock& b, const element::NodalView& v,
                                      std::vector<double>* raw) {
+  if (b.quadratic_tetrahedra()) return element::tet10_critical_timestep(b, v, raw);
   return element::hex_critical_timestep(b, v, raw);
 }
 element::KernelResult critical_steps(const element::ShellBlock& b, const element::NodalView& v,
@@ -119,9 +121,9 @@ bool scale_masses(MassScaling& scaling, State& state, const std::vector<std::int
   // element (hex_block.cpp); the steps here are elastic only. The reduction seen at the
   // smallest step is carried over to the new smallest step, so the step never exceeds what the
   // kernels would report.
-  const double viscous_share =
-      std::isfinite(element_dt) && old_min_step > 0.0 ? std::min(1.0, element_dt / old_min_step)
-                                                      : 1.0;
+  const double viscous_share = std::isfinite(element_dt) && old_min_step > 0.0
+                                   ? std::min(1.0, element_dt / old_min_step)
+                                   : 1.0;
   element_dt = min_step * viscous_share;
   controlling_element = min_element;
 
@@ -140,7 +142,10 @@ bool scale_masses(MassScaling& scaling, State& state, const std::vector<std::int
   };
   for (std::size_t b = 0; b < state.hex_blocks.size(); ++b) {
     if (scaling.hex_factor[b].empty()) continue;
-    element::add_hex_lumped_mass(state.hex_blocks[b], added, minus_one(scaling.hex_factor[b]));
+    if (state.hex_blocks[b].quadratic_tetrahedra())
+      element::add_tet10_lumped_mass(state.hex_blocks[b], added, minus_one(scaling.hex_factor[b]));
+    else
+      element::add_hex_lumped_mass(state.hex_blocks[b], added, minus_one(scaling.hex_factor[b]));
   }
   std::vector<double>& no_inertia = scaling.scratch.no_inertia;  // trusses without rotations
   auto& inertia_sink = rot.empty() ? no_inertia : added_inertia;

@@ -96,7 +96,7 @@ FlexibleSwitching::FlexibleSwitching(const model::Model& model, const solver::St
     pm.damping = std::move(selected.damping);
     const std::size_t bn = pm.nodes.size();
     if (card.form != 1 && static_cast<int>(pm.file_modes.size()) <= kMaxStiffeningModes &&
-        block->order == 1) {
+        block->order == 1 && !block->quadratic_tetrahedra()) {
       std::unordered_map<std::int32_t, std::int32_t> at;
       for (std::size_t k = 0; k < bn; ++k) at.emplace(pm.nodes[k], static_cast<std::int32_t>(k));
       for (const std::int32_t i : block->conn) pm.hexahedra.push_back(at.at(i));

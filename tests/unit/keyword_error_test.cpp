@@ -49,11 +49,12 @@ std::vector<ErrorCase> cases() {
       {"UnsupportedElform",
        deck("", "", "         1         7\n"),
        {"bar.k:17: *SECTION_SOLID card 1 field ELFORM: value 7 is not supported "
-        "(supported: 1, 2, 10, 13)"}},
+        "(supported: 1, 2, 10, 13, 16)"}},
       {"UnsupportedTetrahedronElform",
-       deck("", "", "         1        16\n"),
-       {"bar.k:17: *SECTION_SOLID card 1 field ELFORM: tetrahedron formulation 16 is not "
-        "supported (supported: 10, the one-point 4-node tetrahedron; 13, the nodal-pressure "
+       deck("", "", "         1        17\n"),
+       {"bar.k:17: *SECTION_SOLID card 1 field ELFORM: tetrahedron formulation 17 (the 10-node "
+        "composite tetrahedron) is not supported (supported: 10, the one-point 4-node "
+        "tetrahedron; 13, the nodal-pressure tetrahedron; 16, the 10-node quadratic "
         "tetrahedron)"}},
       {"UnknownNodeInElement",
        "*NODE\n1,0,0,0\n*ELEMENT_SOLID\n1,1,1,1,1,1,1,1,1,99\n*PART\np\n1,1,1\n"
@@ -293,7 +294,7 @@ INSTANTIATE_TEST_SUITE_P(Cases, KeywordError, ::testing::ValuesIn(cases()),
 
 TEST(KeywordErrorContext, ErrorCarriesStructuredContext) {
   try {
-    rf::io::read_deck_text(deck("", "", "         1        16\n"), "bar.k");
+    rf::io::read_deck_text(deck("", "", "         1        17\n"), "bar.k");
     FAIL() << "no error";
   } catch (const rf::InputError& e) {
     EXPECT_EQ(e.context().file, "bar.k");

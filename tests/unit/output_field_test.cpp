@@ -582,5 +582,53 @@ TEST(OutputFieldLagrange, HigherOrderBlockIsWrittenAsLagrangeCells) {
   EXPECT_EQ(at(26), (std::array<double, 3>{0.5, 0.5, 0.5}));
 }
 
+TEST(OutputFieldTet10, QuadraticTetrahedraAreWrittenAsVtkQuadraticTetra) {
+  // An ELFORM 16 block: VTK_QUADRATIC_TETRA (24) with the 10 nodes in LS-DYNA's order, which is
+  // VTK's (corners, then edges 0-1, 1-2, 2-0, 0-3, 1-3, 2-3); the cell stress the mean of the 4
+  // points.
+  solver::State state;
+  auto& nodes = state.nodes;
+  for (auto* v : {&nodes.x0, &nodes.x, &nodes.v, &nodes.a, &nodes.f_int, &nodes.f_ext}) {
+    v->resize(10);
+  }
+  nodes.mass.assign(10, 1.0);
+  const double corner[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  const int edge[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
+  element::HexBlock block;
+  block.part_id = 4;
+  block.elform = 16;
+  block.element_id = {11};
+  for (int a = 0; a < 10; ++a) {
+    const int node = 9 - a;  // any numbering: slot a holds node 9 - a
+    nodes.id.push_back(200 + a);
+    double x[3];
+    for (int d = 0; d < 3; ++d)
+      x[d] = a < 4 ? corner[a][d] : 0.5 * (corner[edge[a - 4][0]][d] + corner[edge[a - 4][1]][d]);
+    nodes.x0.x[node] = nodes.x.x[node] = x[0];
+    nodes.x0.y[node] = nodes.x.y[node] = x[1];
+    nodes.x0.z[node] = nodes.x.z[node] = x[2];
+    block.conn.push_back(node);
+  }
+  block.stress.assign(24, 0.0);
+  for (int q = 0; q < 4; ++q) block.stress[6 * q] = 1.0 + q;  // sigma_xx 1, 2, 3, 4: mean 2.5
+  state.hex_blocks = {block};
+  const auto dir = fresh_directory("field_tet10");
+  FieldWriter writer(dir);
+  writer.write_frame(state);
+  const std::string file = read_file(dir / "frames_0000.vtu");
+  XmlDocument doc = XmlReader(file).read();
+  const XmlElement& piece = doc.root.child("UnstructuredGrid").child("Piece");
+  const XmlElement& cells = piece.child("Cells");
+  const auto types = decode<std::uint8_t>(file, doc, cells.data_array("types"), "UInt8");
+  const auto conn = decode<std::int64_t>(file, doc, cells.data_array("connectivity"), "Int64");
+  ASSERT_EQ(types, std::vector<std::uint8_t>{24});
+  ASSERT_EQ(conn.size(), 10u);
+  for (int a = 0; a < 10; ++a) EXPECT_EQ(conn[static_cast<std::size_t>(a)], 9 - a) << "point " << a;
+  const auto stress =
+      decode<double>(file, doc, piece.child("CellData").data_array("stress"), "Float64");
+  ASSERT_GE(stress.size(), 6u);
+  EXPECT_DOUBLE_EQ(stress[0], 2.5);
+}
+
 }  // namespace
 }  // namespace rf::output

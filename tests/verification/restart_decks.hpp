@@ -128,6 +128,16 @@ inline std::string tetrahedra(double end_time) {
   return s;
 }
 
+// The same with 10-node tetrahedra (ELFORM 16): stresses and plastic history at 4 points.
+inline std::string tetrahedra16(double end_time) {
+  std::string s = tetrahedra(end_time);
+  const TetGrid grid = tet_box(4, 2, 2, 4.0, 2.0, 2.0, 0.15);
+  s.replace(s.find(grid.text()), grid.text().size(), grid.text10());
+  s.replace(s.find("*SECTION_SOLID\n1,13\n"), 20, "*SECTION_SOLID\n1,16\n");
+  s.replace(s.find("nodal-pressure tetrahedra"), 25, "10-node tetrahedra");
+  return s;
+}
+
 // The deformable deck with *MAT_JOHNSON_COOK and *EOS_LINEAR_POLYNOMIAL in both parts (part 2
 // VP 1): plastic strain, temperature, EOS energy, relative volume and the spall flag are
 // history that the dump must carry.

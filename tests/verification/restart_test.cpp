@@ -224,6 +224,9 @@ const Case kCases[] = {
     // Nodal-pressure tetrahedra (ELFORM 13), J2 plasticity.
     {"tetrahedra13", restart_decks::tetrahedra(4e-5), "", {}, 6e-6, 1},
     {"tetrahedra13", restart_decks::tetrahedra(4e-5), "", {}, 6e-6, 2},
+    // 10-node tetrahedra (ELFORM 16), J2 plasticity at 4 points.
+    {"tetrahedra16", restart_decks::tetrahedra16(4e-5), "", {}, 6e-6, 1},
+    {"tetrahedra16", restart_decks::tetrahedra16(4e-5), "", {}, 6e-6, 2},
     {"rubber", restart_decks::rubber(4e-5), "", {}, 6e-6, 1},
     {"rubber", restart_decks::rubber(4e-5), "", {}, 6e-6, 2},
     {"johnson_cook", restart_decks::johnson_cook(4e-5), "", {}, 6e-6, 1},

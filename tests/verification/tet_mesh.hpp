@@ -10,6 +10,7 @@
 #include <Eigen/Dense>
 #include <array>
 #include <functional>
+#include <map>
 #include <string>
 #include <utility>
 
@@ -47,6 +48,49 @@ struct TetGrid {
               std::swap(v[1], v[2]);
             f(v);
           }
+  }
+
+  // The same mesh as 10-node tetrahedra (ELFORM 16): each tetrahedron's corners, then the
+  // mid-side nodes of edges 1-2, 2-3, 3-1, 1-4, 2-4, 3-4 (LS-DYNA's order), one node per edge
+  // shared by the elements on it, with IDs after the grid's. A mid-side node sits at
+  // `curved(u, v, w)` for grid coordinates half-way along the edge when given (curved
+  // geometry), else at the midpoint of the edge. Two-card *ELEMENT_SOLID: EID PID, N1..N10.
+  std::string text10(
+      const std::function<Eigen::Vector3d(double, double, double)>& curved = {}) const {
+    std::map<std::pair<int, int>, int> midside;
+    std::string nodes, elements;
+    int next = first_node + node_count();
+    int eid = first_element;
+    static constexpr int kEdge[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
+    for_each_tetrahedron([&](const std::array<std::array<int, 3>, 4>& v) {
+      int ids[10];
+      for (int a = 0; a < 4; ++a) ids[a] = node(v[a][0], v[a][1], v[a][2]);
+      for (int m = 0; m < 6; ++m) {
+        const auto& p = v[kEdge[m][0]];
+        const auto& q = v[kEdge[m][1]];
+        const int a = ids[kEdge[m][0]], b = ids[kEdge[m][1]];
+        const auto [it, inserted] = midside.try_emplace({std::min(a, b), std::max(a, b)}, next);
+        if (inserted) {
+          ++next;
+          const Eigen::Vector3d x =
+              curved ? curved(0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1]), 0.5 * (p[2] + q[2]))
+                     : Eigen::Vector3d(0.5 *
+                                       (position(p[0], p[1], p[2]) + position(q[0], q[1], q[2])));
+          nodes += fmt::format("{},{:.17g},{:.17g},{:.17g}\n", it->second, x.x(), x.y(), x.z());
+        }
+        ids[4 + m] = it->second;
+      }
+      elements += fmt::format("{},{}\n{},{},{},{},{},{},{},{},{},{}\n", eid++, pid, ids[0], ids[1],
+                              ids[2], ids[3], ids[4], ids[5], ids[6], ids[7], ids[8], ids[9]);
+    });
+    std::string s = "*NODE\n";
+    for (int k = 0; k <= nk; ++k)
+      for (int j = 0; j <= nj; ++j)
+        for (int i = 0; i <= ni; ++i) {
+          const Eigen::Vector3d p = position(i, j, k);
+          s += fmt::format("{},{:.17g},{:.17g},{:.17g}\n", node(i, j, k), p.x(), p.y(), p.z());
+        }
+    return s + nodes + "*ELEMENT_SOLID\n" + elements;
   }
 
   std::string text() const {

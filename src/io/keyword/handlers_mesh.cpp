@@ -1,6 +1,8 @@
 // Mesh, parts, sections, materials and sets.
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "io/keyword/definition_ids.hpp"
@@ -58,6 +60,7 @@ void element_solid(const Block& block, ReaderContext& context) {
   static const Layout layout = uniform_layout(10, 8);
   static const char* const kNodeFields[] = {"N1", "N2", "N3", "N4", "N5",
                                             "N6", "N7", "N8", "N9", "N10"};
+  const bool convert = block.has_option("TET4TOTET10");
   CardCursor cursor(block, context.parameters);
   while (true) {
     cursor.skip_blank_lines();
@@ -75,11 +78,13 @@ void element_solid(const Block& block, ReaderContext& context) {
     if (!nodes_on_first) second.emplace(cursor.next(2, layout, "N1..N8"));
     const Card& nodes = second ? *second : first;
     const std::size_t offset = second ? 0 : 2;
+    const bool ten_node =
+        second && (nodes.id(8, kNodeFields[8]) != 0 || nodes.id(9, kNodeFields[9]) != 0);
     // Four nodes and N5..N8 blank: a tetrahedron written without repeated nodes, stored as
     // LS-DYNA's degenerate hexahedron N1 N2 N3 N4 N4 N4 N4 N4.
     bool tetrahedron = true;
     for (std::size_t k = 4; k < 8; ++k) tetrahedron &= nodes.id(offset + k, kNodeFields[k]) == 0;
-    for (std::size_t k = 0; k < 8; ++k) {
+    for (std::size_t k = 0; k < 8 && !ten_node; ++k) {
       e.nodes[k] = tetrahedron && k >= 4 ? e.nodes[3] : nodes.id(offset + k, kNodeFields[k]);
       if (e.nodes[k] <= 0) {
         throw nodes.error(kNodeFields[k],
@@ -88,12 +93,51 @@ void element_solid(const Block& block, ReaderContext& context) {
       }
     }
     if (second) {
-      for (std::size_t k = 8; k < 10; ++k) {
-        if (nodes.id(k, kNodeFields[k]) != 0) {
-          throw nodes.error(kNodeFields[k], "10-node solids are not supported");
+      // N9 or N10 given: LS-DYNA's 10-node tetrahedron (*SECTION_SOLID ELFORM 16), corners
+      // N1..N4, mid-side nodes N5 (edge 1-2), N6 (2-3), N7 (3-1), N8 (1-4), N9 (2-4), N10 (3-4).
+      // Whether the part's section is ELFORM 16 is checked when the state is built (the section
+      // may come later in the deck).
+      if (nodes.id(8, kNodeFields[8]) != 0 || nodes.id(9, kNodeFields[9]) != 0) {
+        for (std::size_t k = 0; k < 10; ++k) {
+          if (nodes.id(k, kNodeFields[k]) <= 0) {
+            throw nodes.error(kNodeFields[k],
+                              "a 10-node tetrahedron needs 10 positive node IDs: corners N1..N4, "
+                              "then the mid-side nodes of edges 1-2, 2-3, 3-1, 1-4, 2-4, 3-4");
+          }
         }
+        for (std::size_t k = 0; k < 8; ++k) e.nodes[k] = nodes.id(k < 4 ? k : 3, kNodeFields[k]);
+        for (std::size_t k = 0; k < 6; ++k) e.midside[k] = nodes.id(4 + k, kNodeFields[4 + k]);
+        e.ten_node = true;
+        for (std::size_t a = 0; a < 10; ++a)
+          for (std::size_t b = 0; b < a; ++b)
+            if (nodes.id(a, kNodeFields[a]) == nodes.id(b, kNodeFields[b]))
+              throw nodes.error(
+                  kNodeFields[a],
+                  fmt::format("node {} appears twice ({} and {}) in a 10-node "
+                              "tetrahedron, whose 10 nodes must be distinct",
+                              nodes.id(a, kNodeFields[a]), kNodeFields[b], kNodeFields[a]));
       }
       e.where.line = first.line_number();
+    }
+    if (convert) {
+      // *ELEMENT_SOLID_TET4TOTET10: a 4-node tetrahedron that LS-DYNA raises to 10 nodes; the
+      // mid-side nodes are created when the state is built (solver/build_state.cpp), midside
+      // all 0 says so.
+      if (e.ten_node) {
+        throw nodes.error("N9",
+                          "*ELEMENT_SOLID_TET4TOTET10 takes 4-node tetrahedra (N1..N4, "
+                          "N5..N8 blank or equal to N4), not 10-node ones");
+      }
+      std::array<model::Id, 8> sorted = e.nodes;
+      std::sort(sorted.begin(), sorted.end());
+      const auto distinct = std::unique(sorted.begin(), sorted.end()) - sorted.begin();
+      if (distinct != 4 || e.nodes[4] != e.nodes[3] || e.nodes[7] != e.nodes[3]) {
+        throw nodes.error("N5", fmt::format("*ELEMENT_SOLID_TET4TOTET10 element {} is not a "
+                                            "4-node tetrahedron N1 N2 N3 N4 (N5..N8 blank or "
+                                            "N4): it has {} distinct nodes",
+                                            e.id, distinct));
+      }
+      e.ten_node = true;
     }
     const auto [it, inserted] = context.element_origin.try_emplace(
         e.id, std::pair{context.current_file_index, first.line_number()});
@@ -341,15 +385,17 @@ void section_solid(const Block& block, ReaderContext& context) {
     s.id = positive_id(card, 0, "SECID", "section");
     s.elform = card.flag(1, "ELFORM", 1);
     if (s.elform == 0) s.elform = 1;  // LS-DYNA: 0 means the default formulation 1
-    if (s.elform == 16 || s.elform == 17) {
-      throw card.error("ELFORM", fmt::format("tetrahedron formulation {} is not supported "
-                                             "(supported: 10, the one-point 4-node tetrahedron; "
-                                             "13, the nodal-pressure tetrahedron)",
-                                             s.elform));
+    if (s.elform == 17) {
+      throw card.error("ELFORM",
+                       "tetrahedron formulation 17 (the 10-node composite tetrahedron) "
+                       "is not supported (supported: 10, the one-point 4-node "
+                       "tetrahedron; 13, the nodal-pressure tetrahedron; 16, the "
+                       "10-node quadratic tetrahedron)");
     }
-    if (s.elform != 1 && s.elform != 2 && s.elform != 10 && s.elform != 13) {
+    if (s.elform != 1 && s.elform != 2 && s.elform != 10 && s.elform != 13 && s.elform != 16) {
       throw card.error(
-          "ELFORM", fmt::format("value {} is not supported (supported: 1, 2, 10, 13)", s.elform));
+          "ELFORM",
+          fmt::format("value {} is not supported (supported: 1, 2, 10, 13, 16)", s.elform));
     }
     s.where = card.location();
     check_unique(context.model.solid_sections, s.id, card, "SECID", "section");

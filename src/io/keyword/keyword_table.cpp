@@ -10,7 +10,7 @@ const std::vector<KeywordEntry>& table() {
   using namespace handlers;
   static const std::vector<KeywordEntry> entries{
       {"*NODE", node, {}},
-      {"*ELEMENT_SOLID", element_solid, {}},
+      {"*ELEMENT_SOLID", element_solid, {"TET4TOTET10"}},
       {"*PART", part, {"INERTIA"}},
       {"*SECTION_SOLID", section_solid, {"TITLE"}},
       {"*ELEMENT_SHELL", element_shell, {"THICKNESS", "BETA", "MCID", "OFFSET"}},
