@@ -214,6 +214,15 @@ void print_model_summary(const model::Model& model, const solver::Simulation& si
                    : fmt::format(", {} translation and {} rotation constraint(s)",
                                  s.constraints.translation_count, s.constraints.rotation_count));
   }
+  if (!sim.joint_stiffnesses().empty()) {  // *CONSTRAINED_JOINT_STIFFNESS_GENERALIZED
+    fmt::print(out, "joint stiffnesses: {}\n", sim.joint_stiffnesses().joints.size());
+    for (const auto& j : sim.joint_stiffnesses().joints) {
+      fmt::print(out, "  joint stiffness {}: parts {} (A) and {} (B){}, stability limit {:.4g}\n",
+                 j.id, j.pida, j.pidb,
+                 j.jid != 0 ? fmt::format(", reported with joint {}", j.jid) : "",
+                 j.critical_step);
+    }
+  }
   const auto& walls = sim.rigid_walls().walls;
   auto wall_shape_name = [](const contact::RigidWall& wall) -> std::string {
     switch (wall.shape) {

@@ -902,6 +902,28 @@ struct Joint {
   SourceLocation where;
 };
 
+// *CONSTRAINED_JOINT_STIFFNESS_GENERALIZED: moments between rigid bodies A and B about the
+// axes of the relative rotation angles (phi, theta, psi) of the local systems CIDA (on A) and
+// CIDB (on B). _TRANSLATIONAL: forces along the axes of CIDB from the relative displacement of
+// the systems' origins. Index k = 0, 1, 2: PH, T, PS (GENERALIZED) or X, Y, Z (TRANSLATIONAL).
+struct JointStiffness {
+  enum class Type { Generalized, Translational };
+  Type type = Type::Generalized;
+  Id id = 0;  // JSID
+  std::string title;
+  Id pida = 0, pidb = 0;
+  Id cida = 0, cidb = 0;                  // CIDB 0: CIDA
+  Id jid = 0;                             // joint whose output rows it joins (0: none)
+  std::array<Id, 3> lcid{};               // moment (force) vs angle (displacement); 0: none
+  std::array<Id, 3> dlcid{};              // damping moment (force) vs rate; 0: none
+  std::array<double, 3> stiffness{};      // ESPH EST ESPS (ESX ESY ESZ): friction and stops
+  std::array<double, 3> friction{};       // FMPH FMT FMPS (FFX FFY FFZ); 0: none
+  std::array<double, 3> negative_stop{};  // NSAPH NSAT NSAPS in degrees (NSDX..); 0: none
+  std::array<double, 3> positive_stop{};  // PSAPH PSAT PSAPS in degrees (PSDX..); 0: none
+  std::array<SourceLocation, 4> card;     // where each of the four cards is
+  SourceLocation where;                   // the first card
+};
+
 struct Termination {
   double endtim = 0.0;
   int endcyc = 0;
@@ -1107,6 +1129,7 @@ struct Model {
   std::vector<PartMassAddition> part_mass_additions;    // *ELEMENT_MASS_PART
   std::vector<MassDamping> mass_damping;                // *DAMPING_GLOBAL, *DAMPING_PART_MASS
   std::vector<Joint> joints;                            // *CONSTRAINED_JOINT_..., deck order
+  std::vector<JointStiffness> joint_stiffnesses;        // *CONSTRAINED_JOINT_STIFFNESS_...
   std::vector<SpotWeld> spot_welds;                     // *CONSTRAINED_SPOTWELD, deck order
   std::vector<NodeSetConstraint> node_set_constraints;  // *CONSTRAINED_NODE_SET, deck order
 

@@ -17,6 +17,12 @@ std::string jntforc_text(const std::vector<JntforcRow>& rows) {
       const double resultant = std::sqrt((*v)[0] * (*v)[0] + (*v)[1] * (*v)[1] + (*v)[2] * (*v)[2]);
       fmt::format_to(std::back_inserter(text), ",{:.17g}", resultant);
     }
+    fmt::format_to(std::back_inserter(text), ",{}", row.stiffness);
+    for (const auto* v : {&row.angle, &row.stiffness_moment}) {
+      for (const double value : *v) fmt::format_to(std::back_inserter(text), ",{:.17g}", value);
+    }
+    fmt::format_to(std::back_inserter(text), ",{:.17g},{:.17g}", row.elastic_energy,
+                   row.dissipated_energy);
     text.push_back('\n');
   }
   return std::string(text.data(), text.size());

@@ -164,7 +164,8 @@ struct RwforcRow {
 
 inline constexpr std::string_view kJntforcHeader =
     "time,joint,force_x,force_y,force_z,force_resultant,moment_x,moment_y,moment_z,"
-    "moment_resultant";
+    "moment_resultant,stiffness,phi,theta,psi,moment_phi,moment_theta,moment_psi,"
+    "stiffness_elastic_energy,stiffness_dissipated_energy";
 
 // swforc.csv: per spot weld and output time, the force it carries (normal: tension > 0 along
 // N1 -> N2; shear: magnitude), its status (0 active, 1 failed, 2 deleted by NCSF, 3 merged into
@@ -180,6 +181,14 @@ struct JntforcRow {
   std::int64_t joint = 0;
   std::array<double, 3> force{};
   std::array<double, 3> moment{};
+  // The *CONSTRAINED_JOINT_STIFFNESS_GENERALIZED whose JID is this joint (0: none, and zeros):
+  // its angles phi, theta, psi (radians), the moments it resists them with (the generalized
+  // moments conjugate to the angles), its elastic energy and the energy it has dissipated.
+  std::int64_t stiffness = 0;
+  std::array<double, 3> angle{};
+  std::array<double, 3> stiffness_moment{};
+  double elastic_energy = 0.0;
+  double dissipated_energy = 0.0;
 };
 
 // The jntforc.csv lines of one output time (src/output/jntforc_writer.cpp).

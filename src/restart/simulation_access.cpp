@@ -75,6 +75,18 @@ void SimulationAccess::write_members(Simulation& s, const Group& g) {
     }
     g.write("joint_force_moment", std::span<const double>(joint_loads));
   }
+  if (!s.joint_stiffnesses_.empty()) {  // angles, friction slips, last moments (history)
+    std::vector<double> history;
+    for (const auto& j : s.joint_stiffnesses_.joints) {
+      history.insert(history.end(), j.angle.begin(), j.angle.end());
+      history.insert(history.end(), j.slip.begin(), j.slip.end());
+      history.insert(history.end(), j.moment.begin(), j.moment.end());
+      history.insert(history.end(), j.torque_b.data(), j.torque_b.data() + 3);
+      history.insert(history.end(),
+                     {j.absorbed, j.initial_elastic, j.elastic, j.started ? 1.0 : 0.0});
+    }
+    g.write("joint_stiffness_history", std::span<const double>(history));
+  }
   if (!s.nodal_constraints_.empty()) {  // spot welds and node sets: status and last forces
     std::vector<std::int64_t> status;
     std::vector<double> numbers;
@@ -145,6 +157,30 @@ void SimulationAccess::read_members(Simulation& s, const Group& g) {
         joint.moment[k] = joint_loads[6 * j + 3 + k];
       }
     }
+  }
+  if (!s.joint_stiffnesses_.empty()) {
+    constexpr std::size_t kWidth = 16;
+    const std::vector<double> history = g.read_doubles("joint_stiffness_history");
+    if (history.size() != kWidth * s.joint_stiffnesses_.joints.size()) {
+      g.fail("joint_stiffness_history",
+             fmt::format("holds {} values, the rebuilt model has {} joint stiffnesses",
+                         history.size(), s.joint_stiffnesses_.joints.size()));
+    }
+    for (std::size_t i = 0; i < s.joint_stiffnesses_.joints.size(); ++i) {
+      auto& j = s.joint_stiffnesses_.joints[i];
+      const double* h = history.data() + kWidth * i;
+      for (int k = 0; k < 3; ++k) {
+        j.angle[k] = h[k];
+        j.slip[k] = h[3 + k];
+        j.moment[k] = h[6 + k];
+        j.torque_b[k] = h[9 + k];
+      }
+      j.absorbed = h[12];
+      j.initial_elastic = h[13];
+      j.elastic = h[14];
+      j.started = h[15] != 0.0;
+    }
+    solver::apply_joint_stiffness_torques(s.joint_stiffnesses_, s.rigid_);
   }
   if (!s.nodal_constraints_.empty() && g.has("nodal_constraint_status")) {
     auto& nc = s.nodal_constraints_;

@@ -573,8 +573,8 @@ RigidStepSums advance_rigid_bodies(RigidSystem& rigid, const Boundary& boundary,
         load_moment += damping_moment;
       }
     }
-    body.force = ft.force + load_force;
-    body.torque = ft.torque + load_moment;
+    body.force = ft.force + load_force + body.joint_force;
+    body.torque = ft.torque + load_moment + body.joint_torque;
     // Nodal moments on body nodes that carry rotations (shells and beams attached to the body).
     if (!state.rotations.empty()) {
       const RotationalState& rot = state.rotations;
@@ -676,6 +676,8 @@ RigidStepSums advance_rigid_bodies(RigidSystem& rigid, const Boundary& boundary,
     const Eigen::Vector3d& v_mid = body.mid_velocity;
     const Eigen::Vector3d& w_mid = body.mid_angular_velocity;
     sums.damping_work += dt_avg * (damping_force.dot(v_mid) + damping_moment.dot(w_mid));
+    sums.joint_stiffness_work +=
+        dt_avg * (body.joint_force.dot(v_mid) + body.joint_torque.dot(w_mid));
     sums.external_work += dt_avg * (load_force.dot(v_mid) + load_moment.dot(w_mid)) +
                           s.reaction_impulse.dot(v_mid) + s.reaction_angular_impulse.dot(w_mid);
   }

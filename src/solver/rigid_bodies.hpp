@@ -74,6 +74,10 @@ struct RigidBody {
   Eigen::Vector3d mid_angular_velocity = Eigen::Vector3d::Zero();  // the same for w
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
   Eigen::Vector3d torque = Eigen::Vector3d::Zero();
+  // Force and torque (about x_c) of *CONSTRAINED_JOINT_STIFFNESS on the body, evaluated at t^n
+  // (solver/joint_stiffness.hpp) and added to the next advance; their work is internal work.
+  Eigen::Vector3d joint_force = Eigen::Vector3d::Zero();
+  Eigen::Vector3d joint_torque = Eigen::Vector3d::Zero();
   rigid::VelocityConstraints step_constraints;  // scratch, reused every step
   int flexible = -1;  // index into RigidSystem::flexible (*PART_MODES), -1: rigid
 };
@@ -124,7 +128,10 @@ struct RigidStepSums {
   double modal_damping_loss = 0.0;
   double modal_inertia_work = 0.0;
   double modal_stiffening_work = 0.0;  // work of the geometric-stiffening forces (internal)
-  double damping_work = 0.0;  // work of *DAMPING_* on the bodies (part of external_work)
+  double damping_work = 0.0;           // work of *DAMPING_* on the bodies (part of external_work)
+  // Work of the *CONSTRAINED_JOINT_STIFFNESS loads on the bodies this step (internal: its
+  // negative is the joints' stored and dissipated energy).
+  double joint_stiffness_work = 0.0;
 };
 
 // One rigid step from t^n (after the nodal velocity update): force and torque from the

@@ -97,6 +97,13 @@ Simulation::Simulation(model::Model model_in, SimulationOptions options)
       std::unique(boundary_.constrained_nodes.begin(), boundary_.constrained_nodes.end()),
       boundary_.constrained_nodes.end());
   joints_ = build_joints(model_, node_index_, state_);
+  if (!model_.joint_stiffnesses.empty() && model_.switching.flagged) {
+    throw InputError(model::context_of(model_.joint_stiffnesses.front().where, "PIDA"),
+                     "*CONSTRAINED_JOINT_STIFFNESS together with part switching "
+                     "(*DEFORMABLE_TO_RIGID...) is not supported: a switched part would leave "
+                     "the joint without its rigid body");
+  }
+  joint_stiffnesses_ = build_joint_stiffnesses(model_, rigid_);
   nodal_constraints_ = build_nodal_constraints(model_, node_index_, state_, rigid_);
   mass_scaling_ = setup_mass_scaling(model_, state_);
   contacts_ = contact::build_contacts(model_, node_index_, state_);
@@ -945,8 +952,10 @@ void Simulation::update_velocities() {
     sums[6 + k] += rigid_sums.angular_momentum[k] + rotation_sums[3 + k];
   }
   energy_.kinetic = sums[0];
-  energy_.internal_work +=
-      sums[1] + rigid_sums.modal_damping_loss - rigid_sums.modal_stiffening_work;
+  // The joint stiffnesses' loads act on the bodies only: their work on them, negated, is the
+  // energy the joints stored or dissipated (internal, as the penalty joints' nodal forces).
+  energy_.internal_work += sums[1] + rigid_sums.modal_damping_loss -
+                           rigid_sums.modal_stiffening_work - rigid_sums.joint_stiffness_work;
   if (part_histories_) part_histories_->add_step_work(state_, rigid_, vp, dt_avg);  // matsum
   if (erosion_.enabled()) {
     erosion_.add_step_work(state_, vp, dt_avg);
@@ -1249,6 +1258,14 @@ void Simulation::write_output_if_due(bool force) {
         row.force[k] = joint.force[k] == 0.0 ? 0.0 : -joint.force[k];
         row.moment[k] = joint.moment[k] == 0.0 ? 0.0 : -joint.moment[k];
       }
+      for (const SolverJointStiffness& stiffness : joint_stiffnesses_.joints) {
+        if (stiffness.jid != joint.id) continue;
+        row.stiffness = stiffness.id;
+        row.angle = stiffness.angle;
+        row.stiffness_moment = stiffness.moment;
+        row.elastic_energy = stiffness.elastic;
+        row.dissipated_energy = stiffness.dissipated();
+      }
       jntforc_rows_.push_back(row);
     }
     jntforc_csv_->write_text(output::jntforc_text(jntforc_rows_));
@@ -1420,6 +1437,8 @@ void Simulation::gather_internal_forces(bool book_work) {
     prepare_joint_stiffness(joints_, rigid_, state_, initial_dt_);
     add_joint_forces(joints_, state_);
   }
+  // Moments on the rigid bodies, applied by their next advance (not nodal forces).
+  evaluate_joint_stiffnesses(joint_stiffnesses_, rigid_, state_.dt);
 }
 
 // Shell and beam blocks: forces and moments into their slots, the step they allow.

@@ -23,6 +23,7 @@
 #include "solver/build_state.hpp"
 #include "solver/erosion.hpp"
 #include "solver/flexible_bodies.hpp"
+#include "solver/joint_stiffness.hpp"
 #include "solver/joints.hpp"
 #include "solver/mass_scaling.hpp"
 #include "solver/nodal_constraints.hpp"
@@ -188,6 +189,7 @@ class Simulation {
   std::int64_t element_count() const { return element_count_; }
   const RigidSystem& rigid_bodies() const { return rigid_; }
   const JointSystem& joints() const { return joints_; }
+  const JointStiffnessSystem& joint_stiffnesses() const { return joint_stiffnesses_; }
   const NodalConstraints& nodal_constraints() const { return nodal_constraints_; }
   const MassScaling& mass_scaling() const { return mass_scaling_; }
   const contact::RigidWallSystem& rigid_walls() const { return walls_; }
@@ -278,9 +280,10 @@ class Simulation {
   State state_;
   RigidSystem rigid_;
   JointSystem joints_;  // *CONSTRAINED_JOINT_... (penalty springs between node pairs)
-  NodalConstraints nodal_constraints_;  // *CONSTRAINED_SPOTWELD, *CONSTRAINED_NODE_SET
-  MassScaling mass_scaling_;            // *CONTROL_TIMESTEP DT2MS; inactive without it
-  Erosion erosion_;                     // failure criteria and deleted elements; inert without them
+  JointStiffnessSystem joint_stiffnesses_;  // *CONSTRAINED_JOINT_STIFFNESS_GENERALIZED
+  NodalConstraints nodal_constraints_;      // *CONSTRAINED_SPOTWELD, *CONSTRAINED_NODE_SET
+  MassScaling mass_scaling_;                // *CONTROL_TIMESTEP DT2MS; inactive without it
+  Erosion erosion_;  // failure criteria and deleted elements; inert without them
   std::unique_ptr<output::CsvFile> erosion_csv_;  // erosion.csv: one row per deleted element
   std::vector<model::Warning> warnings_;
   Boundary boundary_;

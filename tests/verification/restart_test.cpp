@@ -209,6 +209,36 @@ std::string deformable_with_springs() {
   return deck;
 }
 
+// Joint stiffness between a fixed rigid cube and a tumbling one: curves on phi and theta,
+// damping on phi, friction on theta and stops on psi, with the angles, moments and energies of
+// jntforc.csv (through a spherical joint at the centre of the tumbling cube) continued across
+// the dump. The friction spring slips between 0.07 and 0.1 s and sticks from 0.1 to 0.155 s:
+// the restart from the dump at 0.1 s must carry its slip angle (measured: restoring it as 0
+// changes d3plot01 and the later dumps).
+std::string joint_stiffness() {
+  std::string s = "*KEYWORD\n*TITLE\nrestart: joint stiffness\n";
+  s += "*CONTROL_TERMINATION\n0.2,0\n*CONTROL_TIMESTEP\n1.0e-4\n";
+  s += restart_decks::output_cards(2e-3, 2e-2) + "*DATABASE_JNTFORC\n2.0e-3\n";
+  s += "*NODE\n1,0.0,0.0,0.0\n2,1.0,0.0,0.0\n3,1.0,1.0,0.0\n4,0.0,1.0,0.0\n5,0.0,0.0,1.0\n"
+       "6,1.0,0.0,1.0\n7,1.0,1.0,1.0\n8,0.0,1.0,1.0\n11,2.0,0.0,0.0\n12,3.0,0.0,0.0\n"
+       "13,3.0,1.0,0.0\n14,2.0,1.0,0.0\n15,2.0,0.0,1.0\n16,3.0,0.0,1.0\n17,3.0,1.0,1.0\n"
+       "18,2.0,1.0,1.0\n101,2.5,0.5,0.5\n102,2.5,0.5,0.5\n";
+  s += "*ELEMENT_SOLID\n1,1,1,2,3,4,5,6,7,8\n2,2,11,12,13,14,15,16,17,18\n";
+  s += "*PART\nground\n1,1,1\n*PART_INERTIA\ntumbler\n2,1,2\n2.5,0.5,0.5,3.0,0,0\n"
+       "2.0,0.0,0.0,1.5,0.0,2.5\n0.0,0.0,0.0,6.0,-5.0,9.0\n";
+  s += "*SECTION_SOLID\n1,1\n*MAT_RIGID\n1,7850.0,2.1e11,0.3\n1.0,7,7\n"
+       "*MAT_RIGID\n2,7850.0,2.1e11,0.3\n";
+  s += "*CONSTRAINED_EXTRA_NODES_NODE\n1,101\n2,102\n";
+  s += "*CONSTRAINED_JOINT_SPHERICAL_ID\n4,centre\n101,102\n";
+  s += "*DEFINE_COORDINATE_VECTOR\n1,1.0,1.0,0.0,-1.0,2.0,1.0\n";
+  s += "*DEFINE_CURVE\n5\n-10.0,-30000.0\n0.0,0.0\n0.3,400.0\n10.0,10000.0\n";
+  s += "*DEFINE_CURVE\n6\n-100.0,-20.0\n100.0,20.0\n";
+  s += "*CONSTRAINED_JOINT_STIFFNESS_GENERALIZED\n10,1,2,1,0,4\n5,5,0,6,0,0\n"
+       "0.0,0.0,2000.0,150.0,3000.0,0.0\n0.0,0.0,0.0,0.0,10.0,10.0\n";
+  s += "*END\n";
+  return s;
+}
+
 const Case kCases[] = {
     {"deformable", restart_decks::deformable(4e-5), "", {}, 6e-6, 1},
     {"deformable", restart_decks::deformable(4e-5), "", {}, 6e-6, 2},
@@ -262,6 +292,8 @@ const Case kCases[] = {
     {"mass_scaling", deformable_mass_scaled(), "", {}, 6e-6, 2},
     {"springs", deformable_with_springs(), "", {}, 6e-6, 1},
     {"springs", deformable_with_springs(), "", {}, 6e-6, 2},
+    // Joint stiffness: friction slip, angles and moments across the dump.
+    {"joint_stiffness", joint_stiffness(), "", {}, 0.05, 1},
     // Shells (ELFORM 2: *MAT_024 with IHQ 4, *MAT_003 NIP 5 with IHQ 5) and beams (integrated
     // *MAT_003, resultant), spinning and bent: stresses, history, hourglass forces, beam frames and
     // resultants, nodal angular velocities and moments across the dump.

@@ -69,6 +69,7 @@ void damping_part_mass(const Block&, ReaderContext&);
 
 // handlers_joints.cpp
 void constrained_joint(const Block&, ReaderContext&);
+void constrained_joint_stiffness(const Block&, ReaderContext&);
 
 // handlers_welds.cpp
 void constrained_spotweld(const Block&, ReaderContext&);

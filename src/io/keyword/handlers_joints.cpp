@@ -91,4 +91,72 @@ void constrained_joint(const Block& block, ReaderContext& context) {
   if (!any) throw block_error(block, 1, "N1", "no joint card follows the keyword");
 }
 
+// *CONSTRAINED_JOINT_STIFFNESS_GENERALIZED (LS-DYNA manual, volume I,
+// *CONSTRAINED_JOINT_STIFFNESS): four cards per joint stiffness, repeated; trailing cards of the
+// last one may be left out (their fields take the defaults, 0). Resolved and checked against
+// parts, coordinate systems, curves and joints by solver/joint_stiffness.cpp.
+void constrained_joint_stiffness(const Block& block, ReaderContext& context) {
+  const Layout six = uniform_layout(6, 10);
+  CardCursor cursor(block, context.parameters);
+  bool any = false;
+  int n = 1;
+  while (true) {
+    cursor.skip_blank_lines();
+    if (cursor.at_end()) break;
+    model::JointStiffness js;
+    js.type = model::JointStiffness::Type::Generalized;
+    const Card first = cursor.next(n++, six, "JSID PIDA PIDB CIDA CIDB JID");
+    js.id = first.id(0, "JSID");
+    if (js.id <= 0) throw first.error("JSID", "a positive joint stiffness ID is required");
+    js.pida = first.id(1, "PIDA");
+    js.pidb = first.id(2, "PIDB");
+    js.cida = first.id(3, "CIDA");
+    js.cidb = first.id(4, "CIDB");
+    js.jid = first.id(5, "JID");
+    if (js.pida <= 0) throw first.error("PIDA", "the part of rigid body A is required");
+    if (js.pidb <= 0) throw first.error("PIDB", "the part of rigid body B is required");
+    if (js.cida <= 0) {
+      throw first.error("CIDA", "the coordinate system of body A is required (a positive ID)");
+    }
+    if (js.cidb < 0) throw first.error("CIDB", "a coordinate system ID >= 0 is required");
+    if (js.jid < 0) throw first.error("JID", "a joint ID >= 0 is required");
+    js.card[0] = first.location();
+    js.where = js.card[0];
+    for (int c = 1; c < 4; ++c) {
+      js.card[c] = js.card[c - 1];
+      if (cursor.at_end()) continue;  // left out: defaults
+      static const char* const names[4] = {"", "LCIDPH LCIDT LCIDPS DLCIDPH DLCIDT DLCIDPS",
+                                           "ESPH FMPH EST FMT ESPS FMPS",
+                                           "NSAPH PSAPH NSAT PSAT NSAPS PSAPS"};
+      const Card card = cursor.next(n++, six, names[c]);
+      js.card[c] = card.location();
+      if (c == 1) {
+        static const char* const curves[3] = {"LCIDPH", "LCIDT", "LCIDPS"};
+        static const char* const damping[3] = {"DLCIDPH", "DLCIDT", "DLCIDPS"};
+        for (int k = 0; k < 3; ++k) {
+          js.lcid[k] = card.id(k, curves[k]);
+          js.dlcid[k] = card.id(3 + k, damping[k]);
+        }
+      } else if (c == 2) {
+        static const char* const stiffness[3] = {"ESPH", "EST", "ESPS"};
+        static const char* const friction[3] = {"FMPH", "FMT", "FMPS"};
+        for (int k = 0; k < 3; ++k) {
+          js.stiffness[k] = card.real(2 * k, stiffness[k], 0.0);
+          js.friction[k] = card.real(2 * k + 1, friction[k], 0.0);
+        }
+      } else {
+        static const char* const negative[3] = {"NSAPH", "NSAT", "NSAPS"};
+        static const char* const positive[3] = {"PSAPH", "PSAT", "PSAPS"};
+        for (int k = 0; k < 3; ++k) {
+          js.negative_stop[k] = card.real(2 * k, negative[k], 0.0);
+          js.positive_stop[k] = card.real(2 * k + 1, positive[k], 0.0);
+        }
+      }
+    }
+    context.model.joint_stiffnesses.push_back(js);
+    any = true;
+  }
+  if (!any) throw block_error(block, 1, "JSID", "no joint stiffness card follows the keyword");
+}
+
 }  // namespace rf::io::handlers

@@ -38,6 +38,10 @@ constexpr std::array kRules{
     Rule{"*BOUNDARY_", true, kPhysics, "a boundary condition"},
     Rule{"*BOUNDARY_THERMAL_", true, kPhysics, "a thermal boundary condition"},
     Rule{"*CONSTRAINED_", true, kPhysics, "a constraint"},
+    Rule{"*CONSTRAINED_JOINT_STIFFNESS", true, kPhysics,
+         "a joint stiffness variant that is not supported (supported: "
+         "*CONSTRAINED_JOINT_STIFFNESS_GENERALIZED; _TRANSLATIONAL, _FLEXION-TORSION, "
+         "_CYLINDRICAL and _SPHERICAL are not)"},
     Rule{"*CONTROL_", true, kPhysics, "a solver control"},
     Rule{"*CONTROL_THERMAL_", true, kPhysics, "a thermal solver control"},
     Rule{"*CONTROL_ALE", true, kPhysics, "an ALE control"},

@@ -83,6 +83,7 @@ const std::vector<KeywordEntry>& table() {
       {"*CONSTRAINED_JOINT_TRANSLATIONAL", constrained_joint, {"ID", "FAILURE"}},
       {"*CONSTRAINED_JOINT_UNIVERSAL", constrained_joint, {"ID", "FAILURE"}},
       {"*CONSTRAINED_JOINT_LOCKING", constrained_joint, {"ID", "FAILURE"}},
+      {"*CONSTRAINED_JOINT_STIFFNESS_GENERALIZED", constrained_joint_stiffness, {}},
       {"*CONSTRAINED_NODAL_RIGID_BODY", constrained_nodal_rigid_body, {"SPC", "INERTIA", "TITLE"}},
       {"*CONSTRAINED_SPOTWELD", constrained_spotweld, {"ID", "FILTERED", "FORCE"}},
       {"*CONSTRAINED_NODE_SET", constrained_node_set, {"ID"}},
