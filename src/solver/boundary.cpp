@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "element/tet10_block.hpp"
 #include "mesh/surface.hpp"
 #include "model/curve.hpp"
 #include "model/error.hpp"
@@ -61,8 +62,19 @@ ScaledCurve make_time_function(const model::Model& model, model::Id lcid, model:
 std::vector<std::int32_t> select_geometry(const State& state, const model::GeometrySeed& seed) {
   std::vector<mesh::HexView> hexes;
   for (const auto& block : state.hex_blocks) {
-    // 10-node tetrahedra have no hexahedral faces to offer (docs/elements.md, ELFORM 16).
-    if (block.quadratic_tetrahedra()) continue;
+    // The surface search walks hexahedral faces; 10-node tetrahedra (ELFORM 16) have none, so a
+    // seed that could reach them is refused rather than answered without them.
+    if (block.quadratic_tetrahedra()) {
+      if (seed.pid == 0 || seed.pid == block.part_id) {
+        throw InputError(context_of(seed.where, seed.pid == 0 ? "" : "pid"),
+                         fmt::format("the surface of geometry seed {} would be searched over "
+                                     "part {}, whose 10-node tetrahedra (ELFORM 16) the search "
+                                     "does not cover: restrict the seed to another part (pid) or "
+                                     "use a node set",
+                                     seed.id, block.part_id));
+      }
+      continue;
+    }
     const auto npe = static_cast<std::size_t>(block.nodes_per_element());
     for (std::size_t e = 0; e < block.size(); ++e) {
       hexes.push_back({block.order, &block.conn[npe * e], block.part_id});
@@ -99,6 +111,36 @@ double ScaledCurve::operator()(double t) const {
   return scale;
 }
 
+namespace {
+
+// The mid-side nodes that *ELEMENT_SOLID_TET4TOTET10 created (the deck does not know them, so no
+// node set lists them) belong to a node set when both ends of their edge do: a constraint or load
+// on the corner nodes of a face reaches the whole quadratic face, as the set's author meant.
+void add_created_midside_nodes(const State& state, const NodeIndex& node_index,
+                               std::vector<std::int32_t>& nodes) {
+  const std::size_t deck_nodes = node_index.size();
+  if (state.nodes.size() <= deck_nodes || nodes.empty()) return;
+  std::vector<std::uint8_t> in_set(state.nodes.size(), 0);
+  for (const std::int32_t i : nodes) in_set[static_cast<std::size_t>(i)] = 1;
+  for (const auto& block : state.hex_blocks) {
+    if (!block.quadratic_tetrahedra()) continue;
+    for (std::size_t e = 0; e < block.size(); ++e) {
+      const std::int32_t* c = &block.conn[element::kTet10Nodes * e];
+      for (int m = 0; m < 6; ++m) {
+        const auto mid = static_cast<std::size_t>(c[4 + m]);
+        if (mid < deck_nodes || in_set[mid]) continue;
+        if (in_set[static_cast<std::size_t>(c[element::kTet10Edge[m][0]])] &&
+            in_set[static_cast<std::size_t>(c[element::kTet10Edge[m][1]])]) {
+          in_set[mid] = 1;
+          nodes.push_back(static_cast<std::int32_t>(mid));
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+
 std::vector<std::int32_t> resolve_nodes(const model::Model& model, const NodeIndex& node_index,
                                         const State& state, model::Target target, model::Id id,
                                         const model::SourceLocation& where, const char* field) {
@@ -129,6 +171,7 @@ std::vector<std::int32_t> resolve_nodes(const model::Model& model, const NodeInd
         throw InputError(context_of(where, field), fmt::format("node set {} is not defined", id));
       }
       for (const model::Id nid : it->second.nodes) out.push_back(node_index.at(nid, where, field));
+      add_created_midside_nodes(state, node_index, out);
       break;
     }
     case model::Target::Part:
@@ -351,8 +394,13 @@ Boundary resolve_boundary(const model::Model& model, const NodeIndex& node_index
     const char* field = load.target == model::Target::Node ? "NID" : "NSID";
     const bool moment = load.dof >= 5 && load.dof <= 7;
     const int axis = moment ? load.dof - 5 : translation_axis(load.dof, load.where);
-    const auto nodes =
-        resolve_nodes(model, node_index, state, load.target, load.id, load.where, field);
+    auto nodes = resolve_nodes(model, node_index, state, load.target, load.id, load.where, field);
+    // A nodal force acts on each listed node: the mid-side nodes a set gains from
+    // *ELEMENT_SOLID_TET4TOTET10 (add_created_midside_nodes) would add to the total load.
+    if (load.target == model::Target::NodeSet) {
+      std::erase_if(
+          nodes, [&](std::int32_t i) { return static_cast<std::size_t>(i) >= node_index.size(); });
+    }
     const ScaledCurve value = make_curve(model, load.lcid, load.sf, 0.0, load.where);
     if (!moment) {
       for (const auto i : nodes) b.nodal_forces.push_back(NodalForce{i, axis, value});

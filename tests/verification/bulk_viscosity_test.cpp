@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "deck_builder.hpp"
+#include "shock_profile.hpp"
 
 namespace rf::test {
 namespace {
@@ -36,16 +37,8 @@ double wave_speed() {
   return std::sqrt(constrained_modulus() / kRho);
 }
 
-// Shock speed from rho0 U v = -M ln(1 - v / U): with the compression e = v / U this is
-// -e ln(1 - e) = (v / c)^2, increasing in e on (0, 1), solved by bisection.
 double shock_speed(double v) {
-  const double target = (v / wave_speed()) * (v / wave_speed());
-  double lo = 0.0, hi = 0.999;
-  for (int it = 0; it < 200; ++it) {
-    const double e = 0.5 * (lo + hi);
-    (-e * std::log(1.0 - e) < target ? lo : hi) = e;
-  }
-  return v / (0.5 * (lo + hi));
+  return shock::speed(v, wave_speed());
 }
 
 struct ShockRun {
@@ -93,46 +86,17 @@ ShockRun run_shock(int elform, double v, const std::string& control, double fron
   return out;
 }
 
-// Mean pressure over the elements between fractions a and b of the distance the front ran.
 double plateau(const ShockRun& r, double front, double a, double b) {
-  double sum = 0.0;
-  int n = 0;
-  for (int e = 0; e < kElements; ++e) {
-    const double x = (e + 0.5) * kH;
-    if (x > a * front && x < b * front) {
-      sum += r.pressure[e];
-      ++n;
-    }
-  }
-  return n > 0 ? sum / n : 0.0;
+  return shock::plateau(r.pressure, kH, front, a, b);
 }
-
-// Front position by equal area: the distance over which the plateau pressure would give the
-// same integral of pressure as the bar holds.
 double front_position(const ShockRun& r, double p) {
-  double area = 0.0;
-  for (double q : r.pressure) area += q * kH;
-  return area / p;
+  return shock::front_position(r.pressure, kH, p);
 }
-
-// Width of the front in elements: from the last element (counting from the piston) above 90 %
-// of p to the first one below 10 %, interpolated linearly between element centres.
 double front_width(const ShockRun& r, double p) {
-  auto crossing = [&](double level) {
-    for (int e = kElements - 1; e > 0; --e) {
-      if (r.pressure[e - 1] >= level * p && r.pressure[e] < level * p) {
-        const double f = (r.pressure[e - 1] - level * p) / (r.pressure[e - 1] - r.pressure[e]);
-        return e - 1 + f;
-      }
-    }
-    return 0.0;
-  };
-  return crossing(0.1) - crossing(0.9);
+  return shock::front_width(r.pressure, p);
 }
-
-// Largest pressure behind the front relative to the plateau, minus 1.
 double overshoot(const ShockRun& r, double p) {
-  return *std::max_element(r.pressure.begin(), r.pressure.end()) / p - 1.0;
+  return shock::overshoot(r.pressure, p);
 }
 
 double stored_energy(const ShockRun& r) {

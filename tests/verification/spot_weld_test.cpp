@@ -179,6 +179,49 @@ TEST(SpotWeld, FailsWhenTheNormalForceReachesSn) {
   EXPECT_NEAR(v_mean, v_a_expected, 0.02 * v_a_expected);
 }
 
+// The same four welds written as *CONSTRAINED_GENERALIZED_WELD_SPOT_ID, each on a node set of
+// its two nodes (sets 21..24; B's node first in two of them: the order of a set is the weld's).
+std::string generalized_welds(double sn) {
+  const Block a = block_a(), b = block_b();
+  std::string s;
+  int id = 0;
+  for (int k = 0; k <= 1; ++k)
+    for (int j = 0; j <= 1; ++j) {
+      s += id % 2 == 0 ? node_set(21 + id, {a.node(1, j, k), b.node(0, j, k)})
+                       : node_set(21 + id, {b.node(0, j, k), a.node(1, j, k)});
+      s += fmt::format(
+          "*CONSTRAINED_GENERALIZED_WELD_SPOT_ID\n{}\n{},0,0,0.0,0,1\n0.0,0.0,{:.17g},"
+          "0.0,1.0,1.0\n",
+          11 + id, 21 + id, sn);
+      ++id;
+    }
+  return s;
+}
+
+TEST(SpotWeld, GeneralizedWeldOfTwoNodesFailsLikeTheSpotweld) {
+  // Reference: the analytic failure time 8 SN / R of FailsWhenTheNormalForceReachesSn, and the
+  // same run written with *CONSTRAINED_SPOTWELD (bitwise, up to the order of each pair).
+  const double rate = 40.0, sn = 5.0, t_fail = 8.0 * sn / rate;
+  const std::string tail = pull(rate) + fmt::format(
+                                            "*CONTROL_TERMINATION\n{:.17g},0\n*CONTROL_TIMESTEP\n"
+                                            "0,0.6\n*END\n",
+                                            1.4 * t_fail);
+  solver::Simulation plain(read(two_blocks() + welds(sn, 0.0, true) + tail), {});
+  solver::Simulation general(read(two_blocks() + generalized_welds(sn) + tail), {});
+  plain.run();
+  general.run();
+  const auto& wp = plain.nodal_constraints().welds;
+  const auto& wg = general.nodal_constraints().welds;
+  ASSERT_EQ(wg.size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k) {
+    EXPECT_EQ(wg[k].status, solver::ConstraintStatus::kFailed);
+    EXPECT_NEAR(wg[k].failure_time / t_fail, 1.0, 0.02);
+    EXPECT_EQ(wg[k].failure_time, wp[k].failure_time) << "weld " << k;
+  }
+  EXPECT_EQ(plain.state().nodes.x.x, general.state().nodes.x.x);
+  EXPECT_EQ(plain.energy().kinetic, general.energy().kinetic);
+}
+
 TEST(SpotWeld, FailsAtItsTime) {
   std::string deck = two_blocks() + welds(0.0, 0.25) + pull(40.0);
   deck += "*CONTROL_TERMINATION\n0.4,0\n*CONTROL_TIMESTEP\n0,0.6\n*END\n";
@@ -382,6 +425,19 @@ TEST(SpotWeld, BadCardsAreRefusedWithTheField) {
   EXPECT_NE(error_of("*SET_NODE_LIST\n1\n2,3\n*CONSTRAINED_NODE_SET\n1,8\n").find("DOF"),
             std::string::npos);
   EXPECT_NE(error_of("*CONSTRAINED_NODE_SET\n77,1\n").find("77"), std::string::npos);
+  // Generalized spot welds: two nodes only, no filter, no node pairs, no plastic strain.
+  const std::string weld = "*CONSTRAINED_GENERALIZED_WELD_SPOT\n";
+  EXPECT_NE(error_of("*SET_NODE_LIST\n5\n2,101,103\n" + weld + "5\n0.0,0.0,5.0\n")
+                .find("3 distinct nodes"),
+            std::string::npos);
+  EXPECT_NE(error_of(weld + "66\n0.0,0.0,5.0\n").find("node set 66"), std::string::npos);
+  EXPECT_NE(error_of("*SET_NODE_LIST\n5\n2,101\n" + weld + "5,0,4\n0.0,0.0,5.0\n").find("FILTER"),
+            std::string::npos);
+  EXPECT_NE(
+      error_of("*SET_NODE_LIST\n5\n2,101\n" + weld + "5,0,0,0.0,2\n0.0,0.0,5.0\n").find("NPR"),
+      std::string::npos);
+  EXPECT_NE(error_of("*SET_NODE_LIST\n5\n2,101\n" + weld + "5\n0.0,0.2,5.0\n").find("EPSF"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -606,5 +606,43 @@ TEST(Tet10Input, InvertedAndMisorderedElementsAreRefused) {
   EXPECT_NE(what.find("verification.k:"), std::string::npos) << what;
 }
 
+TEST(Tet10Conservation, NodeSetsReachTheMidsideNodesThatTet4ToTet10Creates) {
+  // The deck's node sets cannot list the mid-side nodes *ELEMENT_SOLID_TET4TOTET10 creates; a
+  // created node joins a set when both ends of its edge are in it (solver/boundary.cpp). So an
+  // SPC set of the corner nodes on the face x = 0 holds the whole quadratic face, and an initial
+  // velocity given to a set of corner nodes reaches the mid-side nodes between them.
+  const TetGrid grid = tet_box(4, 2, 2, 2.0, 1.0, 1.0);
+  std::string deck = "*KEYWORD\n" + grid.text();
+  deck.replace(deck.find("*ELEMENT_SOLID\n"), 15, "*ELEMENT_SOLID_TET4TOTET10\n");
+  deck += "*PART\nblock\n1,1,1\n*SECTION_SOLID\n1,16\n" + elastic_card(7850.0, 2.1e11, 0.3);
+  std::vector<int> face, corners;
+  for (int k = 0; k <= grid.nk; ++k)
+    for (int j = 0; j <= grid.nj; ++j) face.push_back(grid.node(0, j, k));
+  for (int n = 1; n <= grid.node_count(); ++n) corners.push_back(n);
+  deck += node_set(1, face) + node_set(2, corners);
+  deck += "*BOUNDARY_SPC_SET\n1,0,1,1,1\n*INITIAL_VELOCITY\n2\n10.0,0.0,0.0\n";
+  deck += "*CONTROL_TERMINATION\n1.0e3\n*END\n";
+  solver::Simulation sim(read(deck), {});
+  const solver::NodalState& n = sim.state().nodes;
+  const auto first_created = static_cast<std::size_t>(grid.node_count());
+  ASSERT_GT(n.size(), first_created);
+  for (std::size_t i = first_created; i < n.size(); ++i)
+    EXPECT_EQ(n.v.x[i], 10.0) << "created node " << n.id[i] << " between two set nodes";
+  for (int cycle = 0; cycle < 50; ++cycle) sim.cycle();
+  int on_face = 0, moved = 0;
+  for (std::size_t i = first_created; i < n.size(); ++i) {
+    if (n.x0.x[i] != 0.0) {
+      moved += n.x.x[i] > n.x0.x[i] ? 1 : 0;
+      continue;
+    }
+    ++on_face;
+    EXPECT_EQ(n.x.x[i], 0.0) << "created node " << n.id[i] << " on the held face";
+    EXPECT_EQ(n.x.y[i], n.x0.y[i]);
+    EXPECT_EQ(n.x.z[i], n.x0.z[i]);
+  }
+  EXPECT_EQ(on_face, 16) << "the held face's 2 x 2 squares have 16 edges with created nodes";
+  EXPECT_GT(moved, 0);
+}
+
 }  // namespace
 }  // namespace rf::test

@@ -54,6 +54,14 @@ struct ReaderContext {
     model::SourceLocation where;
   };
   std::vector<Exemption> exemptions;
+  // *CONSTRAINED_GENERALIZED_WELD_SPOT: a spot weld of the two nodes of a node set, resolved
+  // into model.spot_welds once the sets are complete (finish_model).
+  struct GeneralizedWeld {
+    model::SpotWeld weld;  // n1, n2 filled from the set
+    bool with_id = false;
+    model::Id nsid = 0;
+  };
+  std::vector<GeneralizedWeld> generalized_welds;
 
   // IMPETUS definitions resolved once the whole deck is read (finish_impetus): generated meshes
   // need IDs above every user-defined one, and *BC_MOTION becomes different model entries for

@@ -688,6 +688,7 @@ void finish_model(ReaderContext& context) {
   finish_impetus(context);
   for (const auto& n : m.nodes) nodes.insert(n.id);  // generated meshes
   handlers::finish_sets(context);
+  handlers::finish_generalized_welds(context);
   if (context.d3plot_npltc > 0 && m.termination.endtim > 0.0) {
     m.output.d3plot_dt = m.termination.endtim / context.d3plot_npltc;
   }
@@ -767,8 +768,10 @@ void finish_model(ReaderContext& context) {
       ++k;
     }
   };
-  for (const auto& e : m.shells) check_structural(e.id, e.pid, e.where, e.nodes, "shell", m.shell_sections);
-  for (const auto& e : m.beams) check_structural(e.id, e.pid, e.where, e.nodes, "beam", m.beam_sections);
+  for (const auto& e : m.shells)
+    check_structural(e.id, e.pid, e.where, e.nodes, "shell", m.shell_sections);
+  for (const auto& e : m.beams)
+    check_structural(e.id, e.pid, e.where, e.nodes, "beam", m.beam_sections);
   for (const auto& e : m.discretes)
     check_structural(e.id, e.pid, e.where, e.nodes, "discrete", m.discrete_sections);
   for (const auto& e : m.solids) {

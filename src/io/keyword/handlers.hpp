@@ -73,6 +73,9 @@ void constrained_joint_stiffness(const Block&, ReaderContext&);
 
 // handlers_welds.cpp
 void constrained_spotweld(const Block&, ReaderContext&);
+void constrained_generalized_weld_spot(const Block&, ReaderContext&);
+// After every file is read: the generalized spot welds' node sets into model.spot_welds.
+void finish_generalized_welds(ReaderContext&);
 void constrained_node_set(const Block&, ReaderContext&);
 
 // handlers_control.cpp

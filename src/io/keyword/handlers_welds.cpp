@@ -3,7 +3,9 @@
 // checked when the solver resolves them (solver/nodal_constraints.cpp).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "io/keyword/handlers.hpp"
 
@@ -97,6 +99,104 @@ void constrained_spotweld(const Block& block, ReaderContext& context) {
     any = true;
   }
   if (!any) throw block_error(block, 1, "N1", "no spot weld card follows the keyword");
+}
+
+// *CONSTRAINED_GENERALIZED_WELD_SPOT (_ID): [WID]; NSID CID FILTER WINDOW NPR NPRT; TFAIL EPSF
+// SN SS N M. A node set of exactly two nodes is the spot weld of *CONSTRAINED_SPOTWELD between
+// them, with the same failure criterion (the set is resolved in finish_model). Sets of more nodes
+// (one rigid weld of many nodes) and the filter, fillet-pair and plastic-strain options are
+// refused; CID (output axes for coincident nodes) and NPRT (rbdout printing) change no physics.
+void constrained_generalized_weld_spot(const Block& block, ReaderContext& context) {
+  const bool with_id = block.has_option("ID");
+  CardCursor cursor(block, context.parameters);
+  bool any = false;
+  int n = 1;
+  while (true) {
+    cursor.skip_blank_lines();
+    if (cursor.at_end()) break;
+    ReaderContext::GeneralizedWeld g;
+    g.with_id = with_id;
+    if (with_id) {
+      const Card id_card = cursor.next(n++, Layout{10}, "WID");
+      g.weld.id = id_card.id(0, "WID");
+      if (g.weld.id <= 0) throw id_card.error("WID", "a positive spot weld ID is required");
+    }
+    const Card card = cursor.next(n++, kEightByTen, "NSID CID FILTER WINDOW NPR NPRT");
+    g.nsid = card.id(0, "NSID");
+    if (g.nsid <= 0) throw card.error("NSID", "a positive node set ID is required");
+    if (card.integer(2, "FILTER", 0) > 1 || card.real(3, "WINDOW", 0.0) != 0.0) {
+      throw card.error(card.integer(2, "FILTER", 0) > 1 ? "FILTER" : "WINDOW",
+                       "filtering of the weld force is not supported (leave FILTER blank, 0 or 1 "
+                       "and WINDOW blank or 0: the failure test uses the force of each cycle)");
+    }
+    if (card.integer(4, "NPR", 0) != 0) {
+      throw card.error("NPR",
+                       "individual node pairs (cross fillet and combined welds) are not "
+                       "supported: leave NPR blank");
+    }
+    const int nprt = card.flag(5, "NPRT", 0);
+    if (nprt < 0 || nprt > 2)
+      throw card.error("NPRT", fmt::format("value {} is not 0, 1 or 2", nprt));
+    const Card failure = cursor.next(n++, kEightByTen, "TFAIL EPSF SN SS N M");
+    g.weld.tf = failure.real(0, "TFAIL", 1e20);
+    if (!std::isfinite(g.weld.tf)) throw failure.error("TFAIL", "the failure time must be finite");
+    if (g.weld.tf == 0.0) g.weld.tf = 1e20;
+    const double epsf = failure.real(1, "EPSF", 0.0);
+    if (epsf != 0.0) {
+      throw failure.error("EPSF",
+                          "failure by the plastic strain of the welded shells is not supported "
+                          "(leave EPSF blank or 0, or use SN/SS/TFAIL)");
+    }
+    for (const auto& [i, name] : {std::pair{2u, "SN"}, std::pair{3u, "SS"}}) {
+      if (failure.real(i, name, 0.0) < 0.0) {
+        throw failure.error(name,
+                            "a negative failure force is not supported: give a force >= 0 "
+                            "(0 turns the term off)");
+      }
+    }
+    g.weld.sn = non_negative_real(failure, 2, "SN", 0.0);
+    g.weld.ss = non_negative_real(failure, 3, "SS", 0.0);
+    g.weld.n = non_negative_real(failure, 4, "N", 1.0);
+    if (g.weld.n == 0.0) g.weld.n = 1.0;
+    g.weld.m = non_negative_real(failure, 5, "M", 1.0);
+    if (g.weld.m == 0.0) g.weld.m = 1.0;
+    g.weld.where = card.location();
+    context.generalized_welds.push_back(g);
+    any = true;
+  }
+  if (!any) throw block_error(block, 1, "NSID", "no weld card follows the keyword");
+}
+
+void finish_generalized_welds(ReaderContext& context) {
+  auto& welds = context.model.spot_welds;
+  for (auto& g : context.generalized_welds) {
+    const auto it = context.model.node_sets.find(g.nsid);
+    if (it == context.model.node_sets.end()) {
+      throw located_error(g.weld.where, "NSID", fmt::format("node set {} is not defined", g.nsid));
+    }
+    std::vector<model::Id> nodes = it->second.nodes;
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    if (nodes.size() != 2) {
+      throw located_error(
+          g.weld.where, "NSID",
+          fmt::format("node set {} has {} distinct nodes; a generalized spot weld is supported "
+                      "between exactly two nodes (a weld of more nodes, one rigid patch, is not)",
+                      g.nsid, nodes.size()));
+    }
+    // In the set's order, as LS-DYNA takes the first node as the weld's first.
+    g.weld.n1 = it->second.nodes.front();
+    g.weld.n2 = g.weld.n1 == nodes[0] ? nodes[1] : nodes[0];
+    if (!g.with_id) g.weld.id = static_cast<model::Id>(welds.size()) + 1;
+    for (const auto& other : welds) {
+      if (other.id == g.weld.id) {
+        throw located_error(g.weld.where, g.with_id ? "WID" : "NSID",
+                            fmt::format("spot weld ID {} is already used at {}:{}", g.weld.id,
+                                        other.where.file, other.where.line));
+      }
+    }
+    welds.push_back(g.weld);
+  }
 }
 
 void constrained_node_set(const Block& block, ReaderContext& context) {

@@ -86,6 +86,7 @@ const std::vector<KeywordEntry>& table() {
       {"*CONSTRAINED_JOINT_STIFFNESS_GENERALIZED", constrained_joint_stiffness, {}},
       {"*CONSTRAINED_NODAL_RIGID_BODY", constrained_nodal_rigid_body, {"SPC", "INERTIA", "TITLE"}},
       {"*CONSTRAINED_SPOTWELD", constrained_spotweld, {"ID", "FILTERED", "FORCE"}},
+      {"*CONSTRAINED_GENERALIZED_WELD_SPOT", constrained_generalized_weld_spot, {"ID"}},
       {"*CONSTRAINED_NODE_SET", constrained_node_set, {"ID"}},
       {"*BOUNDARY_PRESCRIBED_MOTION_RIGID", boundary_prescribed_motion_rigid, {"ID", "LOCAL"}},
       {"*LOAD_RIGID_BODY", load_rigid_body, {}},
