@@ -416,19 +416,6 @@ inline void density_and_length(const HexBlock& block, const Batch& b, Lanes volu
   length = r0 * volume_ratio_cbrt(volume / v0);
 }
 
-// Batched forms of bulk_viscosity_pressure and viscous_time_step (element/solid_terms.hpp).
-inline Lanes bulk_viscosity_pressure(const BulkViscositySettings& bv, double wave_speed,
-                                     Lanes density, Lanes length, Lanes ekk) {
-  const Lanes e = ekk < 0.0 ? ekk : Lanes{};  // lane-wise select, no branch
-  return density * length * (bv.q1 * length * e * e - bv.q2 * wave_speed * e);
-}
-
-inline Lanes viscous_time_step(const BulkViscositySettings& bv, double c, Lanes length, Lanes ekk) {
-  const Lanes linear = Lanes{} + bv.q2 * c;
-  const Lanes q = ekk < 0.0 ? linear - bv.q1 * length * ekk : Lanes{};
-  return length / (q + lane_sqrt(q * q + c * c));
-}
-
 // The hourglass forms the kernel is instantiated for (IHQ 3 == 2, IHQ 5 == 4).
 enum class HourglassForm { kViscousLsDyna, kViscousFB, kStiffnessFB, kBelytschkoBindeman };
 
@@ -541,7 +528,8 @@ void elform1_batch(HexBlock& block, std::size_t first, int count, const NodalVie
   Lanes elem_dt = elem_length / block.material.wave_speed;
   Lanes bulk_work{};
   if (bulk) {
-    elem_dt = viscous_time_step(block.bulk_viscosity, block.material.wave_speed, elem_length, ekk);
+    elem_dt = viscous_time_step(block.bulk_viscosity, block.material.wave_speed, elem_length, ekk,
+                                [](Lanes x) { return lane_sqrt(x); });
     bulk_work = -q_bulk * ekk * vm * dt;
   }
   Lanes fsum{};

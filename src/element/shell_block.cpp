@@ -134,6 +134,7 @@
 #include "element/shell_block.hpp"
 
 #include "element/kernel_partials.hpp"
+#include "element/solid_terms.hpp"
 
 #include <fmt/format.h>
 #include <omp.h>
@@ -541,14 +542,11 @@ void shell_batch(ShellBlock& block, const BlockConstants& k, std::size_t first, 
   const bool bulk = block.bulk_viscosity.on();
   T step_length{}, area_rate{}, bulk_work{};
   if (bulk) {
-    const BulkViscositySettings& bv = block.bulk_viscosity;
     step_length = (f.area + tri * f.area) / tsqrt(max_side_squared(p));
     area_rate = em[0] + em[1];
-    const T compression = area_rate < 0.0 ? area_rate : T{};
     const T density = block.material.rho * area0 / f.area;
-    const T q =
-        density * step_length *
-        (bv.q1 * step_length * compression * compression - bv.q2 * k.wave_speed * compression);
+    const T q = bulk_viscosity_pressure(block.bulk_viscosity, k.wave_speed, density, step_length,
+                                        area_rate);
     N[0] -= q * t;
     N[1] -= q * t;
     bulk_work = -q * area_rate * t * fm.area * dt;
@@ -647,10 +645,8 @@ void shell_batch(ShellBlock& block, const BlockConstants& k, std::size_t first, 
   const T length = A + tri * A;  // (1 + beta) A
   T dt2 = length * length / (max_side_squared(p) * (k.wave_speed * k.wave_speed));
   if (bulk) {  // section 10: L_s / (Q + sqrt(Q^2 + c^2)) while the area shrinks
-    const BulkViscositySettings& bv = block.bulk_viscosity;
-    const double c = k.wave_speed;
-    const T q = area_rate < 0.0 ? bv.q2 * c - bv.q1 * step_length * area_rate : T{};
-    const T step = step_length / (q + tsqrt(q * q + c * c));
+    const T step = viscous_time_step(block.bulk_viscosity, k.wave_speed, step_length, area_rate,
+                                     [](T x) { return tsqrt(x); });
     dt2 = step * step;
   }
 

@@ -1,7 +1,7 @@
-// Pieces the solid kernels share (hex_block.cpp, tet13_block.cpp): the constants a material's
-// update takes from a block, the size of its history buffer, and the scalar forms of the
-// artificial bulk viscosity and of the critical step with it (the batched forms live next to
-// the batched ELFORM 1 kernel).
+// Pieces the solid kernels share (hex_block.cpp, tet13_block.cpp, tet10_block.cpp; the shells
+// take the bulk viscosity too): the constants a material's update takes from a block, the size
+// of its history buffer, and the artificial bulk viscosity and the critical step with it, for
+// one element or a batch.
 #pragma once
 
 #include <cmath>
@@ -41,19 +41,28 @@ constexpr int history_slots() {
 // blew up at TSSFAC 0.9). q is a pressure: it enters the nodal forces as -q on the diagonal of
 // the stress, never the stored stress. The energy it dissipates over a step is
 // q |e_kk| V dt >= 0 (V the mid-step volume, where e_kk is evaluated).
-inline double bulk_viscosity_pressure(const BulkViscositySettings& bv, double wave_speed,
-                                      double density, double length, double ekk) {
-  const double e = ekk < 0.0 ? ekk : 0.0;
+// T is double or a GCC vector of lanes (the batched hexahedron and shell kernels): the select
+// is lane-wise there, and the formula is the same for every element family.
+template <class T>
+inline T bulk_viscosity_pressure(const BulkViscositySettings& bv, double wave_speed, T density,
+                                 T length, T ekk) {
+  const T e = ekk < 0.0 ? ekk : T{};
   return density * length * (bv.q1 * length * e * e - bv.q2 * wave_speed * e);
 }
 
 // Critical step with bulk viscosity (LS-DYNA theory manual, "Time Step Control", solid
 // elements): dt_e = L_e / (Q + sqrt(Q^2 + c^2)), Q = Q2 c + Q1 L_e |e_kk| while e_kk < 0,
 // Q = 0 otherwise (then dt_e = L_e / sqrt(c^2) = L_e / c exactly, as without viscosity).
+// `sqrt_of` takes T: std::sqrt for one element, the kernel's lane-wise root for a batch.
+template <class T, class Sqrt>
+inline T viscous_time_step(const BulkViscositySettings& bv, double c, T length, T ekk,
+                           Sqrt&& sqrt_of) {
+  const T q = ekk < 0.0 ? (T{} + bv.q2 * c) - bv.q1 * length * ekk : T{};
+  return length / (q + sqrt_of(q * q + c * c));
+}
 inline double viscous_time_step(const BulkViscositySettings& bv, double c, double length,
                                 double ekk) {
-  const double q = ekk < 0.0 ? bv.q2 * c - bv.q1 * length * ekk : 0.0;
-  return length / (q + std::sqrt(q * q + c * c));
+  return viscous_time_step(bv, c, length, ekk, [](double x) { return std::sqrt(x); });
 }
 
 }  // namespace rf::element

@@ -210,6 +210,22 @@ std::vector<std::int32_t> resolve_nodes(const model::Model& model, const NodeInd
 
 namespace {
 
+// Nodal prescribed motion (any DOF) on a node that moves with a rigid body is an error: the
+// body's motion is prescribed with *BOUNDARY_PRESCRIBED_MOTION_RIGID.
+void refuse_rigid_nodes(const std::vector<std::int32_t>& nodes,
+                        const std::vector<std::int32_t>& body_of_node,
+                        const model::PrescribedMotion& pm, const State& state) {
+  if (body_of_node.empty()) return;
+  for (const auto i : nodes) {
+    if (body_of_node[static_cast<std::size_t>(i)] < 0) continue;
+    throw InputError(context_of(pm.where, pm.target == model::Target::Node ? "NID" : "NSID"),
+                     fmt::format("node {} moves with a rigid body (rigid part, extra node or "
+                                 "nodal rigid body); prescribe the motion of the body with "
+                                 "*BOUNDARY_PRESCRIBED_MOTION_RIGID",
+                                 state.nodes.id[i]));
+  }
+}
+
 // *BOUNDARY_PRESCRIBED_MOTION DOF 4 (along VID) and 5-8 (rotation about x, y, z, VID) on nodes.
 void add_prescribed_direction(const model::Model& model, const NodeIndex& node_index,
                               const State& state, const std::vector<std::int32_t>& body_of_node,
@@ -239,14 +255,8 @@ void add_prescribed_direction(const model::Model& model, const NodeIndex& node_i
   const ScaledCurve value =
       make_time_function(model, pm.lcid, pm.function, pm.sf, pm.birth, pm.where);
   const double death = pm.death <= 0.0 ? 1e28 : pm.death;
+  refuse_rigid_nodes(nodes, body_of_node, pm, state);
   for (const auto i : nodes) {
-    if (!body_of_node.empty() && body_of_node[static_cast<std::size_t>(i)] >= 0) {
-      throw InputError(context_of(pm.where, field),
-                       fmt::format("node {} moves with a rigid body (rigid part, extra node or "
-                                   "nodal rigid body); prescribe the motion of the body with "
-                                   "*BOUNDARY_PRESCRIBED_MOTION_RIGID",
-                                   state.nodes.id[i]));
-    }
     PrescribedDirection p{i, -1, n, pm.vad, value, pm.birth, death};
     if (rotation) {
       p.rotation = state.rotations.index(i);
@@ -357,14 +367,8 @@ Boundary resolve_boundary(const model::Model& model, const NodeIndex& node_index
                                      pm.target == model::Target::Node ? "NID" : "NSID");
     const ScaledCurve value =
         make_time_function(model, pm.lcid, pm.function, pm.sf, pm.birth, pm.where);
+    refuse_rigid_nodes(nodes, body_of_node, pm, state);
     for (const auto i : nodes) {
-      if (rigid(i)) {
-        throw InputError(context_of(pm.where, pm.target == model::Target::Node ? "NID" : "NSID"),
-                         fmt::format("node {} moves with a rigid body (rigid part, extra node or "
-                                     "nodal rigid body); prescribe the motion of the body with "
-                                     "*BOUNDARY_PRESCRIBED_MOTION_RIGID",
-                                     state.nodes.id[i]));
-      }
       const double death = pm.death <= 0.0 ? 1e28 : pm.death;
       if (rotation) {
         // The two translations normal to the rotation axis follow the circle; the one along

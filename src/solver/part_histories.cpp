@@ -4,6 +4,7 @@
 #include <map>
 
 #include "rigid/rigid_body.hpp"
+#include "solver/step_rotation.hpp"
 
 namespace rf::solver {
 
@@ -72,9 +73,7 @@ void PartHistories::add_step_work(const State& state, const RigidSystem& rigid, 
     displacement_.y[i] = dy;
     displacement_.z[i] = dz;
   }
-  // The rotation of the step of every node with rotations, as the global balance takes it
-  // (Simulation::update_rotations): the mean of the half-step angular velocities times dt_avg,
-  // and on a flexible body the body's turn plus the modes' share.
+  // The rotation of the step of every node with rotations, as the global balance takes it.
   const RotationalState& rot = state.rotations;
   if (!rot.empty()) {
     rotation_increment_.resize(rot.size());
@@ -84,16 +83,7 @@ void PartHistories::add_step_work(const State& state, const RigidSystem& rigid, 
     const std::int64_t count = static_cast<std::int64_t>(rot.size());
 #pragma omp parallel for schedule(static)
     for (std::int64_t r = 0; r < count; ++r) {
-      double dx = 0.5 * dt_avg * (rot.w_previous.x[r] + rot.w.x[r]);
-      double dy = 0.5 * dt_avg * (rot.w_previous.y[r] + rot.w.y[r]);
-      double dz = 0.5 * dt_avg * (rot.w_previous.z[r] + rot.w.z[r]);
-      const std::int32_t i = rot.node[r];
-      if (modal_work && body_of && body_of[i] >= 0) {
-        const Eigen::Vector3d& w_mid = rigid.bodies[body_of[i]].mid_angular_velocity;
-        dx = dt_avg * (w_mid.x() + modal_work[3 * r]);
-        dy = dt_avg * (w_mid.y() + modal_work[3 * r + 1]);
-        dz = dt_avg * (w_mid.z() + modal_work[3 * r + 2]);
-      }
+      const auto [dx, dy, dz] = step_rotation(rot, rigid, body_of, modal_work, r, dt_avg);
       rotation_increment_.x[r] = dx;
       rotation_increment_.y[r] = dy;
       rotation_increment_.z[r] = dz;

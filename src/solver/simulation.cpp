@@ -22,6 +22,7 @@
 #include "sensor/sensor.hpp"
 #include "sensor/sensor_output.hpp"
 #include "solver/interrupt.hpp"
+#include "solver/step_rotation.hpp"
 
 namespace rf::solver {
 
@@ -1079,18 +1080,10 @@ std::array<double, 6> Simulation::update_rotations(double dt_avg) {
   out = deterministic_sum<6>(
       count, reduction_scratch_rotations_, [&](std::int64_t r, std::array<double, 6>& acc) {
         const double wx = rot.w.x[r], wy = rot.w.y[r], wz = rot.w.z[r];
-        double dx = 0.5 * dt_avg * (rot.w_previous.x[r] + wx);
-        double dy = 0.5 * dt_avg * (rot.w_previous.y[r] + wy);
-        double dz = 0.5 * dt_avg * (rot.w_previous.z[r] + wz);
+        // As for translations: on a flexible body the body's turn dt_avg w_mid plus the modes'
+        // R^n Psi_j s_mid (solver/step_rotation.hpp).
+        const auto [dx, dy, dz] = step_rotation(rot, rigid_, body_of, modal_work, r, dt_avg);
         const std::int32_t i = rot.node[r];
-        if (modal_work && body_of && body_of[i] >= 0) {
-          // As for translations: the body's turn dt_avg w_mid plus the modes' R^n Psi_j s_mid, so
-          // the moments' work equals what the body and its modes received.
-          const Eigen::Vector3d& w_mid = rigid_.bodies[body_of[i]].mid_angular_velocity;
-          dx = dt_avg * (w_mid.x() + modal_work[3 * r]);
-          dy = dt_avg * (w_mid.y() + modal_work[3 * r + 1]);
-          dz = dt_avg * (w_mid.z() + modal_work[3 * r + 2]);
-        }
         acc[1] += rot.m_int.x[r] * dx + rot.m_int.y[r] * dy + rot.m_int.z[r] * dz;
         acc[2] += rot.m_ext.x[r] * dx + rot.m_ext.y[r] * dy + rot.m_ext.z[r] * dz;
         if (body_of && body_of[i] >= 0) return;  // the body holds its kinetic energy and momentum

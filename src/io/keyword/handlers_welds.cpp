@@ -23,6 +23,21 @@ double non_negative_real(const Card& card, std::size_t i, const char* field, dou
   return v;
 }
 
+// SN SS N M in fields 3-6 of a spot weld's failure card (*CONSTRAINED_SPOTWELD card 1,
+// *CONSTRAINED_GENERALIZED_WELD_SPOT card 2): forces >= 0 (0: the term is off; `negative_force`
+// says why a negative one is refused), exponents 0 meaning 1.
+void read_failure_forces(const Card& card, model::SpotWeld& weld, const char* negative_force) {
+  for (const auto& [i, name] : {std::pair{2u, "SN"}, std::pair{3u, "SS"}}) {
+    if (card.real(i, name, 0.0) < 0.0) throw card.error(name, negative_force);
+  }
+  weld.sn = non_negative_real(card, 2, "SN", 0.0);
+  weld.ss = non_negative_real(card, 3, "SS", 0.0);
+  weld.n = non_negative_real(card, 4, "N", 1.0);
+  if (weld.n == 0.0) weld.n = 1.0;
+  weld.m = non_negative_real(card, 5, "M", 1.0);
+  if (weld.m == 0.0) weld.m = 1.0;
+}
+
 }  // namespace
 
 void constrained_spotweld(const Block& block, ReaderContext& context) {
@@ -61,20 +76,10 @@ void constrained_spotweld(const Block& block, ReaderContext& context) {
       throw card.error("N2",
                        fmt::format("N2 = N1 = {}: a spot weld joins two different nodes", weld.n1));
     }
-    for (const auto& [i, name] : {std::pair{2u, "SN"}, std::pair{3u, "SS"}}) {
-      if (card.real(i, name, 0.0) < 0.0) {
-        throw card.error(name,
-                         "a negative value (a curve of failure force against temperature) is "
-                         "not supported: RigidFlex has no nodal temperatures; give a force >= 0 "
-                         "(0 turns the term off)");
-      }
-    }
-    weld.sn = non_negative_real(card, 2, "SN", 0.0);
-    weld.ss = non_negative_real(card, 3, "SS", 0.0);
-    weld.n = non_negative_real(card, 4, "N", 1.0);
-    if (weld.n == 0.0) weld.n = 1.0;
-    weld.m = non_negative_real(card, 5, "M", 1.0);
-    if (weld.m == 0.0) weld.m = 1.0;
+    read_failure_forces(card, weld,
+                        "a negative value (a curve of failure force against temperature) is not "
+                        "supported: RigidFlex has no nodal temperatures; give a force >= 0 (0 "
+                        "turns the term off)");
     weld.tf = card.real(6, "TF", 1e20);
     if (!std::isfinite(weld.tf)) throw card.error("TF", "the failure time must be finite");
     if (weld.tf == 0.0) weld.tf = 1e20;
@@ -147,19 +152,9 @@ void constrained_generalized_weld_spot(const Block& block, ReaderContext& contex
                           "failure by the plastic strain of the welded shells is not supported "
                           "(leave EPSF blank or 0, or use SN/SS/TFAIL)");
     }
-    for (const auto& [i, name] : {std::pair{2u, "SN"}, std::pair{3u, "SS"}}) {
-      if (failure.real(i, name, 0.0) < 0.0) {
-        throw failure.error(name,
-                            "a negative failure force is not supported: give a force >= 0 "
-                            "(0 turns the term off)");
-      }
-    }
-    g.weld.sn = non_negative_real(failure, 2, "SN", 0.0);
-    g.weld.ss = non_negative_real(failure, 3, "SS", 0.0);
-    g.weld.n = non_negative_real(failure, 4, "N", 1.0);
-    if (g.weld.n == 0.0) g.weld.n = 1.0;
-    g.weld.m = non_negative_real(failure, 5, "M", 1.0);
-    if (g.weld.m == 0.0) g.weld.m = 1.0;
+    read_failure_forces(failure, g.weld,
+                        "a negative failure force is not supported: give a force >= 0 (0 turns "
+                        "the term off)");
     g.weld.where = card.location();
     context.generalized_welds.push_back(g);
     any = true;
