@@ -8,6 +8,7 @@
 #include <omp.h>
 #include <unistd.h>
 #include <CLI/CLI.hpp>
+#include <Eigen/Core>
 
 #include <chrono>
 #include <cmath>
@@ -522,6 +523,12 @@ void use_robust_openmp_wait_policy(char** argv) {
 
 int main(int argc, char** argv) {
   use_robust_openmp_wait_policy(argv);
+  // Eigen would split its larger matrix products over the OpenMP threads with blockings that
+  // depend on the thread count (a flexible body's per-cycle products among them), so results
+  // changed in the last bits with --threads. Our kernels parallelise over elements and nodes
+  // themselves; Eigen's products run on one thread and results are the same for any thread
+  // count (docs/cli.md).
+  Eigen::setNbThreads(1);
   // MPI_Init only under an MPI launcher (mpirun -np N rigidflex run ...): docs/parallel.md.
   rf::parallel::Session mpi_session(&argc, &argv);
   CLI::App app{"RigidFlex: explicit finite-element dynamics with rigid/deformable switching"};

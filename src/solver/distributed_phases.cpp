@@ -20,7 +20,8 @@ namespace rf::solver {
 
 // What stage 1 refuses on more than one rank: each would read element state of other ranks'
 // elements every cycle (element sensors, section forces from element force slots), or is not
-// distributed yet (flexible bodies; restart dumps are refused by the command line).
+// distributed yet (restart dumps are refused by the command line). Flexible bodies need nothing:
+// like rigid bodies they run after the force sum on identical data on every rank.
 void Simulation::start_distributed_run() {
   const model::Model& model = model_;
   const auto refuse = [&](const model::SourceLocation& where, const char* field,
@@ -36,9 +37,6 @@ void Simulation::start_distributed_run() {
   }
   if (!model.output.cross_sections.empty()) {
     refuse(model.output.cross_sections.front().where, "", "*DATABASE_CROSS_SECTION");
-  }
-  if (!model.part_modes.empty()) {
-    refuse(model.part_modes.begin()->second.where, "PID", "a flexible body (*PART_MODES)");
   }
   // Erosion changes which elements a rank computes and which nodes exist: stage 1 keeps the
   // element set fixed.
