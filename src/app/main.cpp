@@ -490,7 +490,8 @@ void use_robust_openmp_wait_policy(char** argv) {
     return v != nullptr && *v != '\0';
   };
   if (set("OMP_WAIT_POLICY") || set("GOMP_SPINCOUNT")) return;
-  if (const char* v = std::getenv("RIGIDFLEX_OMP_DEFAULTS"); v != nullptr && std::strcmp(v, "0") == 0) {
+  if (const char* v = std::getenv("RIGIDFLEX_OMP_DEFAULTS");
+      v != nullptr && std::strcmp(v, "0") == 0) {
     return;
   }
   // Once only: the re-executed program finds OMP_WAIT_POLICY set.

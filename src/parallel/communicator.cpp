@@ -151,6 +151,33 @@ void Communicator::broadcast(std::string& text, int root) const {
 #endif
 }
 
+std::string Communicator::all_gather(const std::string& mine) const {
+#ifdef RIGIDFLEX_HAVE_MPI
+  if (size_ < 2) return mine;
+  // The lengths first (one small collective, all that is sent when every rank has nothing),
+  // then the bytes of the ranks that have some.
+  std::vector<long long> lengths(static_cast<std::size_t>(size_));
+  long long n = static_cast<long long>(mine.size());
+  MPI_Allgather(&n, 1, MPI_LONG_LONG, lengths.data(), 1, MPI_LONG_LONG, MPI_COMM_WORLD);
+  std::vector<int> counts(static_cast<std::size_t>(size_)),
+      offsets(static_cast<std::size_t>(size_));
+  long long total = 0;
+  for (std::size_t r = 0; r < lengths.size(); ++r) {
+    counts[r] = static_cast<int>(lengths[r]);
+    offsets[r] = static_cast<int>(total);
+    total += lengths[r];
+  }
+  std::string all(static_cast<std::size_t>(total), '\0');
+  if (total > 0) {
+    MPI_Allgatherv(mine.data(), static_cast<int>(n), MPI_CHAR, all.data(), counts.data(),
+                   offsets.data(), MPI_CHAR, MPI_COMM_WORLD);
+  }
+  return all;
+#else
+  return mine;
+#endif
+}
+
 void Communicator::abort(int status) const {
 #ifdef RIGIDFLEX_HAVE_MPI
   if (size_ > 1) MPI_Abort(MPI_COMM_WORLD, status);

@@ -37,6 +37,9 @@ class Communicator {
   // From `root` to every rank.
   void broadcast(std::vector<std::int32_t>& values, int root) const;
   void broadcast(std::string& text, int root) const;
+  // Every rank's bytes, concatenated in rank order, on every rank (MPI_Allgather of the lengths,
+  // then MPI_Allgatherv when any rank has bytes). One process: `mine`.
+  std::string all_gather(const std::string& mine) const;
   // Ends every rank of the run (MPI_Abort) with this exit status; one process: std::exit.
   [[noreturn]] void abort(int status) const;
 

@@ -70,27 +70,35 @@ void ElementDistribution::sum_partial_forces(solver::State& state, std::vector<d
 
 namespace {
 
-// Zeros the values of the elements `owned` does not list (stride values per element), then sums
-// over the ranks.
-void gather_array(const Communicator& comm, const element::ElementOwnership& owned,
-                  std::size_t elements, std::vector<double>& values) {
-  if (!owned.partitioned || elements == 0 || values.empty()) return;
+// The owner rank of every element of a block by the partition (empty: not partitioned). The
+// partition, not the block's current ElementOwnership: an eroded element leaves the latter, and
+// its last state (plastic strain, damage) must still come from its owner.
+struct Owners {
+  const std::vector<std::int32_t>* owner = nullptr;
+  int rank = 0;
+};
+
+Owners owners_of(const std::vector<std::vector<std::int32_t>>& family, std::size_t b, int rank) {
+  return {b < family.size() && !family[b].empty() ? &family[b] : nullptr, rank};
+}
+
+// Zeros the values of the elements of other ranks (stride values per element), then sums over
+// the ranks.
+void gather_array(const Communicator& comm, const Owners& owners, std::size_t elements,
+                  std::vector<double>& values) {
+  if (!owners.owner || elements == 0 || values.empty()) return;
   const std::size_t stride = values.size() / elements;
-  std::size_t k = 0;
   for (std::size_t e = 0; e < elements; ++e) {
-    if (k < owned.elements.size() && static_cast<std::size_t>(owned.elements[k]) == e) {
-      ++k;
-      continue;
-    }
+    if ((*owners.owner)[e] == owners.rank) continue;
     std::fill_n(values.begin() + static_cast<std::ptrdiff_t>(stride * e), stride, 0.0);
   }
   comm.sum(values.data(), values.size());
 }
 
 template <class Block>
-void gather_common(const Communicator& comm, Block& block) {
-  gather_array(comm, block.owned, block.size(), block.stress);
-  for (auto& h : block.history) gather_array(comm, block.owned, block.size(), h.values);
+void gather_common(const Communicator& comm, const Owners& owners, Block& block) {
+  gather_array(comm, owners, block.size(), block.stress);
+  for (auto& h : block.history) gather_array(comm, owners, block.size(), h.values);
 }
 
 }  // namespace
@@ -98,21 +106,28 @@ void gather_common(const Communicator& comm, Block& block) {
 void ElementDistribution::gather_element_state(solver::State& state) {
   // The arrays a kernel changes (element/*.cpp). A new per-element array that changes during a
   // run belongs here too, or output on more than one rank shows other ranks' elements stale.
-  for (auto& block : state.hex_blocks) {
-    gather_common(comm_, block);
-    gather_array(comm_, block.owned, block.size(), block.hourglass_state);
-    gather_array(comm_, block.owned, block.size(), block.volume);
+  const int rank = comm_.rank();
+  for (std::size_t b = 0; b < state.hex_blocks.size(); ++b) {
+    auto& block = state.hex_blocks[b];
+    const Owners owners = owners_of(partition_.hex, b, rank);
+    gather_common(comm_, owners, block);
+    gather_array(comm_, owners, block.size(), block.hourglass_state);
+    gather_array(comm_, owners, block.size(), block.volume);
   }
-  for (auto& block : state.shell_blocks) {
-    gather_common(comm_, block);
-    gather_array(comm_, block.owned, block.size(), block.hourglass_state);
-    gather_array(comm_, block.owned, block.size(), block.area);
+  for (std::size_t b = 0; b < state.shell_blocks.size(); ++b) {
+    auto& block = state.shell_blocks[b];
+    const Owners owners = owners_of(partition_.shell, b, rank);
+    gather_common(comm_, owners, block);
+    gather_array(comm_, owners, block.size(), block.hourglass_state);
+    gather_array(comm_, owners, block.size(), block.area);
   }
-  for (auto& block : state.beam_blocks) {
-    gather_common(comm_, block);
-    gather_array(comm_, block.owned, block.size(), block.frame);
-    gather_array(comm_, block.owned, block.size(), block.resultant);
-    gather_array(comm_, block.owned, block.size(), block.length);
+  for (std::size_t b = 0; b < state.beam_blocks.size(); ++b) {
+    auto& block = state.beam_blocks[b];
+    const Owners owners = owners_of(partition_.beam, b, rank);
+    gather_common(comm_, owners, block);
+    gather_array(comm_, owners, block.size(), block.frame);
+    gather_array(comm_, owners, block.size(), block.resultant);
+    gather_array(comm_, owners, block.size(), block.length);
   }
 }
 

@@ -38,21 +38,6 @@ void Simulation::start_distributed_run() {
   if (!model.output.cross_sections.empty()) {
     refuse(model.output.cross_sections.front().where, "", "*DATABASE_CROSS_SECTION");
   }
-  // Erosion changes which elements a rank computes and which nodes exist: stage 1 keeps the
-  // element set fixed.
-  if (erosion_.enabled()) {
-    for (const auto& [pid, part] : model.parts) {
-      const auto& mat = model.materials.at(part.mid);
-      if (model.add_erosions.count(mat.id))
-        refuse(model.add_erosions.at(mat.id).where, "MID", "element erosion (*MAT_ADD_EROSION)");
-      if (mat.plastic.fail > 0.0 || mat.plastic.tdel > 0.0)
-        refuse(mat.plastic.fail_where, mat.plastic.fail > 0.0 ? "FAIL" : "TDEL",
-               fmt::format("element erosion (failure of material {})", mat.id));
-    }
-    if (model.timestep.erode != 0)
-      refuse(model.timestep.where, "ERODE", "element erosion by the time step (ERODE)");
-    refuse(model.timestep.where, "", "element erosion");
-  }
   // Measured: with the bulk viscosity on, the hourglass energy of a 3-rank run of
   // rigidwall_switching_block.k drifts 0.36 % from one process after the first switch (2 ranks
   // and runs without viscosity agree to 1e-14). Refused until found (docs/parallel.md).
@@ -75,6 +60,9 @@ void Simulation::start_distributed_run() {
     }
   }
   distribution_ = std::make_unique<parallel::ElementDistribution>(parallel::world(), state_);
+  // A deleted element leaves its rank's list of elements (solver/erosion.hpp); the ranks agree
+  // on the deletions every cycle (Simulation::erode_failed_elements).
+  erosion_.set_distributed(true);
   // Hourglass work per block (hexahedra, shells, beams), then the bulk viscosity's per block.
   rank_block_work_.assign(
       2 * (state_.hex_blocks.size() + state_.shell_blocks.size() + state_.beam_blocks.size()), 0.0);

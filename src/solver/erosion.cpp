@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <string_view>
 
 #include "element/hex_geometry.hpp"
@@ -545,9 +546,14 @@ std::int64_t Erosion::erode_failed_elements(State& state, double time,
                                             const std::vector<std::int32_t>* body_of) {
   events_.clear();
   if (!enabled_) return 0;
-  std::int64_t eroded_now = 0;
+  return delete_elements(state, time, find_failed_elements(state, time), body_of);
+}
+
+std::vector<ElementFailure> Erosion::find_failed_elements(State& state, double time) {
+  std::vector<ElementFailure> failures;
+  if (!enabled_) return failures;
   const element::NodalView view = view_of(state.nodes);
-  auto run = [&](auto& block) {
+  auto run = [&](auto& block, std::int32_t family, std::size_t b) {
     if (!block.erosion.enabled || block.rigid) return;
     const element::ErosionCriteria& c = block.erosion.criteria;
     const auto* eps_array = history_named(block.history, "effective_plastic_strain");
@@ -566,7 +572,7 @@ std::int64_t Erosion::erode_failed_elements(State& state, double time,
       step = scratch_steps_.data();
     }
     const std::int64_t items = block.owned.count(static_cast<std::int64_t>(block.size()));
-    // Failures are rare: each thread scans its share, the elements found are then deleted in
+    // Failures are rare: each thread scans its share, the elements found are then listed in
     // ascending order on one thread (the same result for any thread count).
     std::int64_t first_failed = items;
 #pragma omp parallel for schedule(static) reduction(min : first_failed)
@@ -575,56 +581,135 @@ std::int64_t Erosion::erode_failed_elements(State& state, double time,
       if (evaluate(block, state.nodes, e, time, eps, damage, step, minimum_step_) != kAlive)
         first_failed = std::min(first_failed, i);
     }
-    if (first_failed == items) return;
-    std::vector<std::size_t> failed;
     for (std::int64_t i = first_failed; i < items; ++i) {
       const std::size_t e = static_cast<std::size_t>(block.owned.element(i));
       const std::uint8_t code =
           evaluate(block, state.nodes, e, time, eps, damage, step, minimum_step_);
       if (code == kAlive) continue;
-      failed.push_back(e);
-      events_.push_back(
-          {time, block.part_id, block.element_id[e], family_of(block),
+      failures.push_back(
+          {family, static_cast<std::int32_t>(b), static_cast<std::int64_t>(e),
+           block.erosion.work[e] - block.erosion.artificial_work[e],
            describe(block, state.nodes, e, code, time, eps, damage, step, minimum_step_)});
     }
+  };
+  for (std::size_t b = 0; b < state.hex_blocks.size(); ++b) run(state.hex_blocks[b], 0, b);
+  for (std::size_t b = 0; b < state.shell_blocks.size(); ++b) run(state.shell_blocks[b], 1, b);
+  for (std::size_t b = 0; b < state.beam_blocks.size(); ++b) run(state.beam_blocks[b], 2, b);
+  return failures;
+}
+
+std::int64_t Erosion::delete_elements(State& state, double time,
+                                      const std::vector<ElementFailure>& failures,
+                                      const std::vector<std::int32_t>* body_of) {
+  events_.clear();
+  if (failures.empty()) return 0;
+  auto remove = [&](auto& block, const ElementFailure& failure) {
+    const std::size_t e = static_cast<std::size_t>(failure.element);
+    events_.push_back(
+        {time, block.part_id, block.element_id[e], family_of(block), failure.criterion});
+    block.erosion.time[e] = time;
+    ++block.erosion.count;
+    ledger_.internal_energy += failure.internal_energy;
+    ++ledger_.elements;
     const int slot = slot_size(block);
     const int npe = nodes_per(block);
-    for (const std::size_t e : failed) {
-      block.erosion.time[e] = time;
-      ++block.erosion.count;
-      ledger_.internal_energy += block.erosion.work[e] - block.erosion.artificial_work[e];
-      ++ledger_.elements;
-      std::fill_n(block.force.begin() + static_cast<std::ptrdiff_t>(slot * e), slot, 0.0);
-      const std::size_t points = static_cast<std::size_t>(block.points_per_element());
-      using B = std::remove_cvref_t<decltype(block)>;
-      if constexpr (std::is_same_v<B, element::HexBlock>) {
-        std::fill_n(block.stress.begin() + static_cast<std::ptrdiff_t>(6 * points * e), 6 * points,
-                    0.0);
-        if (!block.hourglass_state.empty())
-          std::fill_n(block.hourglass_state.begin() + static_cast<std::ptrdiff_t>(12 * e), 12, 0.0);
-      } else if constexpr (std::is_same_v<B, element::ShellBlock>) {
-        std::fill_n(
-            block.stress.begin() + static_cast<std::ptrdiff_t>(element::kShellStress * points * e),
-            element::kShellStress * points, 0.0);
-        std::fill_n(block.hourglass_state.begin() + static_cast<std::ptrdiff_t>(5 * e), 5, 0.0);
-      } else {
-        if (points > 0)
-          std::fill_n(block.stress.begin() + static_cast<std::ptrdiff_t>(points * e), points, 0.0);
-        std::fill_n(block.resultant.begin() + static_cast<std::ptrdiff_t>(6 * e), 6, 0.0);
-      }
-      for (int a = 0; a < npe; ++a) {
-        const std::int32_t node = block.conn[static_cast<std::size_t>(npe) * e + a];
-        if (node >= 0) --live_elements_[static_cast<std::size_t>(node)];
-      }
+    std::fill_n(block.force.begin() + static_cast<std::ptrdiff_t>(slot * e), slot, 0.0);
+    const std::size_t points = static_cast<std::size_t>(block.points_per_element());
+    using B = std::remove_cvref_t<decltype(block)>;
+    if constexpr (std::is_same_v<B, element::HexBlock>) {
+      std::fill_n(block.stress.begin() + static_cast<std::ptrdiff_t>(6 * points * e), 6 * points,
+                  0.0);
+      if (!block.hourglass_state.empty())
+        std::fill_n(block.hourglass_state.begin() + static_cast<std::ptrdiff_t>(12 * e), 12, 0.0);
+    } else if constexpr (std::is_same_v<B, element::ShellBlock>) {
+      std::fill_n(
+          block.stress.begin() + static_cast<std::ptrdiff_t>(element::kShellStress * points * e),
+          element::kShellStress * points, 0.0);
+      std::fill_n(block.hourglass_state.begin() + static_cast<std::ptrdiff_t>(5 * e), 5, 0.0);
+    } else {
+      if (points > 0)
+        std::fill_n(block.stress.begin() + static_cast<std::ptrdiff_t>(points * e), points, 0.0);
+      std::fill_n(block.resultant.begin() + static_cast<std::ptrdiff_t>(6 * e), 6, 0.0);
     }
-    eroded_now += static_cast<std::int64_t>(failed.size());
-    own_live_elements(block);
+    for (int a = 0; a < npe; ++a) {
+      const std::int32_t node = block.conn[static_cast<std::size_t>(npe) * e + a];
+      if (node >= 0) --live_elements_[static_cast<std::size_t>(node)];
+    }
   };
-  for (auto& b : state.hex_blocks) run(b);
-  for (auto& b : state.shell_blocks) run(b);
-  for (auto& b : state.beam_blocks) run(b);
-  if (eroded_now > 0) remove_orphan_nodes(state, body_of, true);
-  return eroded_now;
+  // The loops of the kernels: a process's own elements less the deleted ones.
+  auto own = [&](auto& block) {
+    if (!distributed_) {
+      own_live_elements(block);
+      return;
+    }
+    std::erase_if(block.owned.elements, [&](std::int64_t e) {
+      return block.erosion.is_eroded(static_cast<std::size_t>(e));
+    });
+    block.owned.batches.clear();
+    block.owned.batch_lanes = 0;
+  };
+  std::size_t k = 0;
+  while (k < failures.size()) {
+    const ElementFailure& first = failures[k];
+    std::size_t end = k;
+    while (end < failures.size() && failures[end].family == first.family &&
+           failures[end].block == first.block)
+      ++end;
+    const std::size_t b = static_cast<std::size_t>(first.block);
+    for (std::size_t i = k; i < end; ++i) {
+      if (first.family == 0)
+        remove(state.hex_blocks[b], failures[i]);
+      else if (first.family == 1)
+        remove(state.shell_blocks[b], failures[i]);
+      else
+        remove(state.beam_blocks[b], failures[i]);
+    }
+    if (first.family == 0)
+      own(state.hex_blocks[b]);
+    else if (first.family == 1)
+      own(state.shell_blocks[b]);
+    else
+      own(state.beam_blocks[b]);
+    k = end;
+  }
+  remove_orphan_nodes(state, body_of, true);
+  return static_cast<std::int64_t>(failures.size());
+}
+
+std::string pack_failures(const std::vector<ElementFailure>& failures) {
+  std::string bytes;
+  auto put = [&](const auto& value) {
+    bytes.append(reinterpret_cast<const char*>(&value), sizeof(value));
+  };
+  for (const ElementFailure& f : failures) {
+    put(f.family);
+    put(f.block);
+    put(f.element);
+    put(f.internal_energy);
+    put(static_cast<std::uint32_t>(f.criterion.size()));
+    bytes += f.criterion;
+  }
+  return bytes;
+}
+
+void unpack_failures(const std::string& bytes, std::vector<ElementFailure>& out) {
+  std::size_t at = 0;
+  auto get = [&](auto& value) {
+    std::memcpy(&value, bytes.data() + at, sizeof(value));
+    at += sizeof(value);
+  };
+  while (at < bytes.size()) {
+    ElementFailure f;
+    get(f.family);
+    get(f.block);
+    get(f.element);
+    get(f.internal_energy);
+    std::uint32_t length = 0;
+    get(length);
+    f.criterion.assign(bytes.data() + at, length);
+    at += length;
+    out.push_back(std::move(f));
+  }
 }
 
 void Erosion::remove_orphan_nodes(State& state, const std::vector<std::int32_t>* body_of,

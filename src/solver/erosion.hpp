@@ -40,6 +40,29 @@ struct ErosionEvent {
   std::string criterion;    // e.g. "plastic strain 0.3012 >= FAIL 0.3"
 };
 
+// An element that met its criterion, before it is deleted: what a rank found among its own
+// elements, and what the ranks of a distributed run exchange so that every rank deletes the same
+// elements in the same order (docs/parallel.md).
+struct ElementFailure {
+  std::int32_t family = 0;  // 0 hexahedra, 1 shells, 2 beams (the blocks' order in State)
+  std::int32_t block = 0;
+  std::int64_t element = 0;
+  // Work its forces did less its hourglass and bulk viscosity work: known where it was computed.
+  double internal_energy = 0.0;
+  std::string criterion;
+
+  // The order in which one process deletes: blocks of each family in turn, ascending elements.
+  bool operator<(const ElementFailure& o) const {
+    if (family != o.family) return family < o.family;
+    if (block != o.block) return block < o.block;
+    return element < o.element;
+  }
+};
+
+// Failures as bytes and back (the exchange of a distributed run).
+std::string pack_failures(const std::vector<ElementFailure>& failures);
+void unpack_failures(const std::string& bytes, std::vector<ElementFailure>& out);
+
 class Erosion {
  public:
   // Resolves the criteria of every block from the model (sets ErosionState::criteria, enabled,
@@ -59,6 +82,18 @@ class Erosion {
   // number of elements deleted now; their events are in events() until the next call.
   std::int64_t erode_failed_elements(State& state, double time,
                                      const std::vector<std::int32_t>* body_of);
+  // The two halves of erode_failed_elements, for a distributed run, where the ranks exchange the
+  // failures in between: the elements this process computes that meet their criterion at t^{n+1}
+  // (in deletion order), and the deletion of `failures` (sorted, no duplicates; every rank the
+  // same list), which returns their number.
+  std::vector<ElementFailure> find_failed_elements(State& state, double time);
+  std::int64_t delete_elements(State& state, double time,
+                               const std::vector<ElementFailure>& failures,
+                               const std::vector<std::int32_t>* body_of);
+  // In a distributed run a rank's blocks list its own elements (element_ownership.hpp): a
+  // deletion then takes the element out of that list instead of rebuilding it from every live
+  // element of the block.
+  void set_distributed(bool distributed) { distributed_ = distributed; }
 
   // After a restart dump was read (the blocks' erosion times and the ledger): ownership, live
   // element counts and removed nodes (mass, inertia) as the interrupted run had them.
@@ -76,6 +111,7 @@ class Erosion {
  private:
   void remove_orphan_nodes(State& state, const std::vector<std::int32_t>* body_of, bool book);
   bool enabled_ = false;
+  bool distributed_ = false;
   ErosionLedger ledger_;
   std::vector<ErosionEvent> events_;
   // Per node: elements of any family (hexahedra, shells, beams, springs) that reference it and

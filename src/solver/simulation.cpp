@@ -1379,8 +1379,17 @@ void Simulation::erode_failed_elements() {
   erosion_.set_minimum_step(model_.timestep.erode != 0 && initial_dt_ > 0.0
                                 ? model_.termination.dtmin * initial_dt_ / tssfac
                                 : 0.0);
-  const std::int64_t eroded = erosion_.erode_failed_elements(
-      state_, state_.time, rigid_.empty() ? nullptr : &rigid_.body_of_node);
+  std::vector<ElementFailure> failures = erosion_.find_failed_elements(state_, state_.time);
+  // Distributed: each rank found failures among its own elements; every rank deletes all of them,
+  // in the order one process would (docs/parallel.md). One small collective per cycle.
+  if (distribution_) {
+    const std::string all = distribution_->communicator().all_gather(pack_failures(failures));
+    failures.clear();
+    unpack_failures(all, failures);
+    std::sort(failures.begin(), failures.end());
+  }
+  const std::int64_t eroded = erosion_.delete_elements(
+      state_, state_.time, failures, rigid_.empty() ? nullptr : &rigid_.body_of_node);
   if (eroded == 0) return;
   if (!contacts_.empty()) contact::update_after_erosion(contacts_, state_);
   if (erosion_csv_) {
