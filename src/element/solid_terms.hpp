@@ -43,21 +43,32 @@ constexpr int history_slots() {
 // q |e_kk| V dt >= 0 (V the mid-step volume, where e_kk is evaluated).
 // T is double or a GCC vector of lanes (the batched hexahedron and shell kernels): the select
 // is lane-wise there, and the formula is the same for every element family.
+//
+// "Compressing" means e_kk L_e < -1e-9 c: a volume change of more than 1e-9 per wave transit
+// of the element. Below that e_kk is the round-off of a rigidly moving element (about 1e-16
+// |omega| for a spin omega; c / L_e is 1e6 to 1e8 per second), and the step rule below jumps by
+// 6 % (Q2 c) as e_kk crosses zero: with the plain e_kk < 0, an element released from a rigid
+// body took the lower step or not by the sign of its round-off, and runs on different rank
+// counts drifted apart by 0.1 % after a switch (docs/parallel.md). The pressure below that rate
+// is below 1e-10 of rho c^2 and is dropped too, so q and the step agree on what compresses.
+inline constexpr double kCompressionNoise = 1e-9;
+
 template <class T>
 inline T bulk_viscosity_pressure(const BulkViscositySettings& bv, double wave_speed, T density,
                                  T length, T ekk) {
-  const T e = ekk < 0.0 ? ekk : T{};
+  const T e = ekk * length < -kCompressionNoise * wave_speed ? ekk : T{};
   return density * length * (bv.q1 * length * e * e - bv.q2 * wave_speed * e);
 }
 
 // Critical step with bulk viscosity (LS-DYNA theory manual, "Time Step Control", solid
-// elements): dt_e = L_e / (Q + sqrt(Q^2 + c^2)), Q = Q2 c + Q1 L_e |e_kk| while e_kk < 0,
+// elements): dt_e = L_e / (Q + sqrt(Q^2 + c^2)), Q = Q2 c + Q1 L_e |e_kk| while compressing,
 // Q = 0 otherwise (then dt_e = L_e / sqrt(c^2) = L_e / c exactly, as without viscosity).
 // `sqrt_of` takes T: std::sqrt for one element, the kernel's lane-wise root for a batch.
 template <class T, class Sqrt>
 inline T viscous_time_step(const BulkViscositySettings& bv, double c, T length, T ekk,
                            Sqrt&& sqrt_of) {
-  const T q = ekk < 0.0 ? (T{} + bv.q2 * c) - bv.q1 * length * ekk : T{};
+  const T q =
+      ekk * length < -kCompressionNoise * c ? (T{} + bv.q2 * c) - bv.q1 * length * ekk : T{};
   return length / (q + sqrt_of(q * q + c * c));
 }
 inline double viscous_time_step(const BulkViscositySettings& bv, double c, double length,

@@ -38,27 +38,6 @@ void Simulation::start_distributed_run() {
   if (!model.output.cross_sections.empty()) {
     refuse(model.output.cross_sections.front().where, "", "*DATABASE_CROSS_SECTION");
   }
-  // Measured: with the bulk viscosity on, the hourglass energy of a 3-rank run of
-  // rigidwall_switching_block.k drifts 0.36 % from one process after the first switch (2 ranks
-  // and runs without viscosity agree to 1e-14). Refused until found (docs/parallel.md).
-  if (model.switching.flagged) {
-    std::vector<std::pair<model::Id, bool>> viscous_parts;
-    for (const auto& block : state_.hex_blocks)
-      viscous_parts.emplace_back(block.part_id, block.bulk_viscosity.on());
-    for (const auto& block : state_.shell_blocks)
-      viscous_parts.emplace_back(block.part_id, block.bulk_viscosity.on());
-    for (const auto& [part_id, viscous] : viscous_parts) {
-      if (viscous) {
-        throw InputError(
-            model::context_of(model.timestep.where, ""),
-            fmt::format("part switching (*DEFORMABLE_TO_RIGID...) together with the bulk viscosity "
-                        "of part {} is not supported in a distributed run yet (stage 1, "
-                        "docs/parallel.md): run it on one rank, or switch the viscosity off "
-                        "(*CONTROL_BULK_VISCOSITY 0.0,0.0)",
-                        part_id));
-      }
-    }
-  }
   distribution_ = std::make_unique<parallel::ElementDistribution>(parallel::world(), state_);
   // A deleted element leaves its rank's list of elements (solver/erosion.hpp); the ranks agree
   // on the deletions every cycle (Simulation::erode_failed_elements).

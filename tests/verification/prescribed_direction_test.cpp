@@ -196,7 +196,11 @@ TEST(PrescribedNodeVector, NodesFollowTheVectorAndKeepTheirNormalVelocity) {
       EXPECT_NEAR(c * dx + c * dy, k.along, 1e-12) << k.motion;
       EXPECT_NEAR(c * dx - c * dy, 0.0, 1e-12) << "free normal direction in the plane";
       EXPECT_NEAR(dz, 2.0 * t, 1e-12) << "free normal velocity kept";
-      EXPECT_NEAR(n.v.z[i], 2.0, 1e-12);
+      // Round-off floor: strain noise of 1e-16 in a steel cube is a stress of E 1e-16 = 2e-5
+      // Pa, an acceleration of 3e-10 m/s^2 per node and 3e-12 m/s over the 0.01 s (measured
+      // 1.5e-12 with the displacement curve; 3e-13 while the bulk viscosity's step still took
+      // the round-off of e_kk for compression, element/solid_terms.hpp).
+      EXPECT_NEAR(n.v.z[i], 2.0, 1e-11);
     }
     // The mass gained the kinetic energy of the velocity along n: the reactions' work.
     const double mass = kRho;  // unit cube
