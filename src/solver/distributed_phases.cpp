@@ -19,7 +19,7 @@
 namespace rf::solver {
 
 // What stage 1 refuses on more than one rank: each would read element state of other ranks'
-// elements every cycle (element sensors, section forces from element force slots), or is not
+// elements every cycle (element sensors), or is not
 // distributed yet (restart dumps are refused by the command line). Flexible bodies need nothing:
 // like rigid bodies they run after the force sum on identical data on every rank.
 void Simulation::start_distributed_run() {
@@ -34,9 +34,6 @@ void Simulation::start_distributed_run() {
   for (const auto& [id, sensor] : model.sensors) {
     if (sensor.kind == model::SensorKind::Element)
       refuse(sensor.where, "ELEMID", fmt::format("element sensor {}", id));
-  }
-  if (!model.output.cross_sections.empty()) {
-    refuse(model.output.cross_sections.front().where, "", "*DATABASE_CROSS_SECTION");
   }
   distribution_ = std::make_unique<parallel::ElementDistribution>(parallel::world(), state_);
   // A deleted element leaves its rank's list of elements (solver/erosion.hpp); the ranks agree
@@ -94,7 +91,8 @@ bool Simulation::element_output_due() const {
   const double t = state_.time;
   return (elout_csv_ && elout_schedule_.due(t)) ||
          (elout_shell_csv_ && elout_shell_schedule_.due(t)) ||
-         (matsum_csv_ && matsum_schedule_.due(t)) || (fields_ && d3plot_schedule_.due(t));
+         (matsum_csv_ && matsum_schedule_.due(t)) || (fields_ && d3plot_schedule_.due(t)) ||
+         (secforc_csv_ && secforc_schedule_.due(t));
 }
 
 void Simulation::gather_element_state_for_output(bool force) {
@@ -104,6 +102,27 @@ void Simulation::gather_element_state_for_output(bool force) {
     distribution_->gather_element_state(state_);
     // The replicated state must be the same everywhere; its energy is a cheap fingerprint.
     distribution_->check_replicated(energy_.total(), "the total energy");
+  }
+  // Section forces (secforc.csv) from each rank's element force slots, summed: a section's
+  // force and moment about the (replicated) centroid are linear in the slots.
+  if (!cross_sections_.empty()) {
+    section_rows_.clear();
+    for (const CrossSectionCut& cut : cross_sections_)
+      section_rows_.push_back(cut.evaluate(state_));
+    std::vector<double> sums;
+    sums.reserve(7 * section_rows_.size());
+    for (const SectionForce& row : section_rows_) {
+      sums.insert(sums.end(), row.force.begin(), row.force.end());
+      sums.insert(sums.end(), row.moment.begin(), row.moment.end());
+      sums.push_back(row.normal_force);
+    }
+    distribution_->communicator().sum(sums.data(), sums.size());
+    for (std::size_t k = 0; k < section_rows_.size(); ++k) {
+      SectionForce& row = section_rows_[k];
+      std::copy_n(sums.begin() + static_cast<std::ptrdiff_t>(7 * k), 3, row.force.begin());
+      std::copy_n(sums.begin() + static_cast<std::ptrdiff_t>(7 * k + 3), 3, row.moment.begin());
+      row.normal_force = sums[7 * k + 6];
+    }
   }
   if (part_histories_) {  // the ranks' shares of the part work, summed for the output only
     rank_part_work_ = part_histories_->internal_work();

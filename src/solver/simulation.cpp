@@ -1233,9 +1233,11 @@ void Simulation::write_output_if_due(bool force) {
     elout_shell_schedule_.mark_written(t, cycle);
   }
   if (secforc_csv_ && wanted(secforc_schedule_)) {
-    section_rows_.clear();
-    for (const CrossSectionCut& cut : cross_sections_)
-      section_rows_.push_back(cut.evaluate(state_));
+    if (!distribution_) {  // distributed: summed over the ranks by the gather above
+      section_rows_.clear();
+      for (const CrossSectionCut& cut : cross_sections_)
+        section_rows_.push_back(cut.evaluate(state_));
+    }
     secforc_csv_->write_text(output::secforc_text(t, section_rows_));
     secforc_schedule_.mark_written(t, cycle);
   }

@@ -14,6 +14,7 @@ the nodes at x = a and the elements just before them). A fourth section through 
 structure must be refused, as must a plane that cuts nothing.
 
 Usage: secforc_check.py RIGIDFLEX WORKDIR
+       secforc_check.py --print-deck hex|shell|beam   (the deck on stdout: the MPI rank test)
 """
 import math
 import os
@@ -253,5 +254,16 @@ def main():
     return 0
 
 
+def print_deck(name):
+    import tempfile
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, name + ".k")
+        {"hex": hex_deck, "shell": shell_deck, "beam": beam_deck}[name](path)
+        sys.stdout.write(open(path).read())
+    return 0
+
+
 if __name__ == "__main__":
+    if len(sys.argv) == 3 and sys.argv[1] == "--print-deck":
+        sys.exit(print_deck(sys.argv[2]))
     sys.exit(main())
