@@ -348,7 +348,8 @@ SensorSystem build_sensor_system(const model::Model& model, const solver::NodeIn
   return sys;
 }
 
-void evaluate_sensors(SensorSystem& sys, const solver::State& state, double time) {
+void evaluate_sensors(SensorSystem& sys, const solver::State& state, double time,
+                      const RankShare* ranks) {
   sys.events.clear();
   sys.changed = false;
   const bool first = !sys.evaluated;
@@ -400,7 +401,19 @@ void evaluate_sensors(SensorSystem& sys, const solver::State& state, double time
   }
   sys.previous_mid_time = mid_time;
 
-  for (const auto& s : sys.element_sensors) sys.values[s.slot] = element_value(s, state);
+  if (ranks && !sys.element_sensors.empty()) {
+    std::vector<double>& share = sys.element_share;
+    share.assign(sys.element_sensors.size(), 0.0);
+    for (std::size_t k = 0; k < share.size(); ++k) {
+      const auto& s = sys.element_sensors[k];
+      if (ranks->owns(s.block, s.element)) share[k] = element_value(s, state);
+    }
+    ranks->sum(share.data(), share.size());
+    for (std::size_t k = 0; k < share.size(); ++k)
+      sys.values[sys.element_sensors[k].slot] = share[k];
+  } else {
+    for (const auto& s : sys.element_sensors) sys.values[s.slot] = element_value(s, state);
+  }
 
   for (auto& s : sys.function_sensors) {
     for (std::size_t k = 0; k < s.input_slots.size(); ++k)

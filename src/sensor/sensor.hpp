@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <span>
 #include <vector>
@@ -106,6 +107,7 @@ struct SensorSystem {
   std::vector<double> values;
   std::vector<detail::NodeSensor> node_sensors;
   std::vector<detail::ElementSensor> element_sensors;
+  std::vector<double> element_share;  // distributed runs: this rank's element values, then sums
   std::vector<detail::FunctionSensor> function_sensors;  // in dependency order
   std::vector<detail::Switch> switches;                  // in dependency order
   std::vector<detail::Control> controls;                 // ascending ID
@@ -130,7 +132,16 @@ SensorSystem build_sensor_system(const model::Model& model, const solver::NodeIn
 // are 0). Node values refer to t^{n+1}: COORD x^{n+1}; VEL v^{n+1/2} + dt/2 a^n; ACC a^n, the
 // acceleration of the last velocity update, (v^{n+1/2} - v^{n-1/2}) / dt_avg (at t = 0 the
 // unconstrained (f_ext - f_int) / m). Element values are those the kernels stored at t^{n+1}.
-void evaluate_sensors(SensorSystem& system, const solver::State& state, double time);
+//
+// Distributed runs (docs/parallel.md) pass `ranks`: an element sensor's value is computed by the
+// rank that owns the element (only it has the element's stresses), zero elsewhere, and summed
+// over the ranks, so every rank sees the same value and fires the same switches.
+struct RankShare {
+  std::function<bool(int block, std::int64_t element)> owns;   // hexahedron block, element index
+  std::function<void(double* values, std::size_t count)> sum;  // in place, over the ranks
+};
+void evaluate_sensors(SensorSystem& system, const solver::State& state, double time,
+                      const RankShare* ranks = nullptr);
 
 // DEF2RIG controls: switch set IDs whose control changed status this cycle, with the new status.
 std::span<const Def2RigEvent> def2rig_events(const SensorSystem& system);

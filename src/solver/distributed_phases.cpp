@@ -18,23 +18,11 @@
 
 namespace rf::solver {
 
-// What stage 1 refuses on more than one rank: each would read element state of other ranks'
-// elements every cycle (element sensors), or is not
-// distributed yet (restart dumps are refused by the command line). Flexible bodies need nothing:
-// like rigid bodies they run after the force sum on identical data on every rank.
+// The start of a distributed run. Nothing of the model is refused here any more: flexible
+// bodies, erosion, element sensors, section forces and switching with the bulk viscosity all run
+// on ranks (docs/parallel.md); restart dumps are refused by the command line.
 void Simulation::start_distributed_run() {
   const model::Model& model = model_;
-  const auto refuse = [&](const model::SourceLocation& where, const char* field,
-                          const std::string& what) {
-    throw InputError(model::context_of(where, field),
-                     fmt::format("{} is not supported in a distributed run yet (stage 1, "
-                                 "docs/parallel.md): run it on one rank",
-                                 what));
-  };
-  for (const auto& [id, sensor] : model.sensors) {
-    if (sensor.kind == model::SensorKind::Element)
-      refuse(sensor.where, "ELEMID", fmt::format("element sensor {}", id));
-  }
   distribution_ = std::make_unique<parallel::ElementDistribution>(parallel::world(), state_);
   // A deleted element leaves its rank's list of elements (solver/erosion.hpp); the ranks agree
   // on the deletions every cycle (Simulation::erode_failed_elements).

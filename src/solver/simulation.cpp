@@ -1528,7 +1528,22 @@ void Simulation::check_breakdown() {
 // through sensor::def2rig_events(sensors()).
 void Simulation::update_sensors() {
   if (sensors_->empty()) return;
-  sensor::evaluate_sensors(*sensors_, state_, state_.time);
+  if (distribution_ && !sensors_->element_sensors.empty()) {
+    // The partition's owner of each element (not the kernels' current loops, which an erosion
+    // shortens); elements of blocks outside the partition (*MAT_RIGID) count on rank 0.
+    const parallel::ElementDistribution& d = *distribution_;
+    const sensor::RankShare ranks{
+        [&d](int block, std::int64_t element) {
+          const auto& owners = d.partition().hex;
+          const std::size_t b = static_cast<std::size_t>(block);
+          if (b >= owners.size() || owners[b].empty()) return d.communicator().rank() == 0;
+          return owners[b][static_cast<std::size_t>(element)] == d.communicator().rank();
+        },
+        [&d](double* values, std::size_t count) { d.communicator().sum(values, count); }};
+    sensor::evaluate_sensors(*sensors_, state_, state_.time, &ranks);
+  } else {
+    sensor::evaluate_sensors(*sensors_, state_, state_.time);
+  }
   if (sensor_csv_) {
     const bool last = (end_time_ > 0.0 && state_.time >= end_time_ * (1.0 - 1e-12)) ||
                       (end_cycle_ > 0 && state_.cycle + 1 >= end_cycle_);
