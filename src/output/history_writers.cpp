@@ -30,8 +30,9 @@ std::string spcforc_text(double time, const std::vector<solver::NodeReaction>& r
   fmt::memory_buffer text;
   auto out = std::back_inserter(text);
   for (const solver::NodeReaction& r : reactions) {
-    fmt::format_to(out, "{:.17g},{},{:.17g},{:.17g},{:.17g}\n", time, node_ids[r.node], r.force[0],
-                   r.force[1], r.force[2]);
+    fmt::format_to(out, "{:.17g},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", time,
+                   node_ids[r.node], r.force[0], r.force[1], r.force[2], r.moment[0], r.moment[1],
+                   r.moment[2]);
   }
   return fmt::to_string(text);
 }

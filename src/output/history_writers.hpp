@@ -15,7 +15,8 @@ namespace rf::output {
 inline constexpr std::string_view kMatsumHeader =
     "time,part,internal_energy,kinetic_energy,hourglass_energy,momentum_x,momentum_y,momentum_z,"
     "rigid_velocity_x,rigid_velocity_y,rigid_velocity_z,added_mass,bulk_viscosity_energy";
-inline constexpr std::string_view kSpcforcHeader = "time,node,force_x,force_y,force_z";
+inline constexpr std::string_view kSpcforcHeader =
+    "time,node,force_x,force_y,force_z,moment_x,moment_y,moment_z";
 inline constexpr std::string_view kEloutHeader =
     "time,element,part,sxx,syy,szz,sxy,syz,szx,effective_stress,pressure,"
     "effective_plastic_strain";

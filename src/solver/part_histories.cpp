@@ -1,6 +1,7 @@
 #include "solver/part_histories.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "rigid/rigid_body.hpp"
@@ -174,29 +175,114 @@ std::vector<PartSummary> PartHistories::summaries(const State& state,
   return rows;
 }
 
+namespace {
+
+// The part of r in the span of `directions` (Gram-Schmidt; directions already in the span are
+// skipped), so that overlapping constraints (an SPC axis and a DOF 4 vector) are counted once.
+std::array<double, 3> project(const std::array<double, 3>& r,
+                              const std::vector<std::array<double, 3>>& directions) {
+  std::array<std::array<double, 3>, 3> basis{};
+  int size = 0;
+  for (std::array<double, 3> d : directions) {
+    for (int b = 0; b < size; ++b) {
+      const double c = d[0] * basis[b][0] + d[1] * basis[b][1] + d[2] * basis[b][2];
+      for (int k = 0; k < 3; ++k) d[k] -= c * basis[b][k];
+    }
+    const double norm = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (norm < 1e-9 || size == 3) continue;
+    for (int k = 0; k < 3; ++k) basis[size][k] = d[k] / norm;
+    ++size;
+  }
+  std::array<double, 3> out{};
+  for (int b = 0; b < size; ++b) {
+    const double c = r[0] * basis[b][0] + r[1] * basis[b][1] + r[2] * basis[b][2];
+    for (int k = 0; k < 3; ++k) out[k] += c * basis[b][k];
+  }
+  return out;
+}
+
+void add_axes(std::uint8_t mask, std::vector<std::array<double, 3>>& directions) {
+  for (int k = 0; k < 3; ++k) {
+    if (!(mask >> k & 1)) continue;
+    std::array<double, 3> e{};
+    e[static_cast<std::size_t>(k)] = 1.0;
+    directions.push_back(e);
+  }
+}
+
+}  // namespace
+
 std::vector<NodeReaction> constraint_reactions(const State& state, const Boundary& boundary,
                                                const RigidSystem& rigid, const Vec3Array& vp,
                                                double dt_avg) {
   std::vector<NodeReaction> out;
   if (dt_avg <= 0.0) return out;
   const NodalState& nodes = state.nodes;
+  const RotationalState& rot = state.rotations;
   std::vector<std::uint8_t> prescribed(nodes.size(), 0);
   for (const PrescribedDof& dof : boundary.prescribed) {
     if (dof.active(state.time)) prescribed[dof.node] |= static_cast<std::uint8_t>(1 << dof.axis);
   }
-  for (const std::int32_t i : boundary.constrained_nodes) {
+  // DOF 4 and 5-8: the vectors of the active ones, by node and by rotational index.
+  std::vector<std::pair<std::int32_t, std::array<double, 3>>> along, about;
+  for (const PrescribedDirection& p : boundary.prescribed_directions) {
+    if (!p.active(state.time)) continue;
+    if (p.rotation < 0)
+      along.emplace_back(p.node, p.direction);
+    else
+      about.emplace_back(p.rotation, p.direction);
+  }
+  // Every node with a constrained translation or rotation, ascending.
+  std::vector<std::int32_t> listed = boundary.constrained_nodes;
+  const bool rotations = !rot.empty();
+  if (rotations) {
+    for (std::size_t r = 0; r < rot.size(); ++r) {
+      if (!boundary.rotation_fixed.empty() && boundary.rotation_fixed[r] != 0)
+        listed.push_back(rot.node[r]);
+    }
+    for (const auto& [r, n] : about) listed.push_back(rot.node[static_cast<std::size_t>(r)]);
+    std::sort(listed.begin(), listed.end());
+    listed.erase(std::unique(listed.begin(), listed.end()), listed.end());
+  }
+  std::vector<std::array<double, 3>> directions;
+  for (const std::int32_t i : listed) {
     if (rigid.is_rigid(i)) continue;  // moves with its body; its SPC does not act
-    const std::uint8_t mask =
-        static_cast<std::uint8_t>((boundary.fixed.empty() ? 0 : boundary.fixed[i]) | prescribed[i]);
-    if (mask == 0) continue;
-    NodeReaction r;
-    r.node = i;
-    const double m = nodes.mass[i];
-    const double dv[3] = {nodes.v.x[i] - vp.x[i], nodes.v.y[i] - vp.y[i], nodes.v.z[i] - vp.z[i]};
-    const double f[3] = {nodes.f_ext.x[i] - nodes.f_int.x[i], nodes.f_ext.y[i] - nodes.f_int.y[i],
-                         nodes.f_ext.z[i] - nodes.f_int.z[i]};
-    for (int k = 0; k < 3; ++k) r.force[k] = (mask >> k & 1) ? m * dv[k] / dt_avg - f[k] : 0.0;
-    out.push_back(r);
+    NodeReaction reaction;
+    reaction.node = i;
+    directions.clear();
+    add_axes(
+        static_cast<std::uint8_t>((boundary.fixed.empty() ? 0 : boundary.fixed[i]) | prescribed[i]),
+        directions);
+    for (const auto& [node, n] : along)
+      if (node == i) directions.push_back(n);
+    if (!directions.empty()) {
+      const double m = nodes.mass[i];
+      const std::array<double, 3> r{
+          m * (nodes.v.x[i] - vp.x[i]) / dt_avg - (nodes.f_ext.x[i] - nodes.f_int.x[i]),
+          m * (nodes.v.y[i] - vp.y[i]) / dt_avg - (nodes.f_ext.y[i] - nodes.f_int.y[i]),
+          m * (nodes.v.z[i] - vp.z[i]) / dt_avg - (nodes.f_ext.z[i] - nodes.f_int.z[i])};
+      reaction.force = project(r, directions);
+    }
+    const std::int32_t ri = rotations ? rot.index(i) : -1;
+    if (ri >= 0) {
+      const std::size_t r = static_cast<std::size_t>(ri);
+      directions.clear();
+      add_axes(boundary.rotation_fixed.empty() ? std::uint8_t{0} : boundary.rotation_fixed[r],
+               directions);
+      for (const auto& [index, n] : about)
+        if (index == ri) directions.push_back(n);
+      if (!directions.empty()) {
+        const double inertia = rot.inertia[r];
+        const std::array<double, 3> mr{inertia * (rot.w.x[r] - rot.w_previous.x[r]) / dt_avg -
+                                           (rot.m_ext.x[r] - rot.m_int.x[r]),
+                                       inertia * (rot.w.y[r] - rot.w_previous.y[r]) / dt_avg -
+                                           (rot.m_ext.y[r] - rot.m_int.y[r]),
+                                       inertia * (rot.w.z[r] - rot.w_previous.z[r]) / dt_avg -
+                                           (rot.m_ext.z[r] - rot.m_int.z[r])};
+        reaction.moment = project(mr, directions);
+      }
+    }
+    out.push_back(reaction);
   }
   return out;
 }

@@ -54,22 +54,26 @@ class PartHistories {
   std::vector<double>& bulk_viscosity() { return bulk_viscosity_; }
 
  private:
-  std::vector<model::Id> parts_;       // ascending part IDs (then nodal rigid body PIDs)
-  std::vector<int> part_of_block_;     // block slot (hexahedra, shells, beams) -> parts_ index
-  std::vector<int> owner_of_node_;     // node -> index into parts_ (-1: no element)
-  std::vector<double> internal_work_;  // per part, hourglass included
-  std::vector<double> hourglass_;      // per part
+  std::vector<model::Id> parts_;        // ascending part IDs (then nodal rigid body PIDs)
+  std::vector<int> part_of_block_;      // block slot (hexahedra, shells, beams) -> parts_ index
+  std::vector<int> owner_of_node_;      // node -> index into parts_ (-1: no element)
+  std::vector<double> internal_work_;   // per part, hourglass included
+  std::vector<double> hourglass_;       // per part
   std::vector<double> bulk_viscosity_;  // per part
-  Vec3Array displacement_;             // scratch: the step's work displacement per node
-  Vec3Array rotation_increment_;       // scratch: the step's work rotation per rotational index
+  Vec3Array displacement_;              // scratch: the step's work displacement per node
+  Vec3Array rotation_increment_;        // scratch: the step's work rotation per rotational index
 };
 
-// Reaction force of a constrained node (SPC, *NODE TC, prescribed motion) at the output time t^n:
-// r = m (v^{n+1/2} - v^{n-1/2}) / dt_avg - (f_ext - f_int), the force the constraint applied in
-// the step; components of free DOFs are set to 0.
+// Reaction of a constrained node (SPC, *NODE TC/RC, prescribed motion of any DOF) at the output
+// time t^n: r = m (v^{n+1/2} - v^{n-1/2}) / dt_avg - (f_ext - f_int), the force the constraint
+// applied in the step, projected on the constrained directions (the fixed or prescribed axes and
+// the vectors of DOF 4): free directions get 0. The moment likewise from the rotations,
+// I (omega^{n+1/2} - omega^{n-1/2}) / dt_avg - (m_ext - m_int), on the fixed rotational axes and
+// the vectors of DOF 5-8; 0 at nodes without rotations.
 struct NodeReaction {
   std::int32_t node = 0;  // dense index
   std::array<double, 3> force{};
+  std::array<double, 3> moment{};
 };
 std::vector<NodeReaction> constraint_reactions(const State& state, const Boundary& boundary,
                                                const RigidSystem& rigid,
