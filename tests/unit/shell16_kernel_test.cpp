@@ -488,6 +488,39 @@ TEST(Shell16Plasticity, UniaxialTensionFollowsBilinearLaw) {
   }
 }
 
+// Membrane bulk viscosity (*CONTROL_BULK_VISCOSITY TYPE -1/-2): the element's q from its mean
+// area rate on every point. A uniform in-plane compression of a distorted element is a uniform
+// membrane state, which the one-point and the 2x2 element integrate alike (the mean gradient
+// is the one-point B): forces, viscous work and the viscous step equal ELFORM 2's (hourglass
+// off).
+TEST(Shell16BulkViscosity, UniformCompressionMatchesElform2) {
+  Mesh m;
+  m.add_node(0.0, 0.0, 0.0);
+  m.add_node(0.3, 0.02, 0.0);
+  m.add_node(0.35, 0.2, 0.0);
+  m.add_node(-0.03, 0.25, 0.0);
+  m.add_element({0, 1, 2, 3}, 0.01);
+  for (int i = 0; i < 4; ++i) {
+    m.vx[i] = -300.0 * m.x[i];
+    m.vy[i] = -200.0 * m.y[i];
+  }
+  Mesh b = m;
+  set_section(m.block, 0, 2);
+  set_section(b.block, 0, 2, 2);
+  m.block.bulk_viscosity = {1.5, 0.06};
+  b.block.bulk_viscosity = {1.5, 0.06};
+  m.initialize();
+  b.initialize();
+  const double dt = 1e-7;
+  const auto r16 = m.step(dt), r2 = b.step(dt);
+  EXPECT_GT(r16.bulk_viscosity_work, 0.0);
+  EXPECT_NEAR(r16.bulk_viscosity_work, r2.bulk_viscosity_work, 1e-10 * r2.bulk_viscosity_work);
+  EXPECT_NEAR(r16.min_dt, r2.min_dt, 1e-12 * r2.min_dt);
+  double scale = 0.0;
+  for (double f : b.block.force) scale = std::max(scale, std::abs(f));
+  for (int c = 0; c < 24; ++c) EXPECT_NEAR(m.block.force[c], b.block.force[c], 1e-10 * scale) << c;
+}
+
 // Triangles (N3 = N4) are refused naming the element; the step and the lumped mass are
 // ELFORM 2's.
 TEST(Shell16Initialize, TriangleIsAnErrorNamingTheElement) {
