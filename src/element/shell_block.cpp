@@ -1,5 +1,6 @@
 // Belytschko-Lin-Tsay shell (LS-DYNA ELFORM 2): co-rotational, one point in the plane, Mindlin
-// kinematics, plane stress at each through-thickness point, hourglass control.
+// kinematics, plane stress at each through-thickness point, hourglass control. The fully
+// integrated shell (ELFORM 16) shares its frame, materials, step and mass: section 11.
 //
 // References: T. Belytschko, J.I. Lin, C.S. Tsay, "Explicit algorithms for the nonlinear
 // dynamics of shells", CMAME 42 (1984) 225-251 (BLT); T. Belytschko, B.L. Wong, H.Y. Chiang,
@@ -131,6 +132,46 @@
 //    bulk viscosity work. For a 1-D membrane element this is the solids' damped element with c
 //    and L_e replaced by the plate speed and L_s, so the same stable step holds:
 //    dt = L_s / (Q + sqrt(Q^2 + c^2)), Q = Q2 c + Q1 L_s |e_A| while e_A < 0.
+//
+// 11. Fully integrated shell (ELFORM 16; shell16_batch). References: K.-J. Bathe, E.N. Dvorkin,
+//    "A four-node plate bending element based on Mindlin/Reissner plate theory and a mixed
+//    interpolation", IJNME 21 (1985) 367-383 (MITC4); E.N. Dvorkin, K.-J. Bathe, "A continuum
+//    mechanics based four-node shell element for general nonlinear analysis", Eng. Comput. 1
+//    (1984) 77-88; LS-DYNA Theory Manual, "Fully integrated shell (type 16)".
+//    Frame: one co-rotational frame per element, section 1's, at x^{n+1/2} for the rates and at
+//    x^{n+1} for the forces (as section 2). The element is the projection of the nodes on the
+//    frame's plane, with the warping link of section 5 always on (a rigid rotation of a warped
+//    element then stays strain-free at every point: the 2x2 points, unlike the one-point B,
+//    see the warping pattern z_I = z h_I).
+//    Points: 2x2 Gauss points (xi, eta) = (+-1/sqrt 3, +-1/sqrt 3) in the plane, point g next to
+//    node g, weight det J; NIP points through the thickness at each. Stress and history index:
+//    point (e, g, q) is (4 e + g) NIP + q (ShellBlock::points_per_element() = 4 NIP per element).
+//    Rates at a point at height z: section 2's with the point's bilinear gradients dN/dx, dN/dy
+//    in place of B1, B2 (membrane and curvature rates, full integration: no hourglass modes and
+//    no hourglass control; *HOURGLASS IHQ/QM are ignored, as LS-DYNA does for type 16).
+//    Transverse shear (assumed natural strain, MITC4): with beta_x = thh_y, beta_y = -thh_x the
+//    covariant strains gamma_xi = w_,xi + beta . x_,xi at the edge midpoints A (eta = -1) and C
+//    (eta = 1), gamma_eta at D (xi = -1) and B (xi = 1), each exact for the edge's chord:
+//      gamma_edge = (w_R - w_P) / 2 + (x_R - x_P) / 2 . (beta_P + beta_R) / 2,
+//    interpolated gamma_xi = (1 - eta)/2 A + (1 + eta)/2 C, gamma_eta = (1 - xi)/2 D +
+//    (1 + xi)/2 B, and turned to Cartesian components by J^-1 at the point:
+//    (2 d_zx, 2 d_yz) = J^-1 (gamma_xi, gamma_eta), J = [[x_xi, y_xi], [x_eta, y_eta]]. A
+//    Kirchhoff state (w quadratic, beta linear) has zero shear at every point, so a thin plate
+//    does not lock in shear; the constant states pass the patch test.
+//    Stress update per point: section 3 unchanged (elastic closed form, J2 plane stress, Barlat),
+//    the point's own history. Resultants N, M, Q per in-plane point (section 4's sums), and the
+//    forces the transpose of the end-of-step rate operators, f = sum_g det J_g B_g^T (N, M, Q)_g,
+//    so that they are the exact derivative of the internal power sum_g det J_g sum_p (t/2) w_p
+//    s : d (rigid motions do no work; force and moment balance hold).
+//    Drilling: none (m_z = 0), as section 4. A free element has 10 zero-energy modes: 6 rigid
+//    and the 4 nodal drilling rotations.
+//    Triangles: refused at initialisation naming the element (LS-DYNA would run them as its C0
+//    triangle, which this code does not have); put them in an ELFORM 2 part.
+//    Step and mass: sections 8 and 9 unchanged (the bilinear element's highest frequency is the
+//    membrane dilatation mode, which the one-point element has too).
+//    Bulk viscosity (TYPE -1/-2): section 10's q from the element's mean area rate
+//    e_A = sum_g det J_g (d_x + d_y)_g / A (the exact rate of the mid-step area), applied on the
+//    in-plane normal resultants of every point; power -q e_A t A as section 10.
 #include "element/shell_block.hpp"
 
 #include "element/kernel_partials.hpp"

@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <string>
 #include <vector>
@@ -170,6 +172,7 @@ TEST(Shell16Patch, ConstantMembraneStrainOnDistortedMeshIsExact) {
     for (int j = 0; j < 3; ++j)
       T[i][j] = sa * u[i] * u[j] + sb * w[i] * w[j] + sab * (u[i] * w[j] + w[i] * u[j]);
   const double scale = std::abs(sa) + std::abs(sb);
+  double worst = 0.0;
   for (std::size_t e = 0; e < 4; ++e) {
     std::array<double, 3> pe[4];
     for (int I = 0; I < 4; ++I) pe[I] = X[m.block.conn[4 * e + I]];
@@ -177,11 +180,16 @@ TEST(Shell16Patch, ConstantMembraneStrainOnDistortedMeshIsExact) {
     for (int g = 0; g < 4; ++g)
       for (int q = 0; q < 2; ++q) {
         const double* st = point_stress(m.block, e, g, q);
-        for (int c = 0; c < 3; ++c) EXPECT_NEAR(st[c], expect[c], 1e-11 * scale);
+        for (int c = 0; c < 3; ++c) {
+          EXPECT_NEAR(st[c], expect[c], 1e-11 * scale);
+          worst = std::max(worst, std::abs(st[c] - expect[c]) / scale);
+        }
         EXPECT_NEAR(st[3], 0.0, 1e-11 * scale);
         EXPECT_NEAR(st[4], 0.0, 1e-11 * scale);
+        worst = std::max({worst, std::abs(st[3]) / scale, std::abs(st[4]) / scale});
       }
   }
+  std::printf("ELFORM 16 membrane patch: largest stress error %.2e of the stress scale\n", worst);
   // Interior node in equilibrium up to the half-step frame turn (second order, as for ELFORM 2).
   const double fscale = scale * t * 0.5;
   const auto f = node_sum(m.block, p.interior, 0);
@@ -201,6 +209,7 @@ TEST(Shell16Patch, ConstantMembraneStrainOnDistortedMeshIsExact) {
 TEST(Shell16Patch, ConstantCurvatureOnDistortedMeshIsExact) {
   const double u[3] = {1, 0, 0}, w[3] = {0, 1, 0};
   const double t = 0.02;
+  double worst = 0.0, worst_shear = 0.0;
   for (int nip : {2, 3, 5}) {
     Patch p = make_patch(u, w, t);
     Mesh& m = p.mesh;
@@ -229,18 +238,27 @@ TEST(Shell16Patch, ConstantCurvatureOnDistortedMeshIsExact) {
           for (int k = 0; k < 3; ++k) M[k] += t / 2 * m.block.weight[q] * zq * st[k];
           EXPECT_NEAR(st[3], 0.0, 1e-9 * kE * kappa * t) << "shear yz, element " << e;
           EXPECT_NEAR(st[4], 0.0, 1e-9 * kE * kappa * t) << "shear zx, element " << e;
+          worst_shear = std::max({worst_shear, std::abs(st[3]) / (kE * kappa * t),
+                                  std::abs(st[4]) / (kE * kappa * t)});
         }
-        for (int k = 0; k < 3; ++k)
+        for (int k = 0; k < 3; ++k) {
           EXPECT_NEAR(M[k], expect[k], 1e-10 * D * kappa) << "element " << e << " point " << g;
+          worst = std::max(worst, std::abs(M[k] - expect[k]) / (D * kappa));
+        }
       }
     }
   }
+  std::printf(
+      "ELFORM 16 curvature patch: largest moment error %.2e of D kappa, largest "
+      "transverse shear %.2e of E kappa t\n",
+      worst, worst_shear);
 }
 
 // Finite rigid rotations (Cayley-consistent velocities) of a prestressed element, flat and
 // warped: the co-rotational stresses at all 4 x NIP points stay unchanged.
 TEST(Shell16Objectivity, FiniteRigidRotationLeavesStressUnchanged) {
   const double pi = std::acos(-1.0);
+  double worst = 0.0;
   for (bool warped : {false, true})
     for (int axis_case : {0, 1, 2}) {
       Mesh m;
@@ -285,10 +303,16 @@ TEST(Shell16Objectivity, FiniteRigidRotationLeavesStressUnchanged) {
         }
         ASSERT_FALSE(m.step(dt).failed);
       }
-      for (std::size_t k = 0; k < stress0.size(); ++k)
+      for (std::size_t k = 0; k < stress0.size(); ++k) {
         EXPECT_NEAR(m.block.stress[k], stress0[k], 1e-10 * s0)
             << "warped " << warped << " axis " << axis_case << " component " << k;
+        worst = std::max(worst, std::abs(m.block.stress[k] - stress0[k]) / s0);
+      }
     }
+  std::printf(
+      "ELFORM 16 rigid rotation by 120 degrees: largest stress change %.2e of the "
+      "prestress\n",
+      worst);
 }
 
 // Forces and moments of arbitrary states balance (sum f = 0, sum x x f + m = 0).
@@ -379,6 +403,7 @@ TEST(Shell16Modes, SingleElementHasOnlyRigidAndDrillingZeroModes) {
   full.initialize();
   double gap = 0.0;
   EXPECT_EQ(zero_modes(probed_stiffness(full), &gap), 10);
+  std::printf("ELFORM 16 free element: 10 zero modes, next eigenvalue %.2e of the largest\n", gap);
   EXPECT_GT(gap, 1e-5);  // the softest deformation mode is far from zero
   Mesh one = m;
   set_section(one.block, 0, 2, 2);
