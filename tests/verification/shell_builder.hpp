@@ -5,6 +5,7 @@
 
 #include <Eigen/Dense>
 #include <functional>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -64,6 +65,12 @@ inline std::string shell_part(int pid, double thickness, double rho, double e, d
       "{2:.17g},{2:.17g},{2:.17g},{2:.17g}\n*MAT_ELASTIC\n{0},{3:.17g},{4:.17g},{5:.17g}\n"
       "*HOURGLASS\n{0},{6},{7:.17g}\n",
       pid, nip, thickness, rho, e, nu, ihq, qm, elform);
+}
+
+// The deck with every *SECTION_SHELL of ELFORM 2 (first card "SECID,2,...") made ELFORM 16.
+inline std::string fully_integrated(const std::string& deck) {
+  static const std::regex kSection(R"((\*SECTION_SHELL\n\d+),2,)");
+  return std::regex_replace(deck, kSection, "$1,16,");
 }
 
 }  // namespace rf::test
