@@ -5,10 +5,13 @@
 
 #include <cmath>
 #include <numbers>
+#include <sstream>
 
 #include "deck_builder.hpp"
 #include "model/error.hpp"
+#include "output/history_writers.hpp"
 #include "shell_builder.hpp"
+#include "solver/build_state.hpp"
 
 namespace rf::test {
 namespace {
@@ -185,6 +188,42 @@ TEST(Shell16Deck, InPlaneBendingOfCoarseStripLocksAsBilinearElements) {
   // so the deflection is 1 / (1 + (a / H)^2 / (2 (1 + nu))) = 2/3 here (measured 0.666 for both).
   EXPECT_NEAR(one16, 2.0 / 3.0, 0.01);
   EXPECT_NEAR(two16, one16, 0.005);
+}
+
+// elout_shell.csv of an ELFORM 16 element: at each through-thickness point the mean of the 4
+// in-plane points (a flat axis-aligned element: element axes = global axes).
+TEST(Shell16Deck, EloutShellAveragesTheInPlanePoints) {
+  ShellPlate p;
+  const model::Model model =
+      read("*KEYWORD\n" + p.text() + shell_part(1, 0.01, kRho, kE, 0.3, 3, 1, 0.1, 16) + "*END\n");
+  const solver::NodeIndex index(model);
+  solver::State state = solver::build_state(model, index);
+  element::ShellBlock& block = state.shell_blocks.at(0);
+  ASSERT_EQ(block.points_per_element(), 12);
+  for (std::size_t k = 0; k < block.stress.size(); ++k)
+    block.stress[k] = 1e6 * static_cast<double>(k % 7) + 1e5 * static_cast<double>(k);
+  const std::string text = output::elout_shell_text(0.0, state, {{0, 0}});
+  std::istringstream lines(text);
+  std::string line;
+  int rows = 0;
+  while (std::getline(lines, line)) {
+    std::vector<double> v;
+    std::stringstream fields(line);
+    std::string f;
+    while (std::getline(fields, f, ',')) v.push_back(std::stod(f));
+    ASSERT_GE(v.size(), 11u) << line;
+    const int q = static_cast<int>(v[3]) - 1;  // point 1..NIP
+    double mean[5] = {0, 0, 0, 0, 0};
+    for (int g = 0; g < 4; ++g)
+      for (int c = 0; c < 5; ++c) mean[c] += 0.25 * block.stress[5 * (g * 3 + q) + c];
+    EXPECT_NEAR(v[5], mean[0], 1e-6) << line;   // sxx
+    EXPECT_NEAR(v[6], mean[1], 1e-6) << line;   // syy
+    EXPECT_NEAR(v[8], mean[2], 1e-6) << line;   // sxy
+    EXPECT_NEAR(v[9], mean[3], 1e-6) << line;   // syz
+    EXPECT_NEAR(v[10], mean[4], 1e-6) << line;  // szx
+    ++rows;
+  }
+  EXPECT_EQ(rows, 3);
 }
 
 // *CONTROL_SHELL THEORY 16 makes ELFORM 0 sections fully integrated; an *HOURGLASS card of an
