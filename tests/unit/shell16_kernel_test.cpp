@@ -412,6 +412,43 @@ TEST(Shell16Modes, SingleElementHasOnlyRigidAndDrillingZeroModes) {
   EXPECT_EQ(zero_modes(probed_stiffness(one), &gap2), 16);
 }
 
+// The step rule is ELFORM 2's: the highest frequency of a free element (lumped mass and scaled
+// rotary inertia, stiffness probed from the kernel) stays that of the membrane dilatation mode,
+// which the one-point element shares, so 2 / omega_max is the same fraction of L_s / c (0.877 on
+// a square at nu 0.3, covered by TSSFAC 0.9) and the rotations never govern.
+TEST(Shell16TimeStep, HighestElementFrequencyIsElform2s) {
+  const double shapes[3][4][2] = {{{0, 0}, {1, 0}, {1, 1}, {0, 1}},
+                                  {{0, 0}, {1.1, 0.1}, {1.3, 0.9}, {-0.1, 1.0}},
+                                  {{0, 0}, {3, 0}, {3, 1}, {0, 1}}};
+  for (const auto& shape : shapes)
+    for (double t : {0.01, 0.3}) {
+      double ratio[2];
+      for (int k = 0; k < 2; ++k) {
+        Mesh m;
+        for (const auto& p : shape) m.add_node(p[0], p[1], 0.0);
+        m.add_element({0, 1, 2, 3}, t);
+        set_section(m.block, 0, 2, k == 0 ? 16 : 2);
+        m.block.hourglass.qm = 0.1;
+        m.initialize();
+        const Eigen::MatrixXd K = probed_stiffness(m);
+        std::vector<double> mass(4, 0.0), inertia(4, 0.0);
+        rf::element::add_shell_lumped_mass(m.block, mass, inertia);
+        Eigen::VectorXd w(24);
+        for (int i = 0; i < 24; ++i)
+          w[i] = 1.0 / std::sqrt((i % 6) < 3 ? mass[i / 6] : inertia[i / 6]);
+        const Eigen::MatrixXd A = w.asDiagonal() * K * w.asDiagonal();
+        const double omega =
+            std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(A).eigenvalues().maxCoeff());
+        const double dt = rf::element::shell_critical_timestep(m.block, m.view()).min_dt;
+        ratio[k] = 2.0 / omega / dt;
+      }
+      std::printf("shape %d t %.2f: 2/omega_max over L_s/c: ELFORM 16 %.4f, ELFORM 2 %.4f\n",
+                  static_cast<int>(&shape - shapes), t, ratio[0], ratio[1]);
+      EXPECT_GT(ratio[0], 0.87);
+      EXPECT_NEAR(ratio[0], ratio[1], 0.02 * ratio[1]);
+    }
+}
+
 // Twist of a rectangle, w = c x y with the Kirchhoff rotations theta_x = c x, theta_y = -c y:
 // the strain energy is the plate's, G (2c)^2 t^3 / 24 A (constant twist, no transverse shear).
 // The hourglass pattern w = h with no rotations (the one-point element's w mode) has a finite
