@@ -1,4 +1,5 @@
-// Throughput of compute_shell_forces (Belytschko-Lin-Tsay, ELFORM 2) on an N x N plate, mildly
+// Throughput of compute_shell_forces (Belytschko-Lin-Tsay ELFORM 2, fully integrated ELFORM 16)
+// on an N x N plate, mildly
 // warped, with smooth velocity and angular velocity fields. Run with OMP_NUM_THREADS=1 for the
 // per-core figure; "ns_per_element" is the time of one element-cycle (kernel only: no gather
 // of the assembly, no time integration).
@@ -21,8 +22,9 @@ struct Plate {
   rf::element::RotationalView rotations() const { return {wx.data(), wy.data(), wz.data()}; }
 };
 
-Plate make_plate(int n, int nip, int ihq, int material_index) {
+Plate make_plate(int n, int nip, int ihq, int material_index, int elform) {
   Plate p;
+  p.block.elform = elform;
   const int m = n + 1;
   const double h = 0.01;
   for (int j = 0; j < m; ++j)
@@ -62,8 +64,8 @@ Plate make_plate(int n, int nip, int ihq, int material_index) {
   return p;
 }
 
-void run(benchmark::State& state, int nip, int ihq, int material_index) {
-  Plate p = make_plate(static_cast<int>(state.range(0)), nip, ihq, material_index);
+void run(benchmark::State& state, int nip, int ihq, int material_index, int elform = 2) {
+  Plate p = make_plate(static_cast<int>(state.range(0)), nip, ihq, material_index, elform);
   for (auto _ : state) {
     auto r = rf::element::compute_shell_forces(p.block, p.view(), p.rotations(), 1e-7);
     benchmark::DoNotOptimize(r);
@@ -87,10 +89,19 @@ void BM_ShellBltNip5Ihq1(benchmark::State& s) {
 void BM_ShellBltNip5Mat024(benchmark::State& s) {
   run(s, 5, 1, 2);
 }
+// ELFORM 16: four in-plane points, no hourglass control (IHQ ignored).
+void BM_ShellFullNip2(benchmark::State& s) {
+  run(s, 2, 1, 0, 16);
+}
+void BM_ShellFullNip5Mat024(benchmark::State& s) {
+  run(s, 5, 1, 2, 16);
+}
 
 BENCHMARK(BM_ShellBltNip2Ihq1)->Arg(100)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ShellBltNip2Ihq4)->Arg(100)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ShellBltNip5Ihq1)->Arg(100)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ShellBltNip5Mat024)->Arg(100)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ShellFullNip2)->Arg(100)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ShellFullNip5Mat024)->Arg(100)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

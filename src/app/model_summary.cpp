@@ -165,8 +165,11 @@ void print_model_summary(const model::Model& model, const solver::Simulation& si
                mat.keyword, mat.rho, mat.e, mat.pr,
                block.rigid
                    ? std::string(", rigid")
-                   : fmt::format(", hourglass IHQ {} QM {:g}{}, element step {:.4g}",
-                                 block.hourglass.ihq, block.hourglass.qm,
+                   : fmt::format(", {}{}, element step {:.4g}",
+                                 block.elform == 16
+                                     ? std::string("no hourglass control (fully integrated)")
+                                     : fmt::format("hourglass IHQ {} QM {:g}", block.hourglass.ihq,
+                                                   block.hourglass.qm),
                                  block.bulk_viscosity.on()
                                      ? fmt::format(", membrane bulk viscosity Q1 {:g} "
                                                    "Q2 {:g}",
@@ -219,8 +222,7 @@ void print_model_summary(const model::Model& model, const solver::Simulation& si
     for (const auto& j : sim.joint_stiffnesses().joints) {
       fmt::print(out, "  joint stiffness {}: parts {} (A) and {} (B){}, stability limit {:.4g}\n",
                  j.id, j.pida, j.pidb,
-                 j.jid != 0 ? fmt::format(", reported with joint {}", j.jid) : "",
-                 j.critical_step);
+                 j.jid != 0 ? fmt::format(", reported with joint {}", j.jid) : "", j.critical_step);
     }
   }
   const auto& walls = sim.rigid_walls().walls;

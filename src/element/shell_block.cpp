@@ -1,5 +1,6 @@
 // Belytschko-Lin-Tsay shell (LS-DYNA ELFORM 2): co-rotational, one point in the plane, Mindlin
-// kinematics, plane stress at each through-thickness point, hourglass control.
+// kinematics, plane stress at each through-thickness point, hourglass control. The fully
+// integrated shell (ELFORM 16) shares its frame, materials, step and mass: section 11.
 //
 // References: T. Belytschko, J.I. Lin, C.S. Tsay, "Explicit algorithms for the nonlinear
 // dynamics of shells", CMAME 42 (1984) 225-251 (BLT); T. Belytschko, B.L. Wong, H.Y. Chiang,
@@ -131,6 +132,46 @@
 //    bulk viscosity work. For a 1-D membrane element this is the solids' damped element with c
 //    and L_e replaced by the plate speed and L_s, so the same stable step holds:
 //    dt = L_s / (Q + sqrt(Q^2 + c^2)), Q = Q2 c + Q1 L_s |e_A| while e_A < 0.
+//
+// 11. Fully integrated shell (ELFORM 16; shell16_batch). References: K.-J. Bathe, E.N. Dvorkin,
+//    "A four-node plate bending element based on Mindlin/Reissner plate theory and a mixed
+//    interpolation", IJNME 21 (1985) 367-383 (MITC4); E.N. Dvorkin, K.-J. Bathe, "A continuum
+//    mechanics based four-node shell element for general nonlinear analysis", Eng. Comput. 1
+//    (1984) 77-88; LS-DYNA Theory Manual, "Fully integrated shell (type 16)".
+//    Frame: one co-rotational frame per element, section 1's, at x^{n+1/2} for the rates and at
+//    x^{n+1} for the forces (as section 2). The element is the projection of the nodes on the
+//    frame's plane, with the warping link of section 5 always on (a rigid rotation of a warped
+//    element then stays strain-free at every point: the 2x2 points, unlike the one-point B,
+//    see the warping pattern z_I = z h_I).
+//    Points: 2x2 Gauss points (xi, eta) = (+-1/sqrt 3, +-1/sqrt 3) in the plane, point g next to
+//    node g, weight det J; NIP points through the thickness at each. Stress and history index:
+//    point (e, g, q) is (4 e + g) NIP + q (ShellBlock::points_per_element() = 4 NIP per element).
+//    Rates at a point at height z: section 2's with the point's bilinear gradients dN/dx, dN/dy
+//    in place of B1, B2 (membrane and curvature rates, full integration: no hourglass modes and
+//    no hourglass control; *HOURGLASS IHQ/QM are ignored, as LS-DYNA does for type 16).
+//    Transverse shear (assumed natural strain, MITC4): with beta_x = thh_y, beta_y = -thh_x the
+//    covariant strains gamma_xi = w_,xi + beta . x_,xi at the edge midpoints A (eta = -1) and C
+//    (eta = 1), gamma_eta at D (xi = -1) and B (xi = 1), each exact for the edge's chord:
+//      gamma_edge = (w_R - w_P) / 2 + (x_R - x_P) / 2 . (beta_P + beta_R) / 2,
+//    interpolated gamma_xi = (1 - eta)/2 A + (1 + eta)/2 C, gamma_eta = (1 - xi)/2 D +
+//    (1 + xi)/2 B, and turned to Cartesian components by J^-1 at the point:
+//    (2 d_zx, 2 d_yz) = J^-1 (gamma_xi, gamma_eta), J = [[x_xi, y_xi], [x_eta, y_eta]]. A
+//    Kirchhoff state (w quadratic, beta linear) has zero shear at every point, so a thin plate
+//    does not lock in shear; the constant states pass the patch test.
+//    Stress update per point: section 3 unchanged (elastic closed form, J2 plane stress, Barlat),
+//    the point's own history. Resultants N, M, Q per in-plane point (section 4's sums), and the
+//    forces the transpose of the end-of-step rate operators, f = sum_g det J_g B_g^T (N, M, Q)_g,
+//    so that they are the exact derivative of the internal power sum_g det J_g sum_p (t/2) w_p
+//    s : d (rigid motions do no work; force and moment balance hold).
+//    Drilling: none (m_z = 0), as section 4. A free element has 10 zero-energy modes: 6 rigid
+//    and the 4 nodal drilling rotations.
+//    Triangles: refused at initialisation naming the element (LS-DYNA would run them as its C0
+//    triangle, which this code does not have); put them in an ELFORM 2 part.
+//    Step and mass: sections 8 and 9 unchanged (the bilinear element's highest frequency is the
+//    membrane dilatation mode, which the one-point element has too).
+//    Bulk viscosity (TYPE -1/-2): section 10's q from the element's mean area rate
+//    e_A = sum_g det J_g (d_x + d_y)_g / A (the exact rate of the mid-step area), applied on the
+//    in-plane normal resultants of every point; power -q e_A t A as section 10.
 #include "element/shell_block.hpp"
 
 #include "element/kernel_partials.hpp"
@@ -676,6 +717,307 @@ void shell_batch(ShellBlock& block, const BlockConstants& k, std::size_t first, 
   }
 }
 
+// ---- ELFORM 16: fully integrated shell (header comment, section 11) ----------------------------
+
+// Natural coordinates of the nodes and of the 2x2 Gauss points (point g nearest node g).
+constexpr double kXiNode[4] = {-1.0, 1.0, 1.0, -1.0};
+constexpr double kEtaNode[4] = {-1.0, -1.0, 1.0, 1.0};
+constexpr double kGaussCoordinate = 0.57735026918962576451;  // 1 / sqrt(3)
+
+// Operators of one in-plane point on the projected flat element of a frame: bilinear gradients
+// dN/dx, dN/dy, the Jacobian determinant (the Gauss weight, 1, included) and the assumed
+// natural transverse shear strains (MITC4) as nodal coefficients:
+//   2 d_zx = sum_I zx_w[I] vz_I + zx_b[I][0] beta_xI + zx_b[I][1] beta_yI, likewise 2 d_yz,
+// with the rotations beta_x = thh_y, beta_y = -thh_x (u = z beta_x, v = z beta_y).
+template <class T>
+struct PointOps {
+  T dnx[4], dny[4];
+  T jac;
+  T zx_w[4], zx_b[4][2];
+  T yz_w[4], yz_b[4][2];
+};
+
+template <class T>
+inline void point_operators(const Frame<T>& f, int g, PointOps<T>& o) {
+  const double xi = kXiNode[g] * kGaussCoordinate, eta = kEtaNode[g] * kGaussCoordinate;
+  double nxi[4], neta[4];
+  for (int I = 0; I < 4; ++I) {
+    nxi[I] = 0.25 * kXiNode[I] * (1.0 + kEtaNode[I] * eta);
+    neta[I] = 0.25 * kEtaNode[I] * (1.0 + kXiNode[I] * xi);
+  }
+  T x_xi{}, y_xi{}, x_eta{}, y_eta{};
+  for (int I = 0; I < 4; ++I) {
+    x_xi += nxi[I] * f.x[I];
+    y_xi += nxi[I] * f.y[I];
+    x_eta += neta[I] * f.x[I];
+    y_eta += neta[I] * f.y[I];
+  }
+  o.jac = x_xi * y_eta - x_eta * y_xi;
+  const T one = T{} + 1.0;
+  const T inv_j = 1.0 / (o.jac > 0.0 ? o.jac : one);
+  for (int I = 0; I < 4; ++I) {
+    o.dnx[I] = (y_eta * nxi[I] - y_xi * neta[I]) * inv_j;
+    o.dny[I] = (x_xi * neta[I] - x_eta * nxi[I]) * inv_j;
+  }
+  // Covariant shear strains at the tying points (Bathe and Dvorkin 1985): along an edge from
+  // node P to node R (the natural coordinate increasing), gamma = (w_R - w_P) / 2 +
+  // (x_R - x_P) / 2 . (beta_P + beta_R) / 2. Edges A (eta = -1, 1 -> 2) and C (eta = 1,
+  // 4 -> 3) carry gamma_xi; D (xi = -1, 1 -> 4) and B (xi = 1, 2 -> 3) carry gamma_eta.
+  // gamma_xi = (1 - eta) / 2 A + (1 + eta) / 2 C; gamma_eta = (1 - xi) / 2 D + (1 + xi) / 2 B;
+  // Cartesian: [gamma_xi, gamma_eta] = J [gamma_xz, gamma_yz], J = [[x_xi, y_xi], [x_eta, y_eta]].
+  const T ga = (y_eta * inv_j), gb = -(y_xi * inv_j);  // gamma_xz = ga gamma_xi + gb gamma_eta
+  const T gc = -(x_eta * inv_j), gd = (x_xi * inv_j);  // gamma_yz = gc gamma_xi + gd gamma_eta
+  for (int I = 0; I < 4; ++I) {
+    o.zx_w[I] = T{};
+    o.yz_w[I] = T{};
+    o.zx_b[I][0] = o.zx_b[I][1] = o.yz_b[I][0] = o.yz_b[I][1] = T{};
+  }
+  struct Edge {
+    int p, r;
+    double weight;
+    bool xi;  // carries gamma_xi (else gamma_eta)
+  };
+  const Edge edges[4] = {{0, 1, 0.5 * (1.0 - eta), true},
+                         {3, 2, 0.5 * (1.0 + eta), true},
+                         {0, 3, 0.5 * (1.0 - xi), false},
+                         {1, 2, 0.5 * (1.0 + xi), false}};
+  for (const Edge& e : edges) {
+    const T czx = e.weight * (e.xi ? ga : gb);
+    const T cyz = e.weight * (e.xi ? gc : gd);
+    const T dx = 0.25 * (f.x[e.r] - f.x[e.p]), dy = 0.25 * (f.y[e.r] - f.y[e.p]);
+    o.zx_w[e.r] += 0.5 * czx;
+    o.zx_w[e.p] -= 0.5 * czx;
+    o.yz_w[e.r] += 0.5 * cyz;
+    o.yz_w[e.p] -= 0.5 * cyz;
+    for (const int I : {e.p, e.r}) {
+      o.zx_b[I][0] += czx * dx;
+      o.zx_b[I][1] += czx * dy;
+      o.yz_b[I][0] += cyz * dx;
+      o.yz_b[I][1] += cyz * dy;
+    }
+  }
+}
+
+// A batch of ELFORM 16 elements, as shell_batch: rates on the mid-step geometry, stress update
+// at the 4 x nip points, forces at x^{n+1}. Quadrilaterals only (initialize_shell_block).
+template <class M, class T>
+void shell16_batch(ShellBlock& block, const BlockConstants& k, std::size_t first, int count,
+                   const NodalView& nv, const RotationalView& rv, double dt, Partial& part) {
+  constexpr int L = lanes_of<T>();
+  constexpr int kHist = material::history_size<M>();
+  static_assert(kHist == 0 || std::is_same_v<T, double>, "J2 materials run one element at a time");
+  std::size_t elem[L];
+  for (int l = 0; l < L; ++l) elem[l] = first + static_cast<std::size_t>(l < count ? l : count - 1);
+
+  T p[4][3], pm[4][3], v[4][3], w[4][3];
+  const double half_dt = 0.5 * dt;
+  for (int I = 0; I < 4; ++I) {
+    std::size_t n[L], r[L];
+    for (int l = 0; l < L; ++l) {
+      n[l] = static_cast<std::size_t>(block.conn[4 * elem[l] + static_cast<std::size_t>(I)]);
+      r[l] =
+          static_cast<std::size_t>(block.rotation_conn[4 * elem[l] + static_cast<std::size_t>(I)]);
+    }
+    p[I][0] = gather<T>(nv.x, n);
+    p[I][1] = gather<T>(nv.y, n);
+    p[I][2] = gather<T>(nv.z, n);
+    v[I][0] = gather<T>(nv.vx, n);
+    v[I][1] = gather<T>(nv.vy, n);
+    v[I][2] = gather<T>(nv.vz, n);
+    w[I][0] = gather<T>(rv.wx, r);
+    w[I][1] = gather<T>(rv.wy, r);
+    w[I][2] = gather<T>(rv.wz, r);
+    for (int i = 0; i < 3; ++i) pm[I][i] = p[I][i] - half_dt * v[I][i];
+  }
+  const T t = gather<T>(block.element_thickness.data(), elem);
+  const T area0 = gather<T>(block.area0.data(), elem);
+  Frame<T> fm, f;
+  make_frame(pm, fm);
+  make_frame(p, f);
+
+  // Local velocities on the mid-step frame, with the warping link of section 5 (always on).
+  T vl[4][3], wl[4][3];
+  for (int I = 0; I < 4; ++I)
+    for (int a = 0; a < 3; ++a) {
+      vl[I][a] = fm.e[a][0] * v[I][0] + fm.e[a][1] * v[I][1] + fm.e[a][2] * v[I][2];
+      wl[I][a] = fm.e[a][0] * w[I][0] + fm.e[a][1] * w[I][1] + fm.e[a][2] * w[I][2];
+    }
+  for (int I = 0; I < 4; ++I) {
+    vl[I][0] -= fm.z[I] * wl[I][1];
+    vl[I][1] += fm.z[I] * wl[I][0];
+  }
+
+  const int nip = block.nip;
+  const std::size_t ppe = static_cast<std::size_t>(4 * nip);
+  const T half_t = 0.5 * t;
+  const double gs_dt = k.transverse_shear * dt;
+
+  // Rates at the four points (mid-step operators); area rate for the bulk viscosity.
+  T em[4][3], kp[4][3], gyz[4], gzx[4];
+  T area_rate{};
+  for (int g = 0; g < 4; ++g) {
+    PointOps<T> o;
+    point_operators(fm, g, o);
+    T e0{}, e1{}, e2{}, k0{}, k1{}, k2{}, yz{}, zx{};
+    for (int I = 0; I < 4; ++I) {
+      const T bx = o.dnx[I], by = o.dny[I];
+      e0 += bx * vl[I][0];
+      e1 += by * vl[I][1];
+      e2 += by * vl[I][0] + bx * vl[I][1];
+      k0 += bx * wl[I][1];
+      k1 -= by * wl[I][0];
+      k2 += by * wl[I][1] - bx * wl[I][0];
+      // beta_x = thh_y, beta_y = -thh_x.
+      zx += o.zx_w[I] * vl[I][2] + o.zx_b[I][0] * wl[I][1] - o.zx_b[I][1] * wl[I][0];
+      yz += o.yz_w[I] * vl[I][2] + o.yz_b[I][0] * wl[I][1] - o.yz_b[I][1] * wl[I][0];
+    }
+    em[g][0] = e0, em[g][1] = e1, em[g][2] = e2;
+    kp[g][0] = k0, kp[g][1] = k1, kp[g][2] = k2;
+    gyz[g] = yz;
+    gzx[g] = zx;
+    area_rate += o.jac * (e0 + e1);
+  }
+  area_rate = area_rate / (fm.area > 0.0 ? fm.area : T{} + 1.0);  // element mean of d_x + d_y
+
+  // Stress update and resultants per in-plane point.
+  T N[4][3] = {}, Mr[4][3] = {}, Q[4][2] = {};
+  for (int g = 0; g < 4; ++g) {
+    for (int q = 0; q < nip; ++q) {
+      const std::size_t point_in_element = static_cast<std::size_t>(g * nip + q);
+      std::size_t off[L];
+      for (int l = 0; l < L; ++l) off[l] = kShellStress * (ppe * elem[l] + point_in_element);
+      T sp[5];
+      for (int c = 0; c < 5; ++c) sp[c] = gather<T>(block.stress.data() + c, off);
+      const T z = block.zeta[q] * half_t;
+      const T d[3] = {em[g][0] + z * kp[g][0], em[g][1] + z * kp[g][1], em[g][2] + z * kp[g][2]};
+      if (!block.strain.empty()) {
+        for (int l = 0; l < count; ++l) {
+          double* e = block.strain.data() + 3 * (ppe * elem[l] + point_in_element);
+          e[0] += dt * material::get_lane(d[0], l);
+          e[1] += dt * material::get_lane(d[1], l);
+          e[2] += 0.5 * dt * material::get_lane(d[2], l);
+        }
+      }
+      if constexpr (kHist > 0) {
+        double h[kHist];
+        const std::size_t point = ppe * elem[0] + point_in_element;
+        int slot = 0;
+        for (std::size_t fi = 0; fi < M::kHistory.size(); ++fi) {
+          const int nc = M::kHistory[fi].components;
+          const double* in = block.history[fi].values.data() + static_cast<std::size_t>(nc) * point;
+          for (int cc = 0; cc < nc; ++cc) h[slot++] = in[cc];
+        }
+        if constexpr (material::plane_stress_only<M>()) {
+          const double* ax = &block.material_axes[2 * elem[0]];
+          if (!M::plane_stress_update(block.material, block.barlat, ax[0], ax[1], d, dt, sp, h))
+            part.record_failure(static_cast<std::int64_t>(elem[0]), 0.0);
+        } else {
+          plane_stress_update<M>(block, k, d, dt, sp, h);
+        }
+        slot = 0;
+        for (std::size_t fi = 0; fi < M::kHistory.size(); ++fi) {
+          const int nc = M::kHistory[fi].components;
+          double* o = block.history[fi].values.data() + static_cast<std::size_t>(nc) * point;
+          for (int cc = 0; cc < nc; ++cc) o[cc] = h[slot++];
+        }
+      } else {
+        const double a = k.plane_modulus * dt;
+        sp[0] += a * (d[0] + k.nu * d[1]);
+        sp[1] += a * (d[1] + k.nu * d[0]);
+        sp[2] += (k.shear * dt) * d[2];
+      }
+      sp[3] += gs_dt * gyz[g];
+      sp[4] += gs_dt * gzx[g];
+      for (int l = 0; l < count; ++l) {
+        double* o = block.stress.data() + off[l];
+        for (int c = 0; c < 5; ++c) o[c] = material::get_lane(sp[c], l);
+      }
+      const T wt = half_t * block.weight[q];
+      const T wz = wt * z;
+      for (int c = 0; c < 3; ++c) {
+        N[g][c] += wt * sp[c];
+        Mr[g][c] += wz * sp[c];
+      }
+      Q[g][0] += wt * sp[3];
+      Q[g][1] += wt * sp[4];
+    }
+  }
+
+  // Membrane bulk viscosity (section 10 with the element's mean area rate, section 11).
+  const bool bulk = block.bulk_viscosity.on();
+  T step_length{}, bulk_work{};
+  if (bulk) {
+    step_length = f.area / tsqrt(max_side_squared(p));
+    const T density = block.material.rho * area0 / f.area;
+    const T q = bulk_viscosity_pressure(block.bulk_viscosity, k.wave_speed, density, step_length,
+                                        area_rate);
+    for (int g = 0; g < 4; ++g) {
+      N[g][0] -= q * t;
+      N[g][1] -= q * t;
+    }
+    bulk_work = -q * area_rate * t * fm.area * dt;
+  }
+
+  // Nodal forces and moments at x^{n+1}: the transpose of the rate operators of the end-of-step
+  // geometry, weighted by the points' Jacobians.
+  T fl[4][3] = {}, ml[4][2] = {};
+  for (int g = 0; g < 4; ++g) {
+    PointOps<T> o;
+    point_operators(f, g, o);
+    const T j = o.jac;
+    const T n0 = j * N[g][0], n1 = j * N[g][1], n2 = j * N[g][2];
+    const T m0 = j * Mr[g][0], m1 = j * Mr[g][1], m2 = j * Mr[g][2];
+    const T qyz = j * Q[g][0], qzx = j * Q[g][1];
+    for (int I = 0; I < 4; ++I) {
+      const T bx = o.dnx[I], by = o.dny[I];
+      fl[I][0] += bx * n0 + by * n2;
+      fl[I][1] += by * n1 + bx * n2;
+      fl[I][2] += qzx * o.zx_w[I] + qyz * o.yz_w[I];
+      ml[I][0] += -(by * m1 + bx * m2) - (qzx * o.zx_b[I][1] + qyz * o.yz_b[I][1]);
+      ml[I][1] += bx * m0 + by * m2 + qzx * o.zx_b[I][0] + qyz * o.yz_b[I][0];
+    }
+  }
+  T out[24];
+  T sum{};
+  for (int I = 0; I < 4; ++I) {
+    ml[I][0] += f.z[I] * fl[I][1];
+    ml[I][1] -= f.z[I] * fl[I][0];
+    T* o = out + 6 * I;
+    for (int i = 0; i < 3; ++i) {
+      o[i] = f.e[0][i] * fl[I][0] + f.e[1][i] * fl[I][1] + f.e[2][i] * fl[I][2];
+      o[3 + i] = f.e[0][i] * ml[I][0] + f.e[1][i] * ml[I][1];
+      sum += o[i] + o[3 + i];
+    }
+  }
+  const T A = f.area;
+  T dt2 = A * A / (max_side_squared(p) * (k.wave_speed * k.wave_speed));
+  if (bulk) {
+    const T step = viscous_time_step(block.bulk_viscosity, k.wave_speed, step_length, area_rate,
+                                     [](T x) { return tsqrt(x); });
+    dt2 = step * step;
+  }
+
+  for (int l = 0; l < count; ++l) {
+    const std::size_t e = elem[l];
+    const auto ie = static_cast<std::int64_t>(e);
+    const double area_end = material::get_lane(f.area, l);
+    const double area_mid = material::get_lane(fm.area, l);
+    block.area[e] = area_end;
+    double* o = &block.force[kShellSlot * e];
+    if (!(area_mid > 0.0) || !(area_end > 0.0)) {
+      part.record_failure(ie, area_end > 0.0 ? area_mid : area_end);
+      for (int c = 0; c < kShellSlot; ++c) o[c] = 0.0;
+      continue;
+    }
+    for (int c = 0; c < kShellSlot; ++c) o[c] = material::get_lane(out[c], l);
+    part.bulk_viscosity_work += material::get_lane(bulk_work, l);
+    if (block.erosion.enabled) block.erosion.artificial_work[e] += material::get_lane(bulk_work, l);
+    if (!std::isfinite(material::get_lane(sum, l))) part.record_failure(ie, area_end);
+    const double scale = block.step_scale.empty() ? 1.0 : block.step_scale[e];
+    part.record_dt(material::get_lane(dt2, l) * (scale * scale), ie);
+  }
+}
+
 // Legendre polynomial P_n and its derivative at x.
 inline void legendre(int n, double x, double& p, double& dp) {
   double p0 = 1.0, p1 = x;
@@ -807,9 +1149,10 @@ void initialize_shell_block(ShellBlock& block, const NodalView& nodes) {
         "part {}: shell block has {} elements but {} nodes, {} rotational indices and {} "
         "thicknesses (expected 4 per element each)",
         block.part_id, n, block.conn.size(), block.rotation_conn.size(), block.thickness.size()));
-  if (block.elform != 2)
+  if (block.elform != 2 && block.elform != 16)
     throw SolverError(fmt::format(
-        "part {}: shell ELFORM {} has no kernel yet (supported: 2, Belytschko-Lin-Tsay)",
+        "part {}: shell ELFORM {} has no kernel (supported: 2, Belytschko-Lin-Tsay; 16, fully "
+        "integrated)",
         block.part_id, block.elform));
   // *MAT_RIGID blocks have no stress update (the body moves them) but need areas and masses.
   if (!block.rigid && !material::serves(block.material_index, material::kShell))
@@ -841,6 +1184,11 @@ void initialize_shell_block(ShellBlock& block, const NodalView& nodes) {
     const std::int32_t* c = &block.conn[4 * e];
     block.triangle[e] = c[2] == c[3] ? 1 : 0;
     const int distinct = distinct_nodes(c);
+    if (distinct == 3 && block.elform == 16)
+      throw SolverError(fmt::format(
+          "shell element {} of part {} is a triangle (N3 = N4): the fully integrated shell "
+          "ELFORM 16 takes quadrilaterals only; put triangles in a part with ELFORM 2",
+          block.element_id[e], block.part_id));
     double tsum = 0.0;
     for (int I = 0; I < distinct; ++I) {
       const double ti = block.thickness[4 * e + static_cast<std::size_t>(I)];
@@ -878,6 +1226,7 @@ KernelResult compute_shell_forces(ShellBlock& block, const NodalView& nodes,
   const BlockConstants k = block_constants(block);
   const ElementOwnership& owned = block.owned;  // one process: every element
   if (owned.partitioned) block.owned.prepare_batches(kLanes);
+  const bool full = block.elform == 16;
   int threads = 1;
 #pragma omp parallel num_threads(thread_count())
   {
@@ -897,14 +1246,21 @@ KernelResult compute_shell_forces(ShellBlock& block, const NodalView& nodes,
             first = static_cast<std::size_t>(owned.batches[static_cast<std::size_t>(bi)].first);
             count = owned.batches[static_cast<std::size_t>(bi)].count;
           }
-          shell_batch<M, Lanes>(block, k, first, count, nodes, rotations, dt, local);
+          if (full)
+            shell16_batch<M, Lanes>(block, k, first, count, nodes, rotations, dt, local);
+          else
+            shell_batch<M, Lanes>(block, k, first, count, nodes, rotations, dt, local);
         }
       } else {
         const std::int64_t items = owned.count(n);
 #pragma omp for schedule(static)
-        for (std::int64_t i = 0; i < items; ++i)
-          shell_batch<M, double>(block, k, static_cast<std::size_t>(owned.element(i)), 1, nodes,
-                                 rotations, dt, local);
+        for (std::int64_t i = 0; i < items; ++i) {
+          const auto e = static_cast<std::size_t>(owned.element(i));
+          if (full)
+            shell16_batch<M, double>(block, k, e, 1, nodes, rotations, dt, local);
+          else
+            shell_batch<M, double>(block, k, e, 1, nodes, rotations, dt, local);
+        }
       }
     });
     partials[omp_get_thread_num()] = local;

@@ -619,7 +619,7 @@ StructuralMatrices assemble_structural_matrices(const model::Model& model,
   const std::size_t ndof = 3 * n + 3 * rotations;
 
   for (const auto& block : state.shell_blocks) {
-    if (block.hourglass.ihq <= 3) {
+    if (block.hourglass.ihq <= 3 && block.elform != 16) {  // ELFORM 16 has no hourglass control
       out.warnings.push_back(fmt::format(
           "part {}: viscous shell hourglass control IHQ={} has no stiffness; the eigen analysis "
           "uses the stiffness form IHQ 4 (QM={:g}) so that hourglass modes are not zero-energy "

@@ -75,7 +75,7 @@ void volume_preserving_strains(double xx, double yy, double xy, double out[3]) {
 // any deformation. Shells: the integrated co-rotational rate of deformation (shell block
 // `strain`), the thickness strain volume-preserving (the thickness is fixed, ISTUPD 0).
 // Trusses: ln(L/L0) along the axis, lateral strains volume-preserving.
-constexpr int kMaxStrainPoints = 10;  // hexahedra 8, shells NIP <= 10 (ELFORM 2), trusses 1
+constexpr int kMaxStrainPoints = 40;  // hexahedra 8, shells 4 x NIP <= 40 (ELFORM 16), trusses 1
 
 void principal_strains(const element::HexBlock& b, const NodalState& nodes, std::size_t e,
                        double out[][3]) {

@@ -21,6 +21,7 @@
 #include "material/barlat.hpp"
 #include "material/plastic_setup.hpp"
 #include "model/error.hpp"
+#include "shell_builder.hpp"
 
 namespace rf::test {
 namespace {
@@ -341,7 +342,7 @@ ElementResult measure(const solver::Simulation& sim, std::size_t block, int pid,
   return r;
 }
 
-TEST(BarlatShell, UniaxialTensionOfAShellAtZero45And90DegreesToRolling) {
+void uniaxial_at_three_angles(int elform) {
   const Sheet sh = kSheets[0];
   const Coefficients ref = paper_coefficients(sh.r0, sh.r45, sh.r90, sh.m);
   const double expected_r[] = {sh.r0, sh.r45, sh.r90};
@@ -357,18 +358,32 @@ TEST(BarlatShell, UniaxialTensionOfAShellAtZero45And90DegreesToRolling) {
     deck += pulled_element(i + 1, 0.05 * i, mat);
   }
   deck += pull_controls(3e-3) + "*END\n";
+  if (elform == 16) deck = fully_integrated(deck);
   solver::Simulation sim(read(deck), {});
+  ASSERT_EQ(sim.state().shell_blocks[0].elform, elform);
   sim.run();
   const material::BarlatParameters& p = sim.state().shell_blocks[0].barlat;
   for (int i = 0; i < 3; ++i) {
     const ElementResult r = measure(sim, static_cast<std::size_t>(i), i + 1, &p);
     const double ratio = r.stress / r.sy / uniaxial_ratio(ref, sh.m, i * kPi / 4.0);
-    RecordProperty(fmt::format("r_ratio_{}", 45 * i), fmt::format("{:.5f}", r.r / expected_r[i]));
-    RecordProperty(fmt::format("yield_ratio_{}", 45 * i), fmt::format("{:.5f}", ratio));
+    ::testing::Test::RecordProperty(fmt::format("r_ratio_{}", 45 * i),
+                                    fmt::format("{:.5f}", r.r / expected_r[i]));
+    ::testing::Test::RecordProperty(fmt::format("yield_ratio_{}", 45 * i),
+                                    fmt::format("{:.5f}", ratio));
     EXPECT_NEAR(r.r / expected_r[i], 1.0, 0.01) << "theta " << 45 * i << " R " << r.r;
     EXPECT_NEAR(ratio, 1.0, 0.005) << "theta " << 45 * i;
     EXPECT_GT(r.eps, 0.03);
   }
+}
+
+TEST(BarlatShell, UniaxialTensionOfAShellAtZero45And90DegreesToRolling) {
+  uniaxial_at_three_angles(2);
+}
+
+// The same with fully integrated shells (ELFORM 16: Barlat at each of the 4 x 2 points, the
+// material axes of the element).
+TEST(BarlatShell, UniaxialTensionOfAFullyIntegratedShellAtThreeAngles) {
+  uniaxial_at_three_angles(16);
 }
 
 TEST(BarlatShell, QuadraticIsotropicBarlatEqualsPiecewiseLinearPlasticity) {

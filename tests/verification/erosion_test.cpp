@@ -566,12 +566,14 @@ std::string sheared_solid(int elform, Strain c, double end_time) {
 // One shell (NIP 3): equi-biaxial stretch of the unit square, or the unit square turned 45
 // degrees stretched along x in plane strain (node velocities proportional to X). Rotations and
 // z held.
-std::string stretched_shell(bool turned, Strain c, double end_time) {
+std::string stretched_shell(bool turned, Strain c, double end_time, int elform = 2) {
   const double h = std::sqrt(0.5);
   std::string deck = "*KEYWORD\n*NODE\n";
   deck += turned ? fmt::format("1,0,0,0\n2,{0},{1},0\n3,{2},0,0\n4,{0},{0},0\n", h, -h, 2.0 * h)
                  : "1,0,0,0\n2,1,0,0\n3,1,1,0\n4,0,1,0\n";
-  deck += "*ELEMENT_SHELL\n1,1,1,2,3,4\n*PART\nsheet\n1,1,1\n*SECTION_SHELL\n1,2,0.8333333,3\n";
+  deck += fmt::format(
+      "*ELEMENT_SHELL\n1,1,1,2,3,4\n*PART\nsheet\n1,1,1\n*SECTION_SHELL\n1,{},0.8333333,3\n",
+      elform);
   deck += "0.01,0.01,0.01,0.01\n" + elastic_card() + strain_card(c);
   if (turned) {
     deck +=
@@ -601,13 +603,16 @@ std::string stretched_truss(Strain c, double end_time) {
 struct StrainCase {
   const char* name;
   Strain criterion;
-  int kind;  // 1, 2, 10: solid ELFORM; -1 biaxial shell; -2 turned shell; -3 truss
+  int kind;  // 1, 2, 10: solid ELFORM; -1 biaxial shell; -2 turned shell; -3 truss; -4, -5:
+             // -1, -2 with ELFORM 16 (fully integrated) shells
 };
 
 class StrainCriteria : public ::testing::TestWithParam<StrainCase> {};
 
 TEST_P(StrainCriteria, ElementGoesWhenTheAnalyticStrainMeetsTheLimit) {
-  const StrainCase& k = GetParam();
+  StrainCase k = GetParam();
+  const int elform = k.kind <= -4 ? 16 : 2;
+  if (k.kind <= -4) k.kind += 3;  // the ELFORM 2 case's geometry and reference
   const int which = static_cast<int>(k.criterion);
   double displacement = 0.0;  // of the pull when the criterion is met
   std::string text;
@@ -627,7 +632,7 @@ TEST_P(StrainCriteria, ElementGoesWhenTheAnalyticStrainMeetsTheLimit) {
   else if (k.kind == -3)
     text = stretched_truss(k.criterion, end);
   else
-    text = stretched_shell(k.kind == -2, k.criterion, end);
+    text = stretched_shell(k.kind == -2, k.criterion, end, elform);
   solver::Simulation sim(read(text), {});
   const double step = sim.state().dt;
   const double time = run_to_erosion(sim);
@@ -659,6 +664,9 @@ INSTANTIATE_TEST_SUITE_P(
         StrainCase{"shell_EPSSH", Strain::kShear, -1},
         StrainCase{"turned_shell_MXEPS", Strain::kMax, -2},
         StrainCase{"turned_shell_EFFEPS", Strain::kEffective, -2},
+        StrainCase{"shell16_MXEPS", Strain::kMax, -4},
+        StrainCase{"shell16_EFFEPS", Strain::kEffective, -4},
+        StrainCase{"turned_shell16_EFFEPS", Strain::kEffective, -5},
         StrainCase{"truss_MXEPS", Strain::kMax, -3}, StrainCase{"truss_MNEPS", Strain::kMin, -3},
         StrainCase{"truss_EFFEPS", Strain::kEffective, -3},
         StrainCase{"truss_EPSSH", Strain::kShear, -3}),

@@ -311,6 +311,16 @@ const Case kCases[] = {
     // across the dump decides which elements erode after it.
     {"shell_strain_erosion", restart_decks::shells_eroding_by_strain(4e-5, 0.1), "", {}, 6e-6, 1},
     {"shell_strain_erosion", restart_decks::shells_eroding_by_strain(4e-5, 0.1), "", {}, 6e-6, 2},
+    // The same decks with fully integrated shells (ELFORM 16: 4 x NIP points per element,
+    // plastic history per point) and with the ELFORM 16 part switched rigid and back.
+    {"shells16_beams", fully_integrated(restart_decks::shells_and_beams(4e-5)), "", {}, 6e-6, 1},
+    {"shells16_beams", fully_integrated(restart_decks::shells_and_beams(4e-5)), "", {}, 6e-6, 2},
+    {"shells16_beams_switching",
+     fully_integrated(restart_decks::shells_and_beams_switching(4e-5)),
+     "",
+     {},
+     6e-6,
+     2},
 };
 
 INSTANTIATE_TEST_SUITE_P(Restart, RestartBitwise, testing::ValuesIn(kCases), case_name);

@@ -5,6 +5,7 @@
 
 #include <Eigen/Dense>
 #include <functional>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -55,15 +56,21 @@ struct ShellPlate {
   }
 };
 
-// *PART, *SECTION_SHELL (ELFORM 2, SHRF 5/6, NIP) and *MAT_ELASTIC with IDs = pid, and an
-// *HOURGLASS card of type `ihq`.
+// *PART, *SECTION_SHELL (ELFORM `elform`, SHRF 5/6, NIP) and *MAT_ELASTIC with IDs = pid, and
+// an *HOURGLASS card of type `ihq` (ignored by ELFORM 16).
 inline std::string shell_part(int pid, double thickness, double rho, double e, double nu,
-                              int nip = 2, int ihq = 4, double qm = 0.05) {
+                              int nip = 2, int ihq = 4, double qm = 0.05, int elform = 2) {
   return fmt::format(
-      "*PART\nshell part {0}\n{0},{0},{0},0,{0}\n*SECTION_SHELL\n{0},2,0.8333333333333334,{1}\n"
+      "*PART\nshell part {0}\n{0},{0},{0},0,{0}\n*SECTION_SHELL\n{0},{8},0.8333333333333334,{1}\n"
       "{2:.17g},{2:.17g},{2:.17g},{2:.17g}\n*MAT_ELASTIC\n{0},{3:.17g},{4:.17g},{5:.17g}\n"
       "*HOURGLASS\n{0},{6},{7:.17g}\n",
-      pid, nip, thickness, rho, e, nu, ihq, qm);
+      pid, nip, thickness, rho, e, nu, ihq, qm, elform);
+}
+
+// The deck with every *SECTION_SHELL of ELFORM 2 (first card "SECID,2,...") made ELFORM 16.
+inline std::string fully_integrated(const std::string& deck) {
+  static const std::regex kSection(R"((\*SECTION_SHELL\n\d+),2,)");
+  return std::regex_replace(deck, kSection, "$1,16,");
 }
 
 }  // namespace rf::test

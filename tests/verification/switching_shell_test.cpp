@@ -297,6 +297,17 @@ TEST(ShellSwitching, FreePlateSwitchedRigidAndBackConservesMomentaWithRotaryIner
   expect_rigid_phase_error(coarse, fine);
 }
 
+// Fully integrated shells (ELFORM 16): the frozen energy of the 4 x NIP points is the strain
+// energy at the switch, and the paired switch conserves the momenta as for ELFORM 2.
+TEST(ShellSwitching, FullyIntegratedShellsFreezeTheirEnergyAndConserveMomenta) {
+  check_frozen_energy(fully_integrated(shell_plate_deck(std::string(kPairedSwitch) + kSmallSteps,
+                                                        0.25, "", Vector3d::Zero())),
+                      "shells ELFORM 16", 0.03);
+  const double coarse = check_paired_switch(fully_integrated(shell_plate_deck(kPairedSwitch, 0.25)),
+                                            fully_integrated(shell_plate_deck("", 0.25)), true);
+  EXPECT_LT(std::abs(coarse), 3e-5);
+}
+
 TEST(BeamSwitching, FreeBeamSwitchedRigidAndBackConservesMomentaWithRotaryInertia) {
   const double coarse =
       check_paired_switch(beam_deck(kPairedSwitch, 0.25), beam_deck("", 0.25), false);

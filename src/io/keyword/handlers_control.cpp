@@ -231,9 +231,10 @@ void control_shell(const Block& block, ReaderContext& context) {
     }
     c.theory = card->flag(4, "THEORY", 2);
     if (c.theory == 0) c.theory = 2;
-    if (c.theory != 2) {
-      throw card->error("THEORY",
-                        fmt::format("default shell theory {} is not supported (2)", c.theory));
+    if (c.theory != 2 && c.theory != 16) {
+      throw card->error("THEORY", fmt::format("default shell theory {} is not supported (2, "
+                                              "Belytschko-Lin-Tsay; 16, fully integrated)",
+                                              c.theory));
     }
     c.bwc = card->flag(5, "BWC", 2);
     if (c.bwc == 0) c.bwc = 2;

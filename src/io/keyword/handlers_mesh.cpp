@@ -415,9 +415,9 @@ void section_shell(const Block& block, ReaderContext& context) {
     model::SectionShell s;
     s.id = positive_id(card, 0, "SECID", "section");
     s.elform = card.flag(1, "ELFORM", 0);  // 0: *CONTROL_SHELL THEORY (resolved when built)
-    if (s.elform != 0 && s.elform != 2) {
+    if (s.elform != 0 && s.elform != 2 && s.elform != 16) {
       throw card.error("ELFORM", fmt::format("shell formulation {} is not supported (supported: "
-                                             "2, Belytschko-Lin-Tsay)",
+                                             "2, Belytschko-Lin-Tsay; 16, fully integrated)",
                                              s.elform));
     }
     s.shrf = card.real(2, "SHRF", 1.0);
