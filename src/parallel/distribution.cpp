@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 
@@ -106,29 +107,25 @@ void gather_common(const Communicator& comm, const Owners& owners, Block& block)
 void ElementDistribution::gather_element_state(solver::State& state) {
   // The arrays a kernel changes (element/*.cpp). A new per-element array that changes during a
   // run belongs here too, or output on more than one rank shows other ranks' elements stale.
-  const int rank = comm_.rank();
-  for (std::size_t b = 0; b < state.hex_blocks.size(); ++b) {
-    auto& block = state.hex_blocks[b];
-    const Owners owners = owners_of(partition_.hex, b, rank);
-    gather_common(comm_, owners, block);
-    gather_array(comm_, owners, block.size(), block.hourglass_state);
-    gather_array(comm_, owners, block.size(), block.volume);
-  }
-  for (std::size_t b = 0; b < state.shell_blocks.size(); ++b) {
-    auto& block = state.shell_blocks[b];
-    const Owners owners = owners_of(partition_.shell, b, rank);
-    gather_common(comm_, owners, block);
-    gather_array(comm_, owners, block.size(), block.hourglass_state);
-    gather_array(comm_, owners, block.size(), block.area);
-  }
-  for (std::size_t b = 0; b < state.beam_blocks.size(); ++b) {
-    auto& block = state.beam_blocks[b];
-    const Owners owners = owners_of(partition_.beam, b, rank);
-    gather_common(comm_, owners, block);
-    gather_array(comm_, owners, block.size(), block.frame);
-    gather_array(comm_, owners, block.size(), block.resultant);
-    gather_array(comm_, owners, block.size(), block.length);
-  }
+  // Each family: stresses and history, then the arrays of its own kernel.
+  auto family = [&](auto& blocks, const std::vector<std::vector<std::int32_t>>& owners,
+                    auto&& own_arrays) {
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+      const Owners o = owners_of(owners, b, comm_.rank());
+      gather_common(comm_, o, blocks[b]);
+      for (std::vector<double>* values : own_arrays(blocks[b]))
+        gather_array(comm_, o, blocks[b].size(), *values);
+    }
+  };
+  family(state.hex_blocks, partition_.hex, [](element::HexBlock& block) {
+    return std::array<std::vector<double>*, 2>{&block.hourglass_state, &block.volume};
+  });
+  family(state.shell_blocks, partition_.shell, [](element::ShellBlock& block) {
+    return std::array<std::vector<double>*, 2>{&block.hourglass_state, &block.area};
+  });
+  family(state.beam_blocks, partition_.beam, [](element::BeamBlock& block) {
+    return std::array<std::vector<double>*, 3>{&block.frame, &block.resultant, &block.length};
+  });
 }
 
 void ElementDistribution::check_replicated(double value, const char* what) const {

@@ -15,59 +15,21 @@
 
 #include "element/shell_block.hpp"
 #include "material/elastic.hpp"
+#include "shell_test_mesh.hpp"
 
 namespace {
+
+using rf::test::element_axes;
+using rf::test::make_patch;
+using rf::test::node_force;
+using rf::test::Patch;
+using rf::test::ShellMesh;
+using rf::test::to_element_axes;
 
 using rf::element::ShellBlock;
 using rf::element::ThroughThicknessRule;
 
 constexpr double kE = 2.0e11, kNu = 0.3, kRho = 7800.0;
-
-struct Mesh {
-  std::vector<double> x, y, z, vx, vy, vz, wx, wy, wz;
-  ShellBlock block;
-
-  int add_node(double px, double py, double pz) {
-    for (auto* v : {&x, &y, &z, &vx, &vy, &vz, &wx, &wy, &wz}) v->push_back(0.0);
-    x.back() = px;
-    y.back() = py;
-    z.back() = pz;
-    return static_cast<int>(x.size()) - 1;
-  }
-  void add_element(std::array<int, 4> c, double t) {
-    block.element_id.push_back(static_cast<rf::model::Id>(block.element_id.size() + 1));
-    for (int k : c) {
-      block.conn.push_back(k);
-      block.rotation_conn.push_back(k);
-      block.thickness.push_back(t);
-    }
-  }
-  rf::element::NodalView view() const {
-    return {x.data(), y.data(), z.data(), vx.data(), vy.data(), vz.data()};
-  }
-  rf::element::RotationalView rotations() const { return {wx.data(), wy.data(), wz.data()}; }
-  void initialize() { rf::element::initialize_shell_block(block, view()); }
-  rf::element::KernelResult step(double dt) {
-    return rf::element::compute_shell_forces(block, view(), rotations(), dt);
-  }
-  // x^{n+1} = X + dt/2 v: the mid-step configuration is exactly X.
-  void place_for_step(const std::vector<std::array<double, 3>>& X, double dt) {
-    for (std::size_t i = 0; i < X.size(); ++i) {
-      x[i] = X[i][0] + 0.5 * dt * vx[i];
-      y[i] = X[i][1] + 0.5 * dt * vy[i];
-      z[i] = X[i][2] + 0.5 * dt * vz[i];
-    }
-  }
-  std::vector<std::array<double, 3>> positions() const {
-    std::vector<std::array<double, 3>> p(x.size());
-    for (std::size_t i = 0; i < x.size(); ++i) p[i] = {x[i], y[i], z[i]};
-    return p;
-  }
-  double* dof(std::size_t node, int d) {
-    std::vector<double>* a[6] = {&vx, &vy, &vz, &wx, &wy, &wz};
-    return &(*a[d])[node];
-  }
-};
 
 void set_section(ShellBlock& b, int material_index, int nip, int elform = 16) {
   b.part_id = 3;
@@ -78,59 +40,6 @@ void set_section(ShellBlock& b, int material_index, int nip, int elform = 16) {
   b.rule = ThroughThicknessRule::kGauss;
   b.hourglass.ihq = 4;
   b.hourglass.qm = elform == 16 ? 0.1 : 0.0;  // ELFORM 16 ignores it (checked below)
-}
-
-// Element axes as the BLT paper defines them (e3 from the diagonals, e1 along side 1-2).
-std::array<std::array<double, 3>, 3> element_axes(const std::array<double, 3> p[4]) {
-  Eigen::Vector3d q[4];
-  for (int I = 0; I < 4; ++I) q[I] = {p[I][0], p[I][1], p[I][2]};
-  const Eigen::Vector3d e3 = (q[2] - q[0]).cross(q[3] - q[1]).normalized();
-  Eigen::Vector3d s = q[1] - q[0];
-  const Eigen::Vector3d e1 = (s - s.dot(e3) * e3).normalized();
-  const Eigen::Vector3d e2 = e3.cross(e1);
-  return {{{e1[0], e1[1], e1[2]}, {e2[0], e2[1], e2[2]}, {e3[0], e3[1], e3[2]}}};
-}
-
-// In-plane part of a global tensor T in element axes: (xx, yy, xy).
-std::array<double, 3> to_element_axes(const std::array<std::array<double, 3>, 3>& e,
-                                      const double T[3][3]) {
-  auto c = [&](int a, int b) {
-    double s = 0.0;
-    for (int k = 0; k < 3; ++k)
-      for (int l = 0; l < 3; ++l) s += e[a][k] * T[k][l] * e[b][l];
-    return s;
-  };
-  return {c(0, 0), c(1, 1), c(0, 1)};
-}
-
-// Distorted 2 x 2 patch on the unit square (interior node off-centre, boundary nodes moved), in
-// the plane through o spanned by the unit vectors u, w.
-struct Patch {
-  Mesh mesh;
-  int interior = 4;
-};
-Patch make_patch(const double u[3], const double w[3], double t) {
-  Patch p;
-  const double o[3] = {0.3, -0.2, 0.5};
-  const double pts[9][2] = {{0, 0},    {0.5, 0}, {1, 0},    {0, 0.5}, {0.45, 0.58},
-                            {1, 0.42}, {0, 1},   {0.55, 1}, {1, 1}};
-  for (const auto& q : pts)
-    p.mesh.add_node(o[0] + q[0] * u[0] + q[1] * w[0], o[1] + q[0] * u[1] + q[1] * w[1],
-                    o[2] + q[0] * u[2] + q[1] * w[2]);
-  p.mesh.add_element({0, 1, 4, 3}, t);
-  p.mesh.add_element({1, 2, 5, 4}, t);
-  p.mesh.add_element({3, 4, 7, 6}, t);
-  p.mesh.add_element({4, 5, 8, 7}, t);
-  return p;
-}
-
-std::array<double, 3> node_sum(const ShellBlock& b, int node, int offset) {
-  std::array<double, 3> f{0, 0, 0};
-  for (std::size_t e = 0; e < b.size(); ++e)
-    for (int I = 0; I < 4; ++I)
-      if (b.conn[4 * e + I] == node)
-        for (int i = 0; i < 3; ++i) f[i] += b.force[24 * e + 6 * I + offset + i];
-  return f;
 }
 
 const double* point_stress(const ShellBlock& b, std::size_t e, int g, int q) {
@@ -144,7 +53,7 @@ TEST(Shell16Patch, ConstantMembraneStrainOnDistortedMeshIsExact) {
   const double w[3] = {1.0 / std::sqrt(2.0), -1.0 / std::sqrt(2.0), 0.0};
   const double t = 0.01;
   Patch p = make_patch(u, w, t);
-  Mesh& m = p.mesh;
+  ShellMesh& m = p.mesh;
   set_section(m.block, 0, 2);
   m.initialize();
   ASSERT_EQ(m.block.points_per_element(), 8);
@@ -192,13 +101,13 @@ TEST(Shell16Patch, ConstantMembraneStrainOnDistortedMeshIsExact) {
   std::printf("ELFORM 16 membrane patch: largest stress error %.2e of the stress scale\n", worst);
   // Interior node in equilibrium up to the half-step frame turn (second order, as for ELFORM 2).
   const double fscale = scale * t * 0.5;
-  const auto f = node_sum(m.block, p.interior, 0);
-  const auto mm = node_sum(m.block, p.interior, 3);
+  const auto f = node_force(m.block, p.interior, 0);
+  const auto mm = node_force(m.block, p.interior, 3);
   for (int i = 0; i < 3; ++i) {
     EXPECT_NEAR(f[i], 0.0, 1e-5 * fscale);
     EXPECT_NEAR(mm[i], 0.0, 1e-5 * fscale);
   }
-  const auto fc = node_sum(m.block, 0, 0);
+  const auto fc = node_force(m.block, 0, 0);
   EXPECT_GT(std::abs(fc[0]) + std::abs(fc[1]) + std::abs(fc[2]), 0.1 * fscale);
 }
 
@@ -212,7 +121,7 @@ TEST(Shell16Patch, ConstantCurvatureOnDistortedMeshIsExact) {
   double worst = 0.0, worst_shear = 0.0;
   for (int nip : {2, 3, 5}) {
     Patch p = make_patch(u, w, t);
-    Mesh& m = p.mesh;
+    ShellMesh& m = p.mesh;
     set_section(m.block, 0, nip);
     m.initialize();
     const double kdot = 0.5, dt = 1e-4;
@@ -261,7 +170,7 @@ TEST(Shell16Objectivity, FiniteRigidRotationLeavesStressUnchanged) {
   double worst = 0.0;
   for (bool warped : {false, true})
     for (int axis_case : {0, 1, 2}) {
-      Mesh m;
+      ShellMesh m;
       const double h = warped ? 0.03 : 0.0;
       m.add_node(0.0, 0.0, h);
       m.add_node(1.1, 0.1, -h);
@@ -320,7 +229,7 @@ TEST(Shell16Balance, ForcesAndMomentsBalanceForArbitraryStates) {
   std::mt19937 gen(7);
   std::uniform_real_distribution<double> U(-1.0, 1.0);
   for (bool warped : {false, true}) {
-    Mesh m;
+    ShellMesh m;
     const double h = warped ? 0.05 : 0.0;
     m.add_node(0.1, 0.0, h);
     m.add_node(1.2, 0.2, -h);
@@ -363,12 +272,12 @@ TEST(Shell16Balance, ForcesAndMomentsBalanceForArbitraryStates) {
 
 // 24 x 24 stiffness of a single free element from the kernel (unstressed, forces per unit
 // velocity of one degree of freedom over a tiny step: K u with u = v dt), symmetrised.
-Eigen::MatrixXd probed_stiffness(const Mesh& base) {
+Eigen::MatrixXd probed_stiffness(const ShellMesh& base) {
   const double dt = 1e-8;
   Eigen::MatrixXd K(24, 24);
   const auto X = base.positions();
   for (int j = 0; j < 24; ++j) {
-    Mesh m = base;
+    ShellMesh m = base;
     *m.dof(static_cast<std::size_t>(j / 6), j % 6) = 1.0;
     m.place_for_step(X, dt);
     EXPECT_FALSE(m.step(dt).failed);
@@ -392,20 +301,20 @@ int zero_modes(const Eigen::MatrixXd& K, double* first_nonzero) {
 // one-point ELFORM 2 without hourglass control has 6 more: 2 membrane (8 in-plane DOFs, 3
 // strains, 3 rigid motions) and 4 out of plane (12 DOFs, 3 curvatures and 2 shears, 3 rigid).
 TEST(Shell16Modes, SingleElementHasOnlyRigidAndDrillingZeroModes) {
-  Mesh m;
+  ShellMesh m;
   m.add_node(0.0, 0.0, 0.0);
   m.add_node(1.1, 0.1, 0.0);
   m.add_node(1.3, 0.9, 0.0);
   m.add_node(-0.1, 1.0, 0.0);
   m.add_element({0, 1, 2, 3}, 0.1);
-  Mesh full = m;
+  ShellMesh full = m;
   set_section(full.block, 0, 2);
   full.initialize();
   double gap = 0.0;
   EXPECT_EQ(zero_modes(probed_stiffness(full), &gap), 10);
   std::printf("ELFORM 16 free element: 10 zero modes, next eigenvalue %.2e of the largest\n", gap);
   EXPECT_GT(gap, 1e-5);  // the softest deformation mode is far from zero
-  Mesh one = m;
+  ShellMesh one = m;
   set_section(one.block, 0, 2, 2);
   one.initialize();
   double gap2 = 0.0;
@@ -424,7 +333,7 @@ TEST(Shell16TimeStep, HighestElementFrequencyIsElform2s) {
     for (double t : {0.01, 0.3}) {
       double ratio[2];
       for (int k = 0; k < 2; ++k) {
-        Mesh m;
+        ShellMesh m;
         for (const auto& p : shape) m.add_node(p[0], p[1], 0.0);
         m.add_element({0, 1, 2, 3}, t);
         set_section(m.block, 0, 2, k == 0 ? 16 : 2);
@@ -455,7 +364,7 @@ TEST(Shell16TimeStep, HighestElementFrequencyIsElform2s) {
 // stiffness too.
 TEST(Shell16Modes, TwistAndHourglassPatternsHaveTheirStiffness) {
   const double a = 0.8, b = 0.5, t = 0.02;
-  Mesh m;
+  ShellMesh m;
   m.add_node(-a / 2, -b / 2, 0);
   m.add_node(a / 2, -b / 2, 0);
   m.add_node(a / 2, b / 2, 0);
@@ -488,7 +397,7 @@ TEST(Shell16Modes, TwistAndHourglassPatternsHaveTheirStiffness) {
 // strain follows plastic incompressibility.
 TEST(Shell16Plasticity, UniaxialTensionFollowsBilinearLaw) {
   for (bool kinematic : {false, true}) {
-    Mesh m;
+    ShellMesh m;
     m.add_node(0, 0, 0);
     m.add_node(1, 0, 0);
     m.add_node(1, 1, 0);
@@ -508,7 +417,7 @@ TEST(Shell16Plasticity, UniaxialTensionFollowsBilinearLaw) {
     double lx = 1.0, ly = 1.0;
     for (int s = 0; s < 400; ++s) {
       const double nx = lx * std::exp(1.0 * dt);
-      auto trial = [&](double ny, Mesh& out) {
+      auto trial = [&](double ny, ShellMesh& out) {
         out = m;
         const double vx = (nx - lx) / dt, vy = (ny - ly) / dt;
         out.vx[1] = out.vx[2] = vx;
@@ -518,7 +427,7 @@ TEST(Shell16Plasticity, UniaxialTensionFollowsBilinearLaw) {
         EXPECT_FALSE(out.step(dt).failed);
         return out.block.stress[1];
       };
-      Mesh t0, t1;
+      ShellMesh t0, t1;
       double y0 = ly * std::exp(-0.3 * dt), y1 = ly * std::exp(-0.5 * dt);
       double f0 = trial(y0, t0), f1 = trial(y1, t1);
       for (int it = 0; it < 20 && std::abs(f1) > 1e-3 && f1 != f0; ++it) {
@@ -556,7 +465,7 @@ TEST(Shell16Plasticity, UniaxialTensionFollowsBilinearLaw) {
 // is the one-point B): forces, viscous work and the viscous step equal ELFORM 2's (hourglass
 // off).
 TEST(Shell16BulkViscosity, UniformCompressionMatchesElform2) {
-  Mesh m;
+  ShellMesh m;
   m.add_node(0.0, 0.0, 0.0);
   m.add_node(0.3, 0.02, 0.0);
   m.add_node(0.35, 0.2, 0.0);
@@ -566,7 +475,7 @@ TEST(Shell16BulkViscosity, UniformCompressionMatchesElform2) {
     m.vx[i] = -300.0 * m.x[i];
     m.vy[i] = -200.0 * m.y[i];
   }
-  Mesh b = m;
+  ShellMesh b = m;
   set_section(m.block, 0, 2);
   set_section(b.block, 0, 2, 2);
   m.block.bulk_viscosity = {1.5, 0.06};
@@ -586,7 +495,7 @@ TEST(Shell16BulkViscosity, UniformCompressionMatchesElform2) {
 // Triangles (N3 = N4) are refused naming the element; the step and the lumped mass are
 // ELFORM 2's.
 TEST(Shell16Initialize, TriangleIsAnErrorNamingTheElement) {
-  Mesh m;
+  ShellMesh m;
   m.add_node(0, 0, 0);
   m.add_node(1, 0, 0);
   m.add_node(1, 1, 0);
@@ -603,13 +512,13 @@ TEST(Shell16Initialize, TriangleIsAnErrorNamingTheElement) {
 }
 
 TEST(Shell16TimeStep, SameRuleAsElform2) {
-  Mesh m;
+  ShellMesh m;
   m.add_node(0, 0, 0);
   m.add_node(0.3, 0, 0);
   m.add_node(0.35, 0.2, 0);
   m.add_node(0, 0.25, 0);
   m.add_element({0, 1, 2, 3}, 0.01);
-  Mesh b = m;
+  ShellMesh b = m;
   set_section(m.block, 0, 2);
   set_section(b.block, 0, 2, 2);
   m.initialize();

@@ -16,56 +16,21 @@
 #include "element/shell_block.hpp"
 #include "material/elastic.hpp"
 #include "material/registry.hpp"
+#include "shell_test_mesh.hpp"
 
 namespace {
+
+using rf::test::Axes;
+using rf::test::element_axes;
+using rf::test::make_patch;
+using rf::test::node_force;
+using rf::test::Patch;
+using rf::test::ShellMesh;
+using rf::test::to_element_axes;
 
 using rf::element::ShellBlock;
 
 constexpr double kE = 2.0e11, kNu = 0.3, kRho = 7800.0;
-
-struct ShellMesh {
-  std::vector<double> x, y, z, vx, vy, vz, wx, wy, wz;
-  ShellBlock block;
-
-  int add_node(double px, double py, double pz) {
-    for (auto* v : {&x, &y, &z, &vx, &vy, &vz, &wx, &wy, &wz}) v->push_back(0.0);
-    x.back() = px;
-    y.back() = py;
-    z.back() = pz;
-    return static_cast<int>(x.size()) - 1;
-  }
-  void add_element(std::array<int, 4> c, double t) {
-    block.element_id.push_back(static_cast<rf::model::Id>(block.element_id.size() + 1));
-    for (int k : c) {
-      block.conn.push_back(k);
-      block.rotation_conn.push_back(k);
-      block.thickness.push_back(t);
-    }
-  }
-  rf::element::NodalView view() const {
-    return {x.data(), y.data(), z.data(), vx.data(), vy.data(), vz.data()};
-  }
-  rf::element::RotationalView rotations() const { return {wx.data(), wy.data(), wz.data()}; }
-  void initialize() { rf::element::initialize_shell_block(block, view()); }
-  rf::element::KernelResult step(double dt) {
-    return rf::element::compute_shell_forces(block, view(), rotations(), dt);
-  }
-  // Moves the nodes by dt v (after a step was computed at the new positions: the caller sets
-  // positions; see place_for_step).
-  // Sets x^{n+1} = X + dt/2 v so that the mid-step configuration is exactly X.
-  void place_for_step(const std::vector<std::array<double, 3>>& X, double dt) {
-    for (std::size_t i = 0; i < X.size(); ++i) {
-      x[i] = X[i][0] + 0.5 * dt * vx[i];
-      y[i] = X[i][1] + 0.5 * dt * vy[i];
-      z[i] = X[i][2] + 0.5 * dt * vz[i];
-    }
-  }
-  std::vector<std::array<double, 3>> positions() const {
-    std::vector<std::array<double, 3>> p(x.size());
-    for (std::size_t i = 0; i < x.size(); ++i) p[i] = {x[i], y[i], z[i]};
-    return p;
-  }
-};
 
 void set_section(ShellBlock& b, int material_index, int nip, rf::element::ThroughThicknessRule rule,
                  int ihq, double qm) {
@@ -76,79 +41,6 @@ void set_section(ShellBlock& b, int material_index, int nip, rf::element::Throug
   b.rule = rule;
   b.hourglass.ihq = ihq;
   b.hourglass.qm = qm;
-}
-
-// Co-rotational axes as the BLT paper defines them, computed here independently.
-struct Axes {
-  double e[3][3];
-};
-Axes element_axes(const std::array<double, 3> p[4]) {
-  auto sub = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
-    return std::array<double, 3>{a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-  };
-  auto cross = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
-    return std::array<double, 3>{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-                                 a[0] * b[1] - a[1] * b[0]};
-  };
-  auto unit = [](std::array<double, 3> a) {
-    const double n = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-    return std::array<double, 3>{a[0] / n, a[1] / n, a[2] / n};
-  };
-  const auto e3 = unit(cross(sub(p[2], p[0]), sub(p[3], p[1])));
-  auto s = sub(p[1], p[0]);
-  const double sn = s[0] * e3[0] + s[1] * e3[1] + s[2] * e3[2];
-  for (int i = 0; i < 3; ++i) s[i] -= sn * e3[i];
-  const auto e1 = unit(s);
-  const auto e2 = cross(e3, e1);
-  Axes a;
-  for (int i = 0; i < 3; ++i) {
-    a.e[0][i] = e1[i];
-    a.e[1][i] = e2[i];
-    a.e[2][i] = e3[i];
-  }
-  return a;
-}
-
-// Rotates a symmetric in-plane tensor given in global axes (2x2 block in e1/e2 of the plane's
-// own basis u, w) to the element axes: s_ab = (e_a . T e_b).
-std::array<double, 3> to_element_axes(const Axes& a, const double T[3][3]) {
-  auto contract = [&](int i, int j) {
-    double s = 0.0;
-    for (int k = 0; k < 3; ++k)
-      for (int l = 0; l < 3; ++l) s += a.e[i][k] * T[k][l] * a.e[j][l];
-    return s;
-  };
-  return {contract(0, 0), contract(1, 1), contract(0, 1)};
-}
-
-// Irregular 4-element patch on the unit square, interior node at (0.45, 0.58), in a plane
-// spanned by unit vectors u and w through the point o.
-struct Patch {
-  ShellMesh mesh;
-  int interior = 4;
-};
-Patch make_patch(const double u[3], const double w[3], double t) {
-  Patch p;
-  const double o[3] = {0.3, -0.2, 0.5};
-  const double pts[9][2] = {{0, 0},    {0.5, 0}, {1, 0},    {0, 0.5}, {0.45, 0.58},
-                            {1, 0.42}, {0, 1},   {0.55, 1}, {1, 1}};
-  for (const auto& q : pts)
-    p.mesh.add_node(o[0] + q[0] * u[0] + q[1] * w[0], o[1] + q[0] * u[1] + q[1] * w[1],
-                    o[2] + q[0] * u[2] + q[1] * w[2]);
-  p.mesh.add_element({0, 1, 4, 3}, t);
-  p.mesh.add_element({1, 2, 5, 4}, t);
-  p.mesh.add_element({3, 4, 7, 6}, t);
-  p.mesh.add_element({4, 5, 8, 7}, t);
-  return p;
-}
-
-std::array<double, 3> node_force(const ShellBlock& b, int node, int offset) {
-  std::array<double, 3> f{0, 0, 0};
-  for (std::size_t e = 0; e < b.size(); ++e)
-    for (int I = 0; I < 4; ++I)
-      if (b.conn[4 * e + I] == node)
-        for (int i = 0; i < 3; ++i) f[i] += b.force[24 * e + 6 * I + offset + i];
-  return f;
 }
 
 TEST(ShellThroughThickness, RulesIntegratePolynomialsExactly) {
