@@ -398,34 +398,7 @@ TEST(ShellPlasticity, UniaxialPlaneStressFollowsBilinearLaw) {
     m.block.plastic.strain = {0.0, 1.0};
     m.block.plastic.stress = {sigy, sigy + (kinematic ? 0.0 : ep)};
     m.initialize();
-    const double dt = 1e-5;
-    double lx = 1.0, ly = 1.0;
-    for (int s = 0; s < 400; ++s) {
-      const double nx = lx * std::exp(1.0 * dt);
-      auto trial = [&](double ny, ShellMesh& out) {
-        out = m;
-        const double vx = (nx - lx) / dt, vy = (ny - ly) / dt;
-        out.vx[1] = out.vx[2] = vx;
-        out.vy[2] = out.vy[3] = vy;
-        out.x[1] = out.x[2] = nx;
-        out.y[2] = out.y[3] = ny;
-        EXPECT_FALSE(out.step(dt).failed);
-        return out.block.stress[1];
-      };
-      ShellMesh t0, t1;
-      double y0 = ly * std::exp(-0.3 * dt), y1 = ly * std::exp(-0.5 * dt);
-      double f0 = trial(y0, t0), f1 = trial(y1, t1);
-      for (int it = 0; it < 20 && std::abs(f1) > 1e-3 && f1 != f0; ++it) {
-        const double y2 = y1 - f1 * (y1 - y0) / (f1 - f0);
-        y0 = y1;
-        f0 = f1;
-        y1 = y2;
-        f1 = trial(y1, t1);
-      }
-      m = t1;
-      lx = nx;
-      ly = y1;
-    }
+    const auto [lx, ly] = rf::test::pull_uniaxially(m, 400, 1e-5);
     const double sigma = m.block.stress[0];
     const double strain = std::log(lx);
     EXPECT_NEAR(m.block.stress[1], 0.0, 1e-2);  // vs sigma ~ 3e8

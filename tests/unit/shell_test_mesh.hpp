@@ -4,6 +4,8 @@
 // 4-element patch of the patch tests.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <array>
 #include <cmath>
 #include <vector>
@@ -134,6 +136,41 @@ inline std::array<double, 3> node_force(const ShellBlock& b, int node, int offse
       if (b.conn[4 * e + I] == node)
         for (int i = 0; i < 3; ++i) f[i] += b.force[24 * e + 6 * I + offset + i];
   return f;
+}
+
+// Pulls the unit square element (nodes 0..3, node 0 at the origin) along x at a true strain rate
+// of 1/s for `steps` steps of dt; each step the lateral stretch is found by secant iteration so
+// that sigma_yy of the first stress point vanishes (uniaxial plane stress). Returns the
+// stretches (lx, ly); m holds the state of the last step.
+inline std::array<double, 2> pull_uniaxially(ShellMesh& m, int steps, double dt) {
+  double lx = 1.0, ly = 1.0;
+  for (int s = 0; s < steps; ++s) {
+    const double nx = lx * std::exp(1.0 * dt);
+    auto trial = [&](double ny, ShellMesh& out) {
+      out = m;
+      const double vx = (nx - lx) / dt, vy = (ny - ly) / dt;
+      out.vx[1] = out.vx[2] = vx;
+      out.vy[2] = out.vy[3] = vy;
+      out.x[1] = out.x[2] = nx;
+      out.y[2] = out.y[3] = ny;
+      EXPECT_FALSE(out.step(dt).failed);
+      return out.block.stress[1];
+    };
+    ShellMesh t0, t1;
+    double y0 = ly * std::exp(-0.3 * dt), y1 = ly * std::exp(-0.5 * dt);
+    double f0 = trial(y0, t0), f1 = trial(y1, t1);
+    for (int it = 0; it < 20 && std::abs(f1) > 1e-3 && f1 != f0; ++it) {
+      const double y2 = y1 - f1 * (y1 - y0) / (f1 - f0);
+      y0 = y1;
+      f0 = f1;
+      y1 = y2;
+      f1 = trial(y1, t1);
+    }
+    m = t1;
+    lx = nx;
+    ly = y1;
+  }
+  return {lx, ly};
 }
 
 }  // namespace rf::test
