@@ -464,6 +464,58 @@ inline void gather_batch_nodes(const ShellBlock& block, const std::size_t (&elem
   b.area0 = gather<T>(block.area0.data(), elem);
 }
 
+// One thickness point of a batch (section 3; ELFORM 2 and 16): the strain the erosion criteria
+// integrate (when allocated), then the in-plane stress update by the block's material, sp =
+// (xx, yy, xy, yz, zx) in the co-rotational frame (the transverse shear is the caller's).
+// `point` is the point's index within its element, points_per_element() per element.
+template <class M, class T, std::size_t L>
+inline void update_point(ShellBlock& block, const BlockConstants& k, const std::size_t (&elem)[L],
+                         int count, std::size_t point, const T d[3], double dt, T sp[5],
+                         Partial& part) {
+  constexpr int kHist = material::history_size<M>();
+  const std::size_t ppe = static_cast<std::size_t>(block.points_per_element());
+  if (!block.strain.empty()) {
+    // The strain criteria of erosion: integral of the rate of deformation in the co-rotational
+    // frame (midpoint rule, like the stress), tensor shear d_xy = (2 d_xy) / 2.
+    for (int l = 0; l < count; ++l) {
+      double* e = block.strain.data() + 3 * (ppe * elem[l] + point);
+      e[0] += dt * material::get_lane(d[0], l);
+      e[1] += dt * material::get_lane(d[1], l);
+      e[2] += 0.5 * dt * material::get_lane(d[2], l);
+    }
+  }
+  if constexpr (kHist > 0) {
+    double h[kHist];
+    const std::size_t index = ppe * elem[0] + point;
+    int slot = 0;
+    for (std::size_t fi = 0; fi < M::kHistory.size(); ++fi) {
+      const int nc = M::kHistory[fi].components;
+      const double* in = block.history[fi].values.data() + static_cast<std::size_t>(nc) * index;
+      for (int cc = 0; cc < nc; ++cc) h[slot++] = in[cc];
+    }
+    if constexpr (material::plane_stress_only<M>()) {
+      // Plane-stress laws (Barlat 1989) in the material frame, at the element's axes angle.
+      const double* ax = &block.material_axes[2 * elem[0]];
+      if (!M::plane_stress_update(block.material, block.barlat, ax[0], ax[1], d, dt, sp, h))
+        part.record_failure(static_cast<std::int64_t>(elem[0]), 0.0);
+    } else {
+      plane_stress_update<M>(block, k, d, dt, sp, h);
+    }
+    slot = 0;
+    for (std::size_t fi = 0; fi < M::kHistory.size(); ++fi) {
+      const int nc = M::kHistory[fi].components;
+      double* o = block.history[fi].values.data() + static_cast<std::size_t>(nc) * index;
+      for (int cc = 0; cc < nc; ++cc) o[cc] = h[slot++];
+    }
+  } else {
+    // Elastic plane stress in closed form.
+    const double a = k.plane_modulus * dt;
+    sp[0] += a * (d[0] + k.nu * d[1]);
+    sp[1] += a * (d[1] + k.nu * d[0]);
+    sp[2] += (k.shear * dt) * d[2];
+  }
+}
+
 // A batch of elements [first, first + count) (count <= lanes of T; lanes past count repeat the
 // last element and are discarded): rates on the mid-step geometry, stress update, forces at
 // x^{n+1}.
@@ -540,48 +592,7 @@ void shell_batch(ShellBlock& block, const BlockConstants& k, std::size_t first, 
     for (int c = 0; c < 5; ++c) sp[c] = gather<T>(block.stress.data() + c, off);
     const T z = block.zeta[q] * half_t;
     const T d[3] = {em[0] + z * kp[0], em[1] + z * kp[1], em[2] + z * kp[2]};
-    if (!block.strain.empty()) {
-      // The strain criteria of erosion: integral of the rate of deformation in the co-rotational
-      // frame (midpoint rule, like the stress), tensor shear d_xy = (2 d_xy) / 2.
-      for (int l = 0; l < count; ++l) {
-        double* e = block.strain.data() +
-                    3 * (static_cast<std::size_t>(nip) * elem[l] + static_cast<std::size_t>(q));
-        e[0] += dt * material::get_lane(d[0], l);
-        e[1] += dt * material::get_lane(d[1], l);
-        e[2] += 0.5 * dt * material::get_lane(d[2], l);
-      }
-    }
-    if constexpr (kHist > 0) {
-      double h[kHist];
-      const std::size_t point =
-          static_cast<std::size_t>(nip) * elem[0] + static_cast<std::size_t>(q);
-      int slot = 0;
-      for (std::size_t fi = 0; fi < M::kHistory.size(); ++fi) {
-        const int nc = M::kHistory[fi].components;
-        const double* in = block.history[fi].values.data() + static_cast<std::size_t>(nc) * point;
-        for (int cc = 0; cc < nc; ++cc) h[slot++] = in[cc];
-      }
-      if constexpr (material::plane_stress_only<M>()) {
-        // Plane-stress laws (Barlat 1989) in the material frame, at the element's axes angle.
-        const double* ax = &block.material_axes[2 * elem[0]];
-        if (!M::plane_stress_update(block.material, block.barlat, ax[0], ax[1], d, dt, sp, h))
-          part.record_failure(static_cast<std::int64_t>(elem[0]), 0.0);
-      } else {
-        plane_stress_update<M>(block, k, d, dt, sp, h);
-      }
-      slot = 0;
-      for (std::size_t fi = 0; fi < M::kHistory.size(); ++fi) {
-        const int nc = M::kHistory[fi].components;
-        double* o = block.history[fi].values.data() + static_cast<std::size_t>(nc) * point;
-        for (int cc = 0; cc < nc; ++cc) o[cc] = h[slot++];
-      }
-    } else {
-      // Elastic plane stress in closed form.
-      const double a = k.plane_modulus * dt;
-      sp[0] += a * (d[0] + k.nu * d[1]);
-      sp[1] += a * (d[1] + k.nu * d[0]);
-      sp[2] += (k.shear * dt) * d[2];
-    }
+    update_point<M>(block, k, elem, count, static_cast<std::size_t>(q), d, dt, sp, part);
     sp[3] += gs_dt * gyz;
     sp[4] += gs_dt * gzx;
     for (int l = 0; l < count; ++l) {
@@ -897,42 +908,7 @@ void shell16_batch(ShellBlock& block, const BlockConstants& k, std::size_t first
       for (int c = 0; c < 5; ++c) sp[c] = gather<T>(block.stress.data() + c, off);
       const T z = block.zeta[q] * half_t;
       const T d[3] = {em[g][0] + z * kp[g][0], em[g][1] + z * kp[g][1], em[g][2] + z * kp[g][2]};
-      if (!block.strain.empty()) {
-        for (int l = 0; l < count; ++l) {
-          double* e = block.strain.data() + 3 * (ppe * elem[l] + point_in_element);
-          e[0] += dt * material::get_lane(d[0], l);
-          e[1] += dt * material::get_lane(d[1], l);
-          e[2] += 0.5 * dt * material::get_lane(d[2], l);
-        }
-      }
-      if constexpr (kHist > 0) {
-        double h[kHist];
-        const std::size_t point = ppe * elem[0] + point_in_element;
-        int slot = 0;
-        for (std::size_t fi = 0; fi < M::kHistory.size(); ++fi) {
-          const int nc = M::kHistory[fi].components;
-          const double* in = block.history[fi].values.data() + static_cast<std::size_t>(nc) * point;
-          for (int cc = 0; cc < nc; ++cc) h[slot++] = in[cc];
-        }
-        if constexpr (material::plane_stress_only<M>()) {
-          const double* ax = &block.material_axes[2 * elem[0]];
-          if (!M::plane_stress_update(block.material, block.barlat, ax[0], ax[1], d, dt, sp, h))
-            part.record_failure(static_cast<std::int64_t>(elem[0]), 0.0);
-        } else {
-          plane_stress_update<M>(block, k, d, dt, sp, h);
-        }
-        slot = 0;
-        for (std::size_t fi = 0; fi < M::kHistory.size(); ++fi) {
-          const int nc = M::kHistory[fi].components;
-          double* o = block.history[fi].values.data() + static_cast<std::size_t>(nc) * point;
-          for (int cc = 0; cc < nc; ++cc) o[cc] = h[slot++];
-        }
-      } else {
-        const double a = k.plane_modulus * dt;
-        sp[0] += a * (d[0] + k.nu * d[1]);
-        sp[1] += a * (d[1] + k.nu * d[0]);
-        sp[2] += (k.shear * dt) * d[2];
-      }
+      update_point<M>(block, k, elem, count, point_in_element, d, dt, sp, part);
       sp[3] += gs_dt * gyz[g];
       sp[4] += gs_dt * gzx[g];
       for (int l = 0; l < count; ++l) {
