@@ -385,7 +385,12 @@ ModeSet compute_modes(const model::Model& model, const EigenRequest& request, Ei
     // normalisation, as eigout tables give it).
     modes.generalized_mass.push_back(1.0 / (largest * largest));
     modes.residual.push_back(c.residual);
-    modes.rigid.push_back(c.rigid ? 1 : 0);
+    // With LFLAG the user's LFTEND decides what is rigid: every kept mode is elastic (the
+    // file holds elastic modes only, docs/eigen.md), even one whose |lambda| is below the
+    // rigid limit, as the lowest bending modes of a large thin shell are (1e-10 of a
+    // lambda_scale set by its drilling and rotary stiffness). *PART_MODES skips modes flagged
+    // rigid, so such a mode would silently be lost to the flexible body.
+    modes.rigid.push_back(c.rigid && !request.remove_rigid_below ? 1 : 0);
     report.max_residual = std::max(report.max_residual, c.residual);
   }
   // Mass orthonormality of the kept modes: max |Phi^T M Phi - I| (one dense product).

@@ -153,6 +153,36 @@ TEST(ShellEigen, FreeStripHasSixRigidModesAndEulerBernoulliBending) {
   }
 }
 
+// A long, thin free strip (1000 x 50 x 1 mm): its first bending eigenvalue is below the rigid
+// limit 1e-10 lambda_scale (lambda_scale = max K_ii / M_ii is set by the drilling and rotary
+// stiffness, ~E / (rho t^2)), as the lowest modes of a thin car panel are. With LFLAG
+// (--remove-rigid) LFTEND decides what is rigid: the kept modes are all flagged elastic, so that
+// *PART_MODES uses them (it skips modes flagged rigid), and the first one is the bending mode.
+TEST(ShellEigen, LflagKeepsThinShellBendingBelowTheRigidLimitAsElastic) {
+  Strip strip;
+  strip.length = 1000.0;
+  strip.width = 50.0;
+  strip.thickness = 1.0;
+  strip.nx = 20;
+  strip.ny = 1;
+  const model::Model model = read(strip.deck(4));
+  modal::EigenRequest request = modal::request_from_deck(model);
+  request.remove_rigid_below = true;
+  request.left_frequency = 0.5 * strip.reference(0);
+  modal::EigenReport report;
+  const modal::ModeSet modes = modal::compute_modes(model, request, report);
+  ASSERT_EQ(modes.mode_count(), 4u);
+  std::printf("thin strip: lambda_scale %.3e, first kept eigenvalue %.3e (%.2e lambda_scale), "
+              "%.4g Hz vs Euler-Bernoulli %.4g Hz, rigid found %d\n",
+              report.lambda_scale, modes.eigenvalues[0],
+              modes.eigenvalues[0] / report.lambda_scale, frequency(modes.eigenvalues[0]),
+              strip.reference(0), report.rigid_found);
+  // The situation this test is about: the bending mode is below the rigid limit.
+  ASSERT_LT(modes.eigenvalues[0], 1e-10 * report.lambda_scale);
+  EXPECT_NEAR(frequency(modes.eigenvalues[0]) / strip.reference(0), 1.0, 0.02);
+  for (std::size_t k = 0; k < modes.mode_count(); ++k) EXPECT_FALSE(modes.rigid[k]) << k;
+}
+
 // The explicit solver's scaled rotary inertia m (A / 4 + t^2 / 12) per node adds r^2 = A / 4 of
 // rotary inertia per unit mass to the bending rotation theta = w'. Rayleigh's quotient with the
 // Euler-Bernoulli free-free mode shape phi (Rayleigh, Theory of Sound, sec. 88 and 186) gives the
