@@ -202,9 +202,18 @@ ModeSet compute_modes(const model::Model& model, const EigenRequest& request, Ei
     mass[static_cast<Eigen::Index>(k)] = sm.mass[static_cast<Eigen::Index>(free_dofs[k])];
   const Eigen::VectorXd sqrt_mass = mass.cwiseSqrt();
 
+  // The scale of the spectrum from the translational DOFs: in a shell or beam model the
+  // rotational ones (drilling penalty over a small rotary inertia) reach 1e2 to 1e3 times
+  // higher, far from the bending that governs the low modes, and a shift and a near-zero limit
+  // taken from them were 1e5 times too large for a thin panel (docs/eigen.md: 4 of 6 rigid
+  // modes found, real 3 and 8 Hz modes flagged as mechanisms). Models without translations in
+  // the free DOFs fall back on all of them.
   double lambda_scale = 0.0;
-  for (Eigen::Index k = 0; k < Kf.outerSize(); ++k) {
-    lambda_scale = std::max(lambda_scale, Kf.coeff(k, k) / mass[k]);
+  for (int pass = 0; pass < 2 && !(lambda_scale > 0.0); ++pass) {
+    for (Eigen::Index k = 0; k < Kf.outerSize(); ++k) {
+      if (pass == 0 && free_dofs[static_cast<std::size_t>(k)] >= tdof) continue;
+      lambda_scale = std::max(lambda_scale, Kf.coeff(k, k) / mass[k]);
+    }
   }
   report.lambda_scale = lambda_scale;
   const double rigid_limit = request.rigid_tolerance * lambda_scale;
