@@ -516,6 +516,49 @@ inline void update_point(ShellBlock& block, const BlockConstants& k, const std::
   }
 }
 
+// The end of a batch, ELFORM 2 and 16 alike: the critical step of section 8 at x^{n+1}
+// (L_s = (1 + beta) A / max side, beta = `tri`), section 10's while the area shrinks, squared
+// (one square root per block, after the minimum: compute_shell_forces); then lane by lane in
+// element order (first failure and the work sums as an element loop) the area, the forces,
+// the hourglass and bulk viscosity work, failures and the steps with the mass scale.
+template <class T, std::size_t L>
+inline void finish_batch(ShellBlock& block, const BlockConstants& k, const std::size_t (&elem)[L],
+                         int count, const Frame<T>& fm, const Frame<T>& f, const T (&p)[4][3],
+                         T tri, bool bulk, T step_length, T area_rate, const T (&out)[kShellSlot],
+                         T hourglass_work, T bulk_work, T sum, Partial& part) {
+  const T A = f.area;
+  const T length = A + tri * A;  // (1 + beta) A
+  T dt2 = length * length / (max_side_squared(p) * (k.wave_speed * k.wave_speed));
+  if (bulk) {  // section 10: L_s / (Q + sqrt(Q^2 + c^2)) while the area shrinks
+    const T step = viscous_time_step(block.bulk_viscosity, k.wave_speed, step_length, area_rate,
+                                     [](T x) { return tsqrt(x); });
+    dt2 = step * step;
+  }
+  for (int l = 0; l < count; ++l) {
+    const std::size_t e = elem[l];
+    const auto ie = static_cast<std::int64_t>(e);
+    const double area_end = material::get_lane(f.area, l);
+    const double area_mid = material::get_lane(fm.area, l);
+    block.area[e] = area_end;
+    double* o = &block.force[kShellSlot * e];
+    if (!(area_mid > 0.0) || !(area_end > 0.0)) {
+      part.record_failure(ie, area_end > 0.0 ? area_mid : area_end);
+      for (int c = 0; c < kShellSlot; ++c) o[c] = 0.0;
+      continue;
+    }
+    for (int c = 0; c < kShellSlot; ++c) o[c] = material::get_lane(out[c], l);
+    part.hourglass_work += material::get_lane(hourglass_work, l);
+    part.bulk_viscosity_work += material::get_lane(bulk_work, l);
+    if (block.erosion.enabled)
+      block.erosion.artificial_work[e] +=
+          material::get_lane(hourglass_work, l) + material::get_lane(bulk_work, l);
+    if (!std::isfinite(material::get_lane(sum, l))) part.record_failure(ie, area_end);
+    // Squared steps here: the mass scale enters squared.
+    const double scale = block.step_scale.empty() ? 1.0 : block.step_scale[e];
+    part.record_dt(material::get_lane(dt2, l) * (scale * scale), ie);
+  }
+}
+
 // A batch of elements [first, first + count) (count <= lanes of T; lanes past count repeat the
 // last element and are discarded): rates on the mid-step geometry, stress update, forces at
 // x^{n+1}.
@@ -714,39 +757,8 @@ void shell_batch(ShellBlock& block, const BlockConstants& k, std::size_t first, 
       sum += o[i] + o[3 + i];
     }
   }
-  // Squared step (one square root per block, after the minimum: compute_shell_forces).
-  const T length = A + tri * A;  // (1 + beta) A
-  T dt2 = length * length / (max_side_squared(p) * (k.wave_speed * k.wave_speed));
-  if (bulk) {  // section 10: L_s / (Q + sqrt(Q^2 + c^2)) while the area shrinks
-    const T step = viscous_time_step(block.bulk_viscosity, k.wave_speed, step_length, area_rate,
-                                     [](T x) { return tsqrt(x); });
-    dt2 = step * step;
-  }
-
-  // Write back lane by lane in element order (first failure and the work sum as an element loop).
-  for (int l = 0; l < count; ++l) {
-    const std::size_t e = elem[l];
-    const auto ie = static_cast<std::int64_t>(e);
-    const double area_end = material::get_lane(f.area, l);
-    const double area_mid = material::get_lane(fm.area, l);
-    block.area[e] = area_end;
-    double* o = &block.force[kShellSlot * e];
-    if (!(area_mid > 0.0) || !(area_end > 0.0)) {
-      part.record_failure(ie, area_end > 0.0 ? area_mid : area_end);
-      for (int c = 0; c < kShellSlot; ++c) o[c] = 0.0;
-      continue;
-    }
-    for (int c = 0; c < kShellSlot; ++c) o[c] = material::get_lane(out[c], l);
-    part.hourglass_work += material::get_lane(work, l);
-    part.bulk_viscosity_work += material::get_lane(bulk_work, l);
-    if (block.erosion.enabled)
-      block.erosion.artificial_work[e] +=
-          material::get_lane(work, l) + material::get_lane(bulk_work, l);
-    if (!std::isfinite(material::get_lane(sum, l))) part.record_failure(ie, area_end);
-    // Squared steps here: the mass scale enters squared.
-    const double scale = block.step_scale.empty() ? 1.0 : block.step_scale[e];
-    part.record_dt(material::get_lane(dt2, l) * (scale * scale), ie);
-  }
+  finish_batch(block, k, elem, count, fm, f, p, tri, bulk, step_length, area_rate, out, work,
+               bulk_work, sum, part);
 }
 
 // ---- ELFORM 16: fully integrated shell (header comment, section 11) ----------------------------
@@ -972,33 +984,8 @@ void shell16_batch(ShellBlock& block, const BlockConstants& k, std::size_t first
       sum += o[i] + o[3 + i];
     }
   }
-  const T A = f.area;
-  T dt2 = A * A / (max_side_squared(p) * (k.wave_speed * k.wave_speed));
-  if (bulk) {
-    const T step = viscous_time_step(block.bulk_viscosity, k.wave_speed, step_length, area_rate,
-                                     [](T x) { return tsqrt(x); });
-    dt2 = step * step;
-  }
-
-  for (int l = 0; l < count; ++l) {
-    const std::size_t e = elem[l];
-    const auto ie = static_cast<std::int64_t>(e);
-    const double area_end = material::get_lane(f.area, l);
-    const double area_mid = material::get_lane(fm.area, l);
-    block.area[e] = area_end;
-    double* o = &block.force[kShellSlot * e];
-    if (!(area_mid > 0.0) || !(area_end > 0.0)) {
-      part.record_failure(ie, area_end > 0.0 ? area_mid : area_end);
-      for (int c = 0; c < kShellSlot; ++c) o[c] = 0.0;
-      continue;
-    }
-    for (int c = 0; c < kShellSlot; ++c) o[c] = material::get_lane(out[c], l);
-    part.bulk_viscosity_work += material::get_lane(bulk_work, l);
-    if (block.erosion.enabled) block.erosion.artificial_work[e] += material::get_lane(bulk_work, l);
-    if (!std::isfinite(material::get_lane(sum, l))) part.record_failure(ie, area_end);
-    const double scale = block.step_scale.empty() ? 1.0 : block.step_scale[e];
-    part.record_dt(material::get_lane(dt2, l) * (scale * scale), ie);
-  }
+  finish_batch(block, k, elem, count, fm, f, p, T{}, bulk, step_length, area_rate, out, T{},
+               bulk_work, sum, part);
 }
 
 // Legendre polynomial P_n and its derivative at x.
