@@ -165,13 +165,32 @@ int command_check(const std::string& deck, const rf::io::ReadOptions& read_optio
 // alone prints and writes files; these only compute their elements and take part in the
 // reductions.
 int command_run_follower(const std::string& deck, const rf::io::ReadOptions& read_options,
-                         int threads) {
+                         int threads, double dump_every) {
   if (threads > 0) omp_set_num_threads(threads);
   const rf::model::Model model = rf::io::read_deck(deck, read_options);
   rf::solver::SimulationOptions options;  // no output directory: rank 0 writes the files
   options.write_fields = false;
   rf::solver::Simulation sim(model, options);
+  // The same dump schedule as rank 0: every rank takes part in a dump (restart/dumper.cpp).
+  rf::restart::DumpSchedule schedule = rf::restart::Dumper::every(dump_every);
+  schedule.at_termination = dump_every > 0.0;
+  sim.enable_restart_dumps(
+      std::make_unique<rf::restart::Dumper>(rf::restart::ModelInput{}, schedule));
   sim.run();
+  return 0;
+}
+
+// A rank > 0 of a distributed restart: the same state from the same dump, no files.
+int command_restart_follower(const std::string& dump, const std::string& restart_deck, int threads,
+                             std::optional<double> dump_every) {
+  rf::restart::RestartOptions options;
+  options.dump = dump;
+  options.restart_deck = restart_deck;
+  options.threads = threads;
+  options.dump_interval = dump_every;
+  options.writes_files = false;
+  rf::restart::Restarted restarted = rf::restart::restart_from_dump(options);
+  restarted.simulation->run();
   return 0;
 }
 
@@ -310,12 +329,7 @@ int command_run(const std::string& deck, std::string output_dir, int threads, bo
                 rf::io::ReadOptions read_options, const std::string& dialect, double dump_every,
                 const std::string& command_line) {
   const rf::parallel::Communicator& world = rf::parallel::world();
-  if (world.distributed() && dump_every > 0.0) {
-    throw rf::InputError({},
-                         "--dump-every: restart dumps of a distributed run are not supported "
-                         "yet (stage 1, docs/parallel.md): run on one rank to write dumps");
-  }
-  if (world.rank() != 0) return command_run_follower(deck, read_options, threads);
+  if (world.rank() != 0) return command_run_follower(deck, read_options, threads, dump_every);
   if (threads > 0) omp_set_num_threads(threads);
   if (output_dir.empty()) output_dir = fs::path(deck).stem().string() + "_out";
   const fs::path out = output_dir;
@@ -386,9 +400,7 @@ int command_run(const std::string& deck, std::string output_dir, int threads, bo
   // writes one (Dumper::write_if_due).
   rf::restart::DumpSchedule schedule = rf::restart::Dumper::every(dump_every);
   schedule.at_termination = dump_every > 0.0;
-  if (!world.distributed()) {  // distributed runs write no dumps (stage 1)
-    sim->enable_restart_dumps(std::make_unique<rf::restart::Dumper>(std::move(input), schedule));
-  }
+  sim->enable_restart_dumps(std::make_unique<rf::restart::Dumper>(std::move(input), schedule));
   rf::app::RunLog log(out / "d3hsp.txt", false);
   log.write(log_header(command_line));
   if (!cleared.empty()) log.write(cleared + "\n");
@@ -425,6 +437,7 @@ int command_restart(const std::string& dump, const std::string& restart_deck,
   rf::restart::Restarted restarted = rf::restart::restart_from_dump(options);
   rf::output::RunSummary summary;
   summary.threads = restarted.threads;
+  summary.ranks = rf::parallel::world().size();
   for (const auto& w : restarted.warnings) report_warning(summary, w);
   rf::solver::Simulation& sim = *restarted.simulation;
   rf::app::RunLog log(restarted.output_directory / "d3hsp.txt", true);
@@ -674,14 +687,11 @@ int main(int argc, char** argv) {
       clear_output_directory(options.output, rf::app::ResultKind::kEigen, quiet);
       return rf::app::run_eigen_command(std::move(model), options);
     }
-    if (*restart && rf::parallel::world().distributed()) {
-      throw rf::InputError({},
-                           "restart of a distributed run is not supported yet (stage 1, "
-                           "docs/parallel.md): run `rigidflex restart` without mpirun");
-    }
     if (*restart) {
       std::optional<double> interval;
       if (restart_dump_every->count() > 0) interval = dump_every;
+      if (rf::parallel::world().rank() != 0)
+        return command_restart_follower(dump, restart_deck, threads, interval);
       return command_restart(dump, restart_deck, output_dir, threads, quiet, interval,
                              command_line);
     }

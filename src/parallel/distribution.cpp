@@ -128,6 +128,43 @@ void ElementDistribution::gather_element_state(solver::State& state) {
   });
 }
 
+void ElementDistribution::gather_restart_state(solver::State& state) {
+  gather_element_state(state);
+  auto family = [&](auto& blocks, const std::vector<std::vector<std::int32_t>>& owners) {
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+      const Owners o = owners_of(owners, b, comm_.rank());
+      auto& block = blocks[b];
+      gather_array(comm_, o, block.size(), block.force);
+      if (block.erosion.enabled) {
+        gather_array(comm_, o, block.size(), block.erosion.work);
+        gather_array(comm_, o, block.size(), block.erosion.artificial_work);
+      }
+      if constexpr (requires { block.strain; }) gather_array(comm_, o, block.size(), block.strain);
+    }
+  };
+  family(state.hex_blocks, partition_.hex);
+  family(state.shell_blocks, partition_.shell);
+  family(state.beam_blocks, partition_.beam);
+}
+
+void ElementDistribution::keep_own_force_slots(solver::State& state) const {
+  auto family = [&](auto& blocks, const std::vector<std::vector<std::int32_t>>& owners) {
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+      const Owners o = owners_of(owners, b, comm_.rank());
+      auto& block = blocks[b];
+      if (!o.owner || block.size() == 0) continue;
+      const std::size_t slot = block.force.size() / block.size();
+      for (std::size_t e = 0; e < block.size(); ++e) {
+        if ((*o.owner)[e] == o.rank) continue;
+        std::fill_n(block.force.begin() + static_cast<std::ptrdiff_t>(slot * e), slot, 0.0);
+      }
+    }
+  };
+  family(state.hex_blocks, partition_.hex);
+  family(state.shell_blocks, partition_.shell);
+  family(state.beam_blocks, partition_.beam);
+}
+
 void ElementDistribution::check_replicated(double value, const char* what) const {
   const double lo = comm_.min(value), hi = comm_.max(value);
   if (!(lo == hi) && !(std::isnan(lo) && std::isnan(hi))) {

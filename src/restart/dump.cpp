@@ -12,6 +12,7 @@
 #include "element/block_state.hpp"
 #include "model/error.hpp"
 #include "output/output_directory.hpp"
+#include "parallel/communicator.hpp"
 #include "restart/simulation_access.hpp"
 #include "solver/rotational_state_visit.hpp"
 
@@ -1029,6 +1030,8 @@ void write_restart_dump(solver::Simulation& sim, const std::filesystem::path& pa
         root.set("time", state.time);
         root.set("cycle", state.cycle);
         root.set("threads", static_cast<std::int64_t>(omp_get_max_threads()));
+        // The dumped run's MPI rank count: a restart on as many continues it bit for bit.
+        root.set("ranks", static_cast<std::int64_t>(parallel::world().size()));
         write_model_input(root.create_group("model"), dumper->input());
         write_nodes(root.create_group("nodes"), state.nodes, SimulationAccess::v_previous(sim));
         write_hex_blocks(root.create_group("blocks"), state.hex_blocks);
@@ -1091,6 +1094,7 @@ DumpHeader read_dump_header(const io::h5::File& file, const std::filesystem::pat
   h.time = root.get_double("time");
   h.cycle = root.get_int("cycle");
   h.threads = static_cast<int>(root.get_int("threads"));
+  h.ranks = root.has_attribute("ranks") ? static_cast<int>(root.get_int("ranks")) : 1;
   return h;
 }
 

@@ -106,6 +106,7 @@ struct DumpHeader {
   double time = 0.0;
   std::int64_t cycle = 0;
   int threads = 0;
+  int ranks = 1;  // MPI ranks of the dumped run (dumps without the attribute: one process)
 };
 DumpHeader read_dump_header(const io::h5::File& file, const std::filesystem::path& path);
 

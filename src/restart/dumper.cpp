@@ -23,7 +23,10 @@ DumpSchedule Dumper::every(double interval) {
 void Dumper::write_if_due(solver::Simulation& sim) {
   const solver::State& state = SimulationAccess::state(sim);
   const std::filesystem::path& directory = SimulationAccess::output_directory(sim);
-  if (directory.empty() || schedule_.last_cycle == state.cycle) return;
+  // On ranks every process keeps the schedule and takes part (the state rank 0 writes is
+  // gathered from all); rank 0 alone has an output directory and writes.
+  const bool distributed = SimulationAccess::distributed(sim);
+  if ((directory.empty() && !distributed) || schedule_.last_cycle == state.cycle) return;
   // Same tolerance as the output schedules (Simulation::OutputSchedule::due).
   const bool scheduled = schedule_.interval > 0.0 && state.time >= schedule_.next * (1.0 - 1e-12);
   // An interrupted run (Ctrl-C, SIGTERM) always leaves a dump to continue from.
@@ -40,8 +43,12 @@ void Dumper::write_if_due(solver::Simulation& sim) {
     while (schedule_.next <= state.time * (1.0 + 1e-12)) schedule_.next += schedule_.interval;
   }
   const std::filesystem::path path = directory / dump_file_name(schedule_.count);
-  write_restart_dump(sim, path);
-  written_.push_back(path);
+  if (distributed) SimulationAccess::prepare_dump_on_ranks(sim);
+  if (SimulationAccess::writes_files(sim)) {
+    write_restart_dump(sim, path);
+    written_.push_back(path);
+  }
+  if (distributed) SimulationAccess::finish_dump_on_ranks(sim);
   seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 

@@ -12,6 +12,7 @@
 #include "model/error_context.hpp"
 #include "output/d3plot_writer.hpp"
 #include "output/output_directory.hpp"
+#include "parallel/communicator.hpp"
 #include "restart/simulation_access.hpp"
 
 namespace rf::restart {
@@ -71,6 +72,83 @@ std::int64_t continue_csv(const fs::path& from_dir, const fs::path& to_dir, bool
   return bytes;
 }
 
+// Every dynamic quantity of the simulation from the dump, the model having been rebuilt from the
+// dump's deck; on ranks, each rank's own part of what the dump holds gathered.
+void read_simulation_state(solver::Simulation& sim, const io::h5::Group& root,
+                           const DumpHeader& header) {
+  const model::Model& sim_model = SimulationAccess::model(sim);
+  solver::State& state = SimulationAccess::state(sim);
+  read_nodes(root.group("nodes"), state.nodes, SimulationAccess::v_previous(sim));
+  read_hex_blocks(root.group("blocks"), state.hex_blocks);
+  if (!state.discrete_blocks.empty()) {
+    if (!root.has("discrete")) {
+      root.fail("discrete",
+                "is missing: the dump has no discrete-element state, the model "
+                "rebuilt from its deck has springs or dampers");
+    }
+    read_discrete_blocks(root.group("discrete"), state.discrete_blocks);
+  }
+  // Shells, beams and the nodal rotations: present in the dump exactly when the model has them.
+  const auto read_family = [&](const char* group, bool in_model, const char* what, auto read) {
+    if (in_model != root.has(group)) {
+      root.fail(group, fmt::format("is {}: the dump {} {}, the model rebuilt from its deck {}",
+                                   in_model ? "missing" : "unexpected", in_model ? "has no" : "has",
+                                   what, in_model ? "has some" : "has none"));
+    }
+    if (in_model) read(root.group(group));
+  };
+  read_family("shells", !state.shell_blocks.empty(), "shell elements",
+              [&](const io::h5::Group& g) { read_shell_blocks(g, state.shell_blocks); });
+  read_family("beams", !state.beam_blocks.empty(), "beam elements",
+              [&](const io::h5::Group& g) { read_beam_blocks(g, state.beam_blocks); });
+  read_family("rotations", !state.rotations.empty(), "nodes with rotations",
+              [&](const io::h5::Group& g) { read_rotations(g, state.rotations); });
+  read_rigid_system(root.group("rigid"), SimulationAccess::rigid(sim), sim_model,
+                    state.nodes.size());
+  read_boundary(root.group("boundary"), SimulationAccess::boundary(sim), sim_model);
+  SimulationAccess::read_members(sim, root.group("simulation"));
+  SimulationAccess::read_output(sim, root.group("output"));
+  SimulationAccess::read_features(sim, root.group("features"));
+  SimulationAccess::resume_on_ranks(sim, root.group("output"), header.ranks);
+}
+
+// The dump schedule continued (or --dump-every's), and the restart deck's termination and
+// switches.
+void restart_dumps_and_deck(solver::Simulation& sim, ModelInput input, const io::h5::Group& root,
+                            const RestartOptions& options,
+                            const std::optional<io::RestartDeck>& deck) {
+  const solver::State& state = SimulationAccess::state(sim);
+  DumpSchedule schedule = read_dump_schedule(root.group("dumps"));
+  if (options.dump_interval) {
+    schedule.interval = std::max(0.0, *options.dump_interval);
+    schedule.next = state.time + schedule.interval;
+  }
+  sim.enable_restart_dumps(std::make_unique<Dumper>(std::move(input), schedule));
+
+  if (deck) {
+    double end_time = sim.end_time();
+    std::int64_t end_cycle = SimulationAccess::end_cycle(sim);
+    if (deck->end_time) {
+      if (*deck->end_time <= state.time) {
+        throw InputError(
+            model::context_of(deck->termination_where, "ENDTIM"),
+            fmt::format("{} does not lie after the dump's time {}", *deck->end_time, state.time));
+      }
+      end_time = *deck->end_time;
+    }
+    if (deck->end_cycle) {
+      if (*deck->end_cycle <= state.cycle) {
+        throw InputError(model::context_of(deck->termination_where, "ENDCYC"),
+                         fmt::format("{} does not lie after the dump's cycle {}", *deck->end_cycle,
+                                     state.cycle));
+      }
+      end_cycle = *deck->end_cycle;
+    }
+    SimulationAccess::set_end(sim, end_time, end_cycle);
+    sim.apply_restart_switches(deck->switches);
+  }
+}
+
 }  // namespace
 
 Restarted restart_from_dump(const RestartOptions& options) {
@@ -111,6 +189,28 @@ Restarted restart_from_dump(const RestartOptions& options) {
                      result.header.threads, options.threads)});
   }
   omp_set_num_threads(result.threads);
+  // Rank count: a distributed run continues bit for bit on as many ranks (the same partition,
+  // each rank its own share of the per-rank sums); on another count the partition differs.
+  const int ranks = parallel::world().size();
+  if (ranks != result.header.ranks) {
+    result.warnings.push_back(
+        {{},
+         fmt::format("the dumped run used {} MPI rank(s), this restart uses {}: results can "
+                     "differ from an uninterrupted run in the last digits",
+                     result.header.ranks, ranks)});
+  }
+
+  const io::h5::Group output = root.group("output");
+  solver::SimulationOptions sim_options;
+  sim_options.from_dump = true;
+  if (!options.writes_files) {
+    // A follower rank: the state only, no output directory, no file.
+    sim_options.write_fields = false;
+    result.simulation = std::make_unique<solver::Simulation>(std::move(model), sim_options);
+    read_simulation_state(*result.simulation, root, result.header);
+    restart_dumps_and_deck(*result.simulation, std::move(input), root, options, deck);
+    return result;
+  }
 
   // Output: the dump's directory unless -o says otherwise; CSV files cut at their dump sizes.
   fs::path dump_dir = options.dump.parent_path();
@@ -118,11 +218,8 @@ Restarted restart_from_dump(const RestartOptions& options) {
   result.output_directory = options.output_directory.empty() ? dump_dir : options.output_directory;
   output::prepare_output_directory(result.output_directory);
   const bool same = same_directory(dump_dir, result.output_directory);
-  const io::h5::Group output = root.group("output");
-  solver::SimulationOptions sim_options;
   sim_options.output_directory = result.output_directory;
   sim_options.write_fields = options.write_fields;
-  sim_options.from_dump = true;
   sim_options.continuation.glstat =
       continue_csv(dump_dir, result.output_directory, same, "glstat.csv",
                    output.get_int("glstat_bytes"), result.warnings);
@@ -198,70 +295,8 @@ Restarted restart_from_dump(const RestartOptions& options) {
   }
 
   result.simulation = std::make_unique<solver::Simulation>(std::move(model), sim_options);
-  solver::Simulation& sim = *result.simulation;
-  const model::Model& sim_model = SimulationAccess::model(sim);
-  solver::State& state = SimulationAccess::state(sim);
-  read_nodes(root.group("nodes"), state.nodes, SimulationAccess::v_previous(sim));
-  read_hex_blocks(root.group("blocks"), state.hex_blocks);
-  if (!state.discrete_blocks.empty()) {
-    if (!root.has("discrete")) {
-      root.fail("discrete",
-                "is missing: the dump has no discrete-element state, the model "
-                "rebuilt from its deck has springs or dampers");
-    }
-    read_discrete_blocks(root.group("discrete"), state.discrete_blocks);
-  }
-  // Shells, beams and the nodal rotations: present in the dump exactly when the model has them.
-  const auto read_family = [&](const char* group, bool in_model, const char* what, auto read) {
-    if (in_model != root.has(group)) {
-      root.fail(group, fmt::format("is {}: the dump {} {}, the model rebuilt from its deck {}",
-                                   in_model ? "missing" : "unexpected", in_model ? "has no" : "has",
-                                   what, in_model ? "has some" : "has none"));
-    }
-    if (in_model) read(root.group(group));
-  };
-  read_family("shells", !state.shell_blocks.empty(), "shell elements",
-              [&](const io::h5::Group& g) { read_shell_blocks(g, state.shell_blocks); });
-  read_family("beams", !state.beam_blocks.empty(), "beam elements",
-              [&](const io::h5::Group& g) { read_beam_blocks(g, state.beam_blocks); });
-  read_family("rotations", !state.rotations.empty(), "nodes with rotations",
-              [&](const io::h5::Group& g) { read_rotations(g, state.rotations); });
-  read_rigid_system(root.group("rigid"), SimulationAccess::rigid(sim), sim_model,
-                    state.nodes.size());
-  read_boundary(root.group("boundary"), SimulationAccess::boundary(sim), sim_model);
-  SimulationAccess::read_members(sim, root.group("simulation"));
-  SimulationAccess::read_output(sim, output);
-  SimulationAccess::read_features(sim, root.group("features"));
-
-  DumpSchedule schedule = read_dump_schedule(root.group("dumps"));
-  if (options.dump_interval) {
-    schedule.interval = std::max(0.0, *options.dump_interval);
-    schedule.next = state.time + schedule.interval;
-  }
-  sim.enable_restart_dumps(std::make_unique<Dumper>(std::move(input), schedule));
-
-  if (deck) {
-    double end_time = sim.end_time();
-    std::int64_t end_cycle = SimulationAccess::end_cycle(sim);
-    if (deck->end_time) {
-      if (*deck->end_time <= state.time) {
-        throw InputError(
-            model::context_of(deck->termination_where, "ENDTIM"),
-            fmt::format("{} does not lie after the dump's time {}", *deck->end_time, state.time));
-      }
-      end_time = *deck->end_time;
-    }
-    if (deck->end_cycle) {
-      if (*deck->end_cycle <= state.cycle) {
-        throw InputError(model::context_of(deck->termination_where, "ENDCYC"),
-                         fmt::format("{} does not lie after the dump's cycle {}", *deck->end_cycle,
-                                     state.cycle));
-      }
-      end_cycle = *deck->end_cycle;
-    }
-    SimulationAccess::set_end(sim, end_time, end_cycle);
-    sim.apply_restart_switches(deck->switches);
-  }
+  read_simulation_state(*result.simulation, root, result.header);
+  restart_dumps_and_deck(*result.simulation, std::move(input), root, options, deck);
   return result;
 }
 

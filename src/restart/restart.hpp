@@ -23,6 +23,9 @@ struct RestartOptions {
   std::optional<double> dump_interval;     // --dump-every; unset: as in the dumped run
   int threads = 0;                         // 0: as many as the dumped run used
   bool write_fields = true;
+  // False on the ranks > 0 of a distributed restart: they rebuild the same state from the dump
+  // and take part in the run, but have no output directory and touch no file (rank 0 writes).
+  bool writes_files = true;
 };
 
 struct Restarted {

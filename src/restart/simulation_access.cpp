@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "parallel/distribution.hpp"
+
 #include "sensor/sensor.hpp"
 #include "sensor/sensor_output.hpp"
 
@@ -274,8 +276,16 @@ void SimulationAccess::write_output(Simulation& s, const Group& g) {
                    s.swforc_schedule_.last_cycle);
   }
   if (s.part_histories_) {
-    const auto& work = s.part_histories_->internal_work();
     const auto& hourglass = s.part_histories_->hourglass();
+    std::vector<double> work = s.part_histories_->internal_work();
+    if (!s.dump_rank_part_work_.empty()) {
+      // A distributed run: each rank's share, by rank (a restart on as many ranks gives each
+      // its own back), and their sum as the parts' work (a restart on another count).
+      const std::vector<double>& shares = s.dump_rank_part_work_;
+      g.write("part_internal_work_ranks", std::span<const double>(shares.data(), shares.size()));
+      std::fill(work.begin(), work.end(), 0.0);
+      for (std::size_t k = 0; k < shares.size(); ++k) work[k % work.size()] += shares[k];
+    }
     g.write("part_internal_work", std::span<const double>(work.data(), work.size()));
     g.write("part_hourglass", std::span<const double>(hourglass.data(), hourglass.size()));
     const auto& bulk = s.part_histories_->bulk_viscosity();
@@ -352,6 +362,37 @@ void SimulationAccess::read_output(Simulation& s, const Group& g) {
     // a d3plot: the writer starts a new family).
     if (s.d3plot_) s.d3plot_->resume(static_cast<std::int64_t>(frames.times.size()));
   }
+}
+
+bool SimulationAccess::writes_files(const Simulation& s) {
+  return !s.distribution_ || s.distribution_->writes_files();
+}
+
+void SimulationAccess::resume_on_ranks(Simulation& s, const io::h5::Group& output,
+                                       int dumped_ranks) {
+  if (!s.distribution_) return;
+  const parallel::Communicator& comm = s.distribution_->communicator();
+  // The dump holds every element's force slots (gathered before writing); the assembly must
+  // see each element once.
+  s.distribution_->keep_own_force_slots(s.state_);
+  if (s.part_histories_) {
+    std::vector<double>& work = s.part_histories_->internal_work();
+    const std::size_t parts = work.size();
+    const std::size_t rank = static_cast<std::size_t>(comm.rank());
+    if (dumped_ranks == comm.size() && output.has("part_internal_work_ranks")) {
+      const std::vector<double> shares = output.read_doubles("part_internal_work_ranks");
+      if (shares.size() != parts * static_cast<std::size_t>(comm.size())) {
+        output.fail("part_internal_work_ranks", "does not hold one share per part and rank");
+      }
+      std::copy_n(shares.begin() + static_cast<std::ptrdiff_t>(rank * parts), parts, work.begin());
+    } else if (rank != 0) {
+      // Another rank count: rank 0 carries the parts' work so far, the others start from 0.
+      std::fill(work.begin(), work.end(), 0.0);
+    }
+  }
+  // Whether rank 0 writes element output at the first output pass, as the last cycle before the
+  // dump agreed: the schedules are the dump's, the time is the pass's.
+  s.agreed_output_due_ = comm.max(s.element_output_due() ? 1.0 : 0.0) > 0.0;
 }
 
 SimulationAccess::Frames SimulationAccess::read_frames(const Group& g) {

@@ -22,6 +22,14 @@ struct SimulationAccess {
     return s.options_.output_directory;
   }
   static Dumper* dumper(Simulation& s) { return s.dumper_.get(); }
+  // Distributed runs (docs/parallel.md): every rank takes part in a dump, rank 0 writes it.
+  static bool distributed(const Simulation& s) { return s.distribution_ != nullptr; }
+  static bool writes_files(const Simulation& s);
+  static void prepare_dump_on_ranks(Simulation& s) { s.prepare_restart_dump_on_ranks(); }
+  static void finish_dump_on_ranks(Simulation& s) { s.finish_restart_dump_on_ranks(); }
+  // After a distributed run's restart has read the dump (restart.cpp): each rank's own force
+  // slots and share of the part work; `dumped_ranks` is the dumped run's rank count.
+  static void resume_on_ranks(Simulation& s, const io::h5::Group& members, int dumped_ranks);
   static bool end_reached(const Simulation& s) { return s.end_reached(); }
   static std::int64_t end_cycle(const Simulation& s) { return s.end_cycle_; }
   static void set_end(Simulation& s, double end_time, std::int64_t end_cycle) {

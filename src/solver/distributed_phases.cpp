@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <utility>
 
@@ -19,8 +20,8 @@
 namespace rf::solver {
 
 // The start of a distributed run. Nothing of the model is refused here any more: flexible
-// bodies, erosion, element sensors, section forces and switching with the bulk viscosity all run
-// on ranks (docs/parallel.md); restart dumps are refused by the command line.
+// bodies, erosion, element sensors, section forces, switching with the bulk viscosity and restart
+// dumps all run on ranks (docs/parallel.md).
 void Simulation::start_distributed_run() {
   const model::Model& model = model_;
   distribution_ = std::make_unique<parallel::ElementDistribution>(parallel::world(), state_);
@@ -117,6 +118,30 @@ void Simulation::gather_element_state_for_output(bool force) {
     distribution_->communicator().sum(part_histories_->internal_work().data(),
                                       part_histories_->internal_work().size());
   }
+}
+
+// A restart dump of a distributed run is one file, written by rank 0 (restart/dumper.cpp): the
+// replicated state is the same everywhere, the element state is made complete as for output,
+// plus what only the owners keep current (force slots, which the first output after a restart
+// sums for secforc; shell strains and erosion work, which later failures read). matsum's part
+// work is a per-rank share that the ranks sum only for output: each share is dumped, so that a
+// restart on as many ranks gives every rank its own back and continues bit for bit.
+void Simulation::prepare_restart_dump_on_ranks() {
+  distribution_->gather_restart_state(state_);
+  dump_rank_part_work_.clear();
+  if (part_histories_) {
+    const std::vector<double>& work = part_histories_->internal_work();
+    const std::string mine(reinterpret_cast<const char*>(work.data()),
+                           work.size() * sizeof(double));
+    const std::string all = distribution_->communicator().all_gather(mine);
+    dump_rank_part_work_.resize(all.size() / sizeof(double));
+    std::memcpy(dump_rank_part_work_.data(), all.data(), all.size());
+  }
+}
+
+void Simulation::finish_restart_dump_on_ranks() {
+  distribution_->keep_own_force_slots(state_);
+  dump_rank_part_work_.clear();
 }
 
 void Simulation::finish_output_on_ranks() {

@@ -636,18 +636,7 @@ std::int64_t Erosion::delete_elements(State& state, double time,
       if (node >= 0) --live_elements_[static_cast<std::size_t>(node)];
     }
   };
-  // The loops of the kernels: a process's own elements less the deleted ones.
-  auto own = [&](auto& block) {
-    if (!distributed_) {
-      own_live_elements(block);
-      return;
-    }
-    std::erase_if(block.owned.elements, [&](std::int64_t e) {
-      return block.erosion.is_eroded(static_cast<std::size_t>(e));
-    });
-    block.owned.batches.clear();
-    block.owned.batch_lanes = 0;
-  };
+  auto own = [&](auto& block) { own_remaining_elements(block, distributed_); };
   std::size_t k = 0;
   while (k < failures.size()) {
     const ElementFailure& first = failures[k];
@@ -764,7 +753,8 @@ void Erosion::restore(State& state, const std::vector<std::int32_t>* body_of) {
         if (node >= 0) --live_elements_[static_cast<std::size_t>(node)];
       }
     }
-    own_live_elements(block);
+    // On ranks the partition's elements were set up before the dump was read.
+    own_remaining_elements(block, distributed_);
   };
   for (auto& b : state.hex_blocks) recount(b);
   for (auto& b : state.shell_blocks) recount(b);

@@ -136,4 +136,20 @@ void own_live_elements(Block& block) {
     if (!block.erosion.is_eroded(e)) block.owned.elements.push_back(static_cast<std::int64_t>(e));
 }
 
+// The loops of the kernels: a process's own elements less the deleted ones. One process owns
+// every live element; a rank keeps its partition's elements (element/element_ownership.hpp) less
+// the deleted ones.
+template <class Block>
+void own_remaining_elements(Block& block, bool distributed) {
+  if (!distributed) {
+    own_live_elements(block);
+    return;
+  }
+  std::erase_if(block.owned.elements, [&](std::int64_t e) {
+    return block.erosion.is_eroded(static_cast<std::size_t>(e));
+  });
+  block.owned.batches.clear();
+  block.owned.batch_lanes = 0;
+}
+
 }  // namespace rf::solver

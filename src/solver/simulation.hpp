@@ -255,6 +255,12 @@ class Simulation {
   void gather_element_state_for_output(bool force);
   void finish_output_on_ranks();
   bool element_output_due() const;  // rank 0: some element output is due at state_.time
+  // Around a restart dump (restart/dumper.cpp), on every rank: the state rank 0 writes made
+  // complete (the owners' element state, force slots included) and the ranks' shares of matsum's
+  // part work gathered (dump_rank_part_work_); afterwards each rank's force slots are its own
+  // again.
+  void prepare_restart_dump_on_ranks();
+  void finish_restart_dump_on_ranks();
 
   void relax_dynamically();
   void initialize();
@@ -379,6 +385,7 @@ class Simulation {
   bool agreed_output_due_ = false;       // rank 0 writes element output at the next pass
   int agreed_interrupt_ = 0;             // an interrupt seen by any rank
   std::int64_t gathered_cycle_ = -1;     // the cycle whose element state was gathered
+  std::vector<double> dump_rank_part_work_;  // during a dump: every rank's part work, by rank
 };
 
 }  // namespace rf::solver
