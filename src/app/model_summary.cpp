@@ -39,6 +39,9 @@ std::string erosion_line(const element::ErosionState& erosion) {
     if (c.has_min_principal_strain) a.push_back(fmt::format("MNEPS {:g}", c.min_principal_strain));
     if (c.has_effective_strain) a.push_back(fmt::format("EFFEPS {:g}", c.effective_strain));
     if (c.has_shear_strain) a.push_back(fmt::format("EPSSH {:g}", c.shear_strain));
+    if (c.has_tuler_butcher)
+      a.push_back(fmt::format("Tuler-Butcher SIGTH {:g} IMPULSE {:g}", c.threshold_stress,
+                              c.stress_impulse));
     items.push_back(fmt::format("*MAT_ADD_EROSION {} (NCS {}, NUMFIP {:g})", fmt::join(a, ", "),
                                 c.criteria_at_once, c.failed_points));
   }

@@ -31,6 +31,7 @@ void visit_erosion(Block& block, Visit& visit) {
   visit(std::string("erosion_time"), block.erosion.time);
   visit(std::string("erosion_work"), block.erosion.work);
   visit(std::string("erosion_artificial_work"), block.erosion.artificial_work);
+  if (!block.erosion.impulse.empty()) visit(std::string("erosion_impulse"), block.erosion.impulse);
 }
 
 // Hexahedra: stresses at every stress point, the stiffness forms' hourglass forces, volumes and

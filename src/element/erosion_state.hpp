@@ -39,6 +39,10 @@ struct ErosionCriteria {
        has_effective_strain = false, has_shear_strain = false;
   double max_principal_strain = 0.0, min_principal_strain = 0.0, effective_strain = 0.0,
          shear_strain = 0.0;
+  // Tuler-Butcher (SIGTH, IMPULSE): the point's stress impulse int max(0, sigma_1 - sigma_0)^2
+  // dt (ErosionState::impulse) >= stress_impulse.
+  bool has_tuler_butcher = false;
+  double threshold_stress = 0.0, stress_impulse = 0.0;
   int criteria_at_once = 1;    // NCS
   double failed_points = 1.0;  // NUMFIP (< 0: percentage of the element's points, shells)
   bool strain_criteria() const {
@@ -48,7 +52,7 @@ struct ErosionCriteria {
   int defined() const {
     return has_max_pressure + has_min_pressure + has_principal_stress + has_von_mises +
            has_volumetric_strain + has_failure_time + has_max_principal_strain +
-           has_min_principal_strain + has_effective_strain + has_shear_strain;
+           has_min_principal_strain + has_effective_strain + has_shear_strain + has_tuler_butcher;
   }
   bool add_erosion() const { return defined() > 0; }
 };
@@ -68,6 +72,8 @@ struct ErosionState {
   // add it, hex_block.cpp, shell_block.cpp): it stays in glstat's hourglass and bulk viscosity
   // columns when the element erodes, the rest becomes eroded internal energy.
   std::vector<double> artificial_work;
+  // Per stress point (Tuler-Butcher only, else empty): the stress impulse so far.
+  std::vector<double> impulse;
   std::int64_t count = 0;  // eroded elements of the block
 
   bool is_eroded(std::size_t e) const { return enabled && time[e] >= 0.0; }

@@ -231,8 +231,12 @@ struct AddErosion {
   std::optional<double> effeps;  // fail when sqrt(2/3 e':e') >= EFFEPS (> 0)
   std::optional<double> epssh;   // fail when (e1 - e3) / 2 >= EPSSH (> 0)
   std::optional<double> failtm;  // fail when the time >= FAILTM
-  double numfip = 1.0;           // failed points before deletion (< 0 shells: percentage)
-  int ncs = 1;                   // criteria a point must meet at once
+  // Tuler-Butcher: fail when int_0^t max(0, sigma_1 - SIGTH)^2 dt >= IMPULSE (sigma_1 the
+  // largest principal stress of the point); on when IMPULSE is.
+  std::optional<double> impulse;
+  double sigth = 0.0;
+  double numfip = 1.0;  // failed points before deletion (< 0 shells: percentage)
+  int ncs = 1;          // criteria a point must meet at once
   SourceLocation where;
 };
 

@@ -138,6 +138,7 @@ void ElementDistribution::gather_restart_state(solver::State& state) {
       if (block.erosion.enabled) {
         gather_array(comm_, o, block.size(), block.erosion.work);
         gather_array(comm_, o, block.size(), block.erosion.artificial_work);
+        gather_array(comm_, o, block.size(), block.erosion.impulse);
       }
       if constexpr (requires { block.strain; }) gather_array(comm_, o, block.size(), block.strain);
     }

@@ -39,9 +39,9 @@ class ElementDistribution {
   void gather_element_state(solver::State& state);
 
   // Before a restart dump (rank 0 writes the whole state): gather_element_state() and, beyond
-  // what output needs, the element force slots, the integrated shell strains and the erosion
-  // work sums, which only the owner keeps up to date. Collective. The force slots must be made
-  // this rank's own again afterwards (keep_own_force_slots).
+  // what output needs, the element force slots, the integrated shell strains, the erosion work
+  // sums and stress impulses, which only the owner keeps up to date. Collective. The force slots
+  // must be made this rank's own again afterwards (keep_own_force_slots).
   void gather_restart_state(solver::State& state);
   // Zeros the force slots of the elements other ranks own (by the partition), so that the
   // assembly sums each element once: after a dump, and after a restart has read the dump's

@@ -63,6 +63,7 @@ void SimulationAccess::write_members(Simulation& s, const Group& g) {
     g.set("eroded_kinetic_energy", l.kinetic_energy);
     g.set("eroded_elements", l.elements);
     g.set("eroded_nodes", l.nodes);
+    g.set("erosion_impulse_time", s.erosion_.impulse_time());
     for (int k = 0; k < 3; ++k) {
       g.set(fmt::format("eroded_momentum_{}", k), l.momentum[k]);
       g.set(fmt::format("eroded_angular_momentum_{}", k), l.angular_momentum[k]);
@@ -224,6 +225,8 @@ void SimulationAccess::read_members(Simulation& s, const Group& g) {
     l.kinetic_energy = g.get_double("eroded_kinetic_energy");
     l.elements = g.get_int("eroded_elements");
     l.nodes = g.get_int("eroded_nodes");
+    s.erosion_.set_impulse_time(
+        g.has_attribute("erosion_impulse_time") ? g.get_double("erosion_impulse_time") : st.time);
     for (int k = 0; k < 3; ++k) {
       l.momentum[k] = g.get_double(fmt::format("eroded_momentum_{}", k));
       l.angular_momentum[k] = g.get_double(fmt::format("eroded_angular_momentum_{}", k));

@@ -137,8 +137,9 @@ void principal_strains(const element::BeamBlock& b, const NodalState&, std::size
 // and the failure time, count at every point). `strain`: the point's principal logarithmic
 // strains, descending (read only when a strain criterion is on).
 int criteria_met(const element::ErosionCriteria& c, const double s[6], const double strain[3],
-                 double log_volume_ratio, double time) {
+                 double log_volume_ratio, double time, double impulse) {
   int met = 0;
+  if (c.has_tuler_butcher && impulse >= c.stress_impulse) ++met;
   if (c.strain_criteria()) {
     if (c.has_max_principal_strain && strain[0] >= c.max_principal_strain) ++met;
     if (c.has_min_principal_strain && strain[2] <= c.min_principal_strain) ++met;
@@ -279,10 +280,13 @@ std::uint8_t evaluate(const Block& b, const NodalState& nodes, std::size_t e, do
     double strains[kMaxStrainPoints][3] = {};
     if (c.strain_criteria()) principal_strains(b, nodes, e, strains);
     int failed = 0;
+    const double* impulse = b.erosion.impulse.empty() ? nullptr : &b.erosion.impulse[first];
     for (int q = 0; q < points; ++q) {
       double s[6];
       voigt_of(b, e, q, s);
-      if (criteria_met(c, s, strains[q], lv, time) >= c.criteria_at_once) ++failed;
+      if (criteria_met(c, s, strains[q], lv, time, impulse ? impulse[q] : 0.0) >=
+          c.criteria_at_once)
+        ++failed;
     }
     if (failed >= required_points(c, points)) return kAddErosion;
   }
@@ -330,10 +334,37 @@ std::string describe(const Block& b, const NodalState& nodes, std::size_t e, std
         text += fmt::format(", principal strains {:.6g} {:.6g} {:.6g}, effective {:.6g}", strain[0],
                             strain[1], strain[2], effective_strain(strain));
       }
+      if (c.has_tuler_butcher) {
+        const double* impulse = &b.erosion.impulse[first];
+        text += fmt::format(", largest stress impulse {:.6g} (IMPULSE {:.6g})",
+                            *std::max_element(impulse, impulse + points), c.stress_impulse);
+      }
       return text + ")";
     }
     default:
       return "";
+  }
+}
+
+// Tuler-Butcher (*MAT_ADD_EROSION SIGTH, IMPULSE; LS-DYNA Keyword User's Manual): every stress
+// point of the computed elements gains max(0, sigma_1 - sigma_0)^2 dt, sigma_1 its largest
+// principal stress at the end of the step (first order in dt, as the criteria are checked once
+// per step).
+template <class Block>
+void add_stress_impulse(Block& block, double dt) {
+  const element::ErosionCriteria& c = block.erosion.criteria;
+  const int points = block.points_per_element();
+  const std::int64_t items = block.owned.count(static_cast<std::int64_t>(block.size()));
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < items; ++i) {
+    const std::size_t e = static_cast<std::size_t>(block.owned.element(i));
+    for (int q = 0; q < points; ++q) {
+      double s[6];
+      voigt_of(block, e, q, s);
+      const double excess = std::max(0.0, material::max_principal(s) - c.threshold_stress);
+      block.erosion.impulse[static_cast<std::size_t>(points) * e + static_cast<std::size_t>(q)] +=
+          excess * excess * dt;
+    }
   }
 }
 
@@ -389,6 +420,8 @@ void Erosion::setup(const model::Model& model, State& state) {
       take(a.mneps, c.has_min_principal_strain, c.min_principal_strain);
       take(a.effeps, c.has_effective_strain, c.effective_strain);
       take(a.epssh, c.has_shear_strain, c.shear_strain);
+      take(a.impulse, c.has_tuler_butcher, c.stress_impulse);
+      c.threshold_stress = a.sigth;
       c.criteria_at_once = a.ncs;
       c.failed_points = a.numfip;
       const std::string_view f = family;
@@ -446,6 +479,9 @@ void Erosion::setup(const model::Model& model, State& state) {
     }
     if (block.erosion.enabled) {
       block.erosion.allocate(block.size());
+      if (c.has_tuler_butcher)
+        block.erosion.impulse.assign(
+            static_cast<std::size_t>(block.points_per_element()) * block.size(), 0.0);
       enabled_ = true;
     }
   };
@@ -553,9 +589,15 @@ std::vector<ElementFailure> Erosion::find_failed_elements(State& state, double t
   std::vector<ElementFailure> failures;
   if (!enabled_) return failures;
   const element::NodalView view = view_of(state.nodes);
+  // Tuler-Butcher: the stress impulse of the step since the last evaluation, with the stress at
+  // its end (a switch's re-evaluation within a cycle adds nothing; after dynamic relaxation the
+  // clock starts again at 0).
+  const double impulse_step = time >= impulse_time_ ? time - impulse_time_ : time;
+  impulse_time_ = time;
   auto run = [&](auto& block, std::int32_t family, std::size_t b) {
     if (!block.erosion.enabled || block.rigid) return;
     const element::ErosionCriteria& c = block.erosion.criteria;
+    if (c.has_tuler_butcher && impulse_step > 0.0) add_stress_impulse(block, impulse_step);
     const auto* eps_array = history_named(block.history, "effective_plastic_strain");
     const auto* damage_array = history_named(block.history, "damage");
     const double* eps = eps_array ? eps_array->values.data() : nullptr;

@@ -104,6 +104,11 @@ class Erosion {
   // DTMIN, nothing erodes by it).
   void set_minimum_step(double element_step) { minimum_step_ = element_step; }
 
+  // The time of the last criteria evaluation: the Tuler-Butcher stress impulse integrates from it
+  // (restart dumps carry it).
+  double impulse_time() const { return impulse_time_; }
+  void set_impulse_time(double t) { impulse_time_ = t; }
+
   const ErosionLedger& ledger() const { return ledger_; }
   ErosionLedger& ledger() { return ledger_; }
   const std::vector<ErosionEvent>& events() const { return events_; }
@@ -121,6 +126,7 @@ class Erosion {
   std::vector<std::uint8_t> erodible_node_;
   std::vector<double> scratch_steps_;  // TDEL, ERODE: element steps of one block
   double minimum_step_ = 0.0;
+  double impulse_time_ = 0.0;
 };
 
 // Rebuilds a block's ownership from its erosion times: every element not eroded (one process).

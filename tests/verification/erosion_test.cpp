@@ -223,6 +223,55 @@ INSTANTIATE_TEST_SUITE_P(
       return name;
     });
 
+// Tuler-Butcher (*MAT_ADD_EROSION SIGTH, IMPULSE): the element goes when
+// int_0^t max(0, sigma_1 - SIGTH)^2 dt reaches IMPULSE. The elastic cube in uniaxial stress has
+// sigma_1 = E ln(L/L0) on the known pull u(t), so the failure time comes from a quadrature of that
+// law (Simpson, 2 x 10^5 intervals), not from the solver's stresses. The evaluation once per step
+// with the stress at its end may fail it up to one step early.
+TEST(Erosion, TulerButcherImpulseFailsTheElementAtTheIntegratedStressImpulse) {
+  constexpr double kThreshold = 1e8, kImpulse = 5e14;
+  auto excess_squared = [](double t) {
+    const double sigma = kE * std::log(1.0 + pulled(t));
+    const double x = std::max(0.0, sigma - kThreshold);
+    return x * x;
+  };
+  // Bisection on the quadrature from 0 to t.
+  auto impulse_until = [&](double t) {
+    const int n = 200000;
+    const double h = t / n;
+    double sum = excess_squared(0.0) + excess_squared(t);
+    for (int i = 1; i < n; ++i) sum += (i % 2 ? 4.0 : 2.0) * excess_squared(i * h);
+    return sum * h / 3.0;
+  };
+  double lo = 0.0, hi = 0.2;
+  for (int k = 0; k < 60; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (impulse_until(mid) < kImpulse ? lo : hi) = mid;
+  }
+  const double expected = 0.5 * (lo + hi);
+  const std::string material = fmt::format(
+      "*MAT_ELASTIC\n1,{},{},{}\n*MAT_ADD_EROSION\n1,0,0,0,0,0,1,1\n"
+      "0,0,0,0,0,{},{},0\n",
+      kRho, kE, kNu, kThreshold, kImpulse);
+  solver::Simulation sim(read(pulled_cube(material, 1.5 * expected)), {});
+  const double step = sim.state().dt;
+  const double time = run_to_erosion(sim);
+  std::printf("Tuler-Butcher: eroded at %.6f s (analytic %.6f, step %.1e, stress there %.4g)\n",
+              time, expected, step, kE * std::log(1.0 + pulled(expected)));
+  ASSERT_GT(time, 0.0) << "the element never eroded";
+  EXPECT_GE(time, expected * (1.0 - 1e-3) - step);
+  EXPECT_LE(time, expected * (1.0 + 1e-3) + step);
+  ASSERT_EQ(sim.erosion().events().size(), 1u);
+  EXPECT_NE(sim.erosion().events().front().criterion.find("stress impulse"), std::string::npos)
+      << sim.erosion().events().front().criterion;
+  // A threshold above the largest stress of the run: nothing accumulates, nothing fails.
+  const std::string high =
+      fmt::format("*MAT_ELASTIC\n1,{},{},{}\n*MAT_ADD_EROSION\n1,0,0,0,0,0,1,1\n0,0,0,0,0,{},1,0\n",
+                  kRho, kE, kNu, 2.0 * kE * std::log(1.0 + pulled(1.5 * expected)));
+  solver::Simulation quiet(read(pulled_cube(high, 1.5 * expected)), {});
+  EXPECT_LT(run_to_erosion(quiet), 0.0);
+}
+
 // TDEL: a cube (nu = 0) squeezed along x; its step is L/c with c = sqrt(E/rho), so it is deleted
 // when L falls to c TDEL.
 TEST(Erosion, ElementGoesWhenItsStepFallsBelowTdel) {
@@ -693,8 +742,15 @@ TEST(ErosionDeck, UnsupportedCriteriaAndBadCardsAreErrorsNamingTheField) {
             std::string::npos);
   EXPECT_NE(simulation_error_of(cube_with("*MAT_ADD_EROSION\n1\n0,0,0,0,-2\n")).find("EPSSH"),
             std::string::npos);
+  // Tuler-Butcher: a threshold without an impulse, a negative impulse or threshold.
   EXPECT_NE(simulation_error_of(cube_with("*MAT_ADD_EROSION\n1\n0,0,0,0,0,3e8\n")).find("SIGTH"),
             std::string::npos);
+  EXPECT_NE(
+      simulation_error_of(cube_with("*MAT_ADD_EROSION\n1\n0,0,0,0,0,1e8,-5\n")).find("IMPULSE"),
+      std::string::npos);
+  EXPECT_NE(
+      simulation_error_of(cube_with("*MAT_ADD_EROSION\n1\n0,0,0,0,0,-1e8,5e14\n")).find("SIGTH"),
+      std::string::npos);
   // ERODE values LS-DYNA does not define.
   EXPECT_NE(simulation_error_of(cube_with("*CONTROL_TIMESTEP\n0,0.9,0,0,0,0,2\n")).find("ERODE"),
             std::string::npos);

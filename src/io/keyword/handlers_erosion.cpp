@@ -86,8 +86,22 @@ void mat_add_erosion(const Block& block, ReaderContext& context) {
                       "strain rate) is not supported");
     erosion.mxeps = positive_strain(*c2, 3, "MXEPS", "maximum principal strain at failure");
     erosion.epssh = positive_strain(*c2, 4, "EPSSH", "shear strain at failure");
-    refuse(*c2, 5, "SIGTH", "Tuler-Butcher failure (SIGTH, IMPULSE)");
-    refuse(*c2, 6, "IMPULSE", "Tuler-Butcher failure (SIGTH, IMPULSE)");
+    // Tuler-Butcher: on with IMPULSE (K_f > 0); SIGTH (sigma_0 >= 0) is its threshold and
+    // means nothing alone (0 or EXCL: threshold 0).
+    const std::optional<double> sigth = criterion(*c2, 5, "SIGTH");
+    erosion.impulse = criterion(*c2, 6, "IMPULSE");
+    if (sigth && *sigth < 0.0)
+      throw c2->error("SIGTH", fmt::format("threshold stress {} of the Tuler-Butcher criterion "
+                                           "must not be negative",
+                                           *sigth));
+    if (erosion.impulse && *erosion.impulse < 0.0)
+      throw c2->error("IMPULSE", fmt::format("stress impulse for failure {} must be positive",
+                                             *erosion.impulse));
+    if (sigth && !erosion.impulse)
+      throw c2->error("SIGTH",
+                      "a threshold stress without IMPULSE defines no criterion: give the "
+                      "stress impulse for failure (Tuler-Butcher) or leave SIGTH blank");
+    if (erosion.impulse) erosion.sigth = sigth.value_or(0.0);
     erosion.failtm = criterion(*c2, 7, "FAILTM");
     if (erosion.failtm && *erosion.failtm < 0.0)
       throw c2->error("FAILTM", "failure time must not be negative");
