@@ -230,5 +230,74 @@ TEST(ShellThickness, InternalEnergyIsTheWorkOfTheTensionTest) {
   EXPECT_EQ(constant.thickness, kT0);
 }
 
+// Switching to rigid and back (*DEFORMABLE_TO_RIGID_AUTOMATIC, paired): a free sheet (in-plane
+// only: z and rotations fixed) pulled apart by nodal forces (1300 N on each corner: 260 MPa on the
+// initial section, beyond SIGY) yields and thins; while the part is rigid its thickness stays
+// exactly what it was (frozen with the stresses, no kernel runs), after the release it thins
+// on, and at the end the volume has changed only elastically, as without the switch.
+TEST(ShellThickness, FrozenWhileRigidAndThinningOnAfterTheRelease) {
+  std::string deck = fmt::format(
+      "*KEYWORD\n*NODE\n1,0,0,0\n2,{0},0,0\n3,{0},{0},0\n4,0,{0},0\n*ELEMENT_SHELL\n"
+      "1,1,1,2,3,4\n*PART\nsheet\n1,1,1,0,1\n*SECTION_SHELL\n1,2,0.8333333,3\n"
+      "{1},{1},{1},{1}\n*HOURGLASS\n1,4,0.05\n",
+      kSide, kT0);
+  deck += kJ2 + "*CONTROL_SHELL\n20,0,-1,1\n";
+  deck +=
+      "*BOUNDARY_SPC_NODE\n1,0,0,0,1,1,1,1\n2,0,0,0,1,1,1,1\n3,0,0,0,1,1,1,1\n4,0,0,0,1,1,1,1\n";
+  deck += "*LOAD_NODE_POINT\n1,1,1,-1300\n4,1,1,-1300\n2,1,1,1300\n3,1,1,1300\n";
+  deck += "*DEFINE_CURVE\n1\n0,0\n5e-4,1\n1,1\n";
+  deck +=
+      "*DEFORMABLE_TO_RIGID_AUTOMATIC\n10,0,1.5e-3,1.6e-3,0,0,20,1\n0,0,0,1e-5,1,0\n1\n"
+      "*DEFORMABLE_TO_RIGID_AUTOMATIC\n20,0,2.5e-3,0,0,0,10,-1\n0,0,0,0,0,1\n1\n";
+  // A free single element needs TSSFAC <= 0.55 (docs/verification.md, time step of tiny meshes).
+  deck += "*CONTROL_TIMESTEP\n0,0.5\n*CONTROL_TERMINATION\n4e-3\n*END\n";
+  solver::Simulation sim(read(deck), {});
+  const auto& b = sim.state().shell_blocks.at(0);
+  bool was_rigid = false, released = false;
+  double frozen = 0.0, at_release = 0.0;
+  int rigid_cycles = 0;
+  while (!sim.finished()) {
+    sim.cycle();
+    const double t = b.element_thickness[0];
+    if (b.rigid) {
+      if (!was_rigid) frozen = t;
+      EXPECT_EQ(t, frozen) << "time " << sim.state().time;
+      ++rigid_cycles;
+    } else if (was_rigid) {
+      released = true;
+      at_release = t;
+    }
+
+    was_rigid = b.rigid;
+  }
+  ASSERT_GT(rigid_cycles, 10);
+  ASSERT_TRUE(released);
+  const double final_t = b.element_thickness[0];
+  std::printf(
+      "thickness frozen at %.9g (ln %.6f) over %d rigid cycles, after release %.9g, end "
+      "%.9g\n",
+      frozen, std::log(frozen / kT0), rigid_cycles, at_release, final_t);
+  EXPECT_LT(frozen, 0.995 * kT0);      // thinned before the switch
+  EXPECT_LT(final_t, 0.999 * frozen);  // and on after the release
+  // The end state: the volume changed only elastically, e_1 + e_2 + e_t = (1 - 2 nu)(s_1 + s_2)/E
+  // (the flow need not stay uniaxial in this dynamic pull), e_1, e_2 from the node positions.
+  const auto& n = sim.state().nodes;
+  auto distance = [&](int a, int c) {
+    return std::hypot(n.x.x[a] - n.x.x[c], n.x.y[a] - n.x.y[c]);
+  };
+  const double e1 = std::log(0.5 * (distance(0, 1) + distance(3, 2)) / kSide);
+  const double e2 = std::log(0.5 * (distance(0, 3) + distance(1, 2)) / kSide);
+  double trace = 0.0;
+  for (int q = 0; q < 3; ++q)
+    for (int c = 0; c < 2; ++c)
+      trace += b.stress[static_cast<std::size_t>(q) * element::kShellStress + c] / 3;
+  const double expected = -(e1 + e2) + (1.0 - 2.0 * kNu) * trace / kE;
+  std::printf("end: e1 %.6f e2 %.6f e_t %.7f expected %.7f (ratio %.8f)\n", e1, e2,
+              std::log(final_t / kT0), expected, std::log(final_t / kT0) / expected);
+  ::testing::Test::RecordProperty("et_over_expected",
+                                  fmt::format("{:.8f}", std::log(final_t / kT0) / expected));
+  EXPECT_NEAR(std::log(final_t / kT0) / expected, 1.0, 1e-4);
+}
+
 }  // namespace
 }  // namespace rf::test
