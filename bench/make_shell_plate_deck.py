@@ -2,7 +2,7 @@
 """Benchmark deck: an N x N plate of 4-node shells (1 m square, 2 mm steel) clamped on one edge,
 its other nodes moving out of plane at 1 m/s, so the plate bends from the first cycle.
 
-Usage: make_shell_plate_deck.py N [NIP] [IHQ] [CYCLES] [MATERIAL] [PRESSURE] [ELFORM] > plate.k
+Usage: make_shell_plate_deck.py N [NIP] [IHQ] [CYCLES] [MATERIAL] [PRESSURE] [ELFORM] [ISTUPD] > plate.k
 MATERIAL: elastic (default), mat024 (*MAT_PIECEWISE_LINEAR_PLASTICITY, SIGY 200 MPa,
 ETAN 1 GPa) or mat036 (*MAT_3-PARAMETER_BARLAT, the same linear hardening, M 6, R00 1.8,
 R45 1.4, R90 2.1, AOPT 2 with the rolling direction at 30 degrees to x). PRESSURE (Pa, optional): a constant follower pressure on every shell through
@@ -20,6 +20,8 @@ material = sys.argv[5] if len(sys.argv) > 5 else "elastic"
 pressure = float(sys.argv[6]) if len(sys.argv) > 6 and sys.argv[6] != "none" else None
 # ELFORM (optional, default 2): 16 for the fully integrated shell (PRESSURE "none" to skip it).
 elform = int(sys.argv[7]) if len(sys.argv) > 7 else 2
+# ISTUPD (optional, default 0): *CONTROL_SHELL thickness update (1 or 4).
+istupd = int(sys.argv[8]) if len(sys.argv) > 8 else 0
 size = 1.0
 w = sys.stdout.write
 
@@ -32,6 +34,8 @@ w("*KEYWORD\n*TITLE\nbenchmark plate %d x %d shells NIP %d IHQ %d\n" % (n, n, ni
 w("*CONTROL_TERMINATION\n%10.4g%10d\n" % (1.0, cycles))
 w("*DATABASE_GLSTAT\n%10.4g\n" % 1.0)
 w("*DATABASE_BINARY_D3PLOT\n%10.4g\n" % 1.0)
+if istupd:
+    w("*CONTROL_SHELL\n%10.4g%10d%10d%10d\n" % (20.0, 0, -1, istupd))
 w("*PART\nplate\n%10d%10d%10d%10d%10d\n" % (1, 1, 1, 0, 1))
 w("*SECTION_SHELL\n%10d%10d%10.4g%10d\n%10.4g\n" % (1, elform, 0.8333, nip, 0.002))
 w("*HOURGLASS\n%10d%10d%10.4g\n" % (1, ihq, 0.05))

@@ -22,9 +22,10 @@ struct Plate {
   rf::element::RotationalView rotations() const { return {wx.data(), wy.data(), wz.data()}; }
 };
 
-Plate make_plate(int n, int nip, int ihq, int material_index, int elform) {
+Plate make_plate(int n, int nip, int ihq, int material_index, int elform, int istupd) {
   Plate p;
   p.block.elform = elform;
+  p.block.thickness_update = istupd;  // *CONTROL_SHELL ISTUPD
   const int m = n + 1;
   const double h = 0.01;
   for (int j = 0; j < m; ++j)
@@ -64,8 +65,9 @@ Plate make_plate(int n, int nip, int ihq, int material_index, int elform) {
   return p;
 }
 
-void run(benchmark::State& state, int nip, int ihq, int material_index, int elform = 2) {
-  Plate p = make_plate(static_cast<int>(state.range(0)), nip, ihq, material_index, elform);
+void run(benchmark::State& state, int nip, int ihq, int material_index, int elform = 2,
+         int istupd = 0) {
+  Plate p = make_plate(static_cast<int>(state.range(0)), nip, ihq, material_index, elform, istupd);
   for (auto _ : state) {
     auto r = rf::element::compute_shell_forces(p.block, p.view(), p.rotations(), 1e-7);
     benchmark::DoNotOptimize(r);
@@ -96,6 +98,16 @@ void BM_ShellFullNip2(benchmark::State& s) {
 void BM_ShellFullNip5Mat024(benchmark::State& s) {
   run(s, 5, 1, 2, 16);
 }
+// The thickness update (*CONTROL_SHELL ISTUPD 1): what it adds to the kernels above.
+void BM_ShellBltNip2Ihq1Istupd1(benchmark::State& s) {
+  run(s, 2, 1, 0, 2, 1);
+}
+void BM_ShellBltNip5Mat024Istupd1(benchmark::State& s) {
+  run(s, 5, 1, 2, 2, 1);
+}
+void BM_ShellFullNip2Istupd1(benchmark::State& s) {
+  run(s, 2, 1, 0, 16, 1);
+}
 
 BENCHMARK(BM_ShellBltNip2Ihq1)->Arg(100)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ShellBltNip2Ihq4)->Arg(100)->Unit(benchmark::kMicrosecond);
@@ -103,5 +115,8 @@ BENCHMARK(BM_ShellBltNip5Ihq1)->Arg(100)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ShellBltNip5Mat024)->Arg(100)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ShellFullNip2)->Arg(100)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ShellFullNip5Mat024)->Arg(100)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ShellBltNip2Ihq1Istupd1)->Arg(100)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ShellBltNip5Mat024Istupd1)->Arg(100)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ShellFullNip2Istupd1)->Arg(100)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

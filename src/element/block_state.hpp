@@ -52,10 +52,11 @@ void visit_hex_state(Block& block, Visit&& visit) {
 
 // Shells: co-rotational stresses at every integration point, hourglass forces (accumulated for
 // IHQ 4, 5; the last step's for the viscous forms), reference and current areas, nodal and
-// element thicknesses (fixed today, no ISTUPD, visited all the same so that a thickness update
-// needs no change here), the last element forces and moments, the integrated strain when an
-// erosion criterion keeps one. Mass scaling's step_scale belongs
-// to the mass scaling (its element factors).
+// current element thicknesses (the latter changes with *CONTROL_SHELL ISTUPD 1/4), the last
+// element forces and moments, the integrated strain when an erosion criterion keeps one. Not
+// visited: the initial element thickness element_thickness0, set up from the nodal thicknesses
+// and never changed. Mass scaling's step_scale belongs to the mass scaling (its element
+// factors).
 template <class Block, class Visit>
 void visit_shell_state(Block& block, Visit&& visit) {
   visit(std::string("stress"), block.stress);

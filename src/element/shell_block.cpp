@@ -41,7 +41,8 @@
 //      d_zz iterated (one elastic-tangent step, then secant steps) until |sigma_zz| <=
 //      1e-10 (|sigma| + SIGY); at most 30 evaluations. Transverse shear (yz, zx) stays
 //      elastic: s_yz += SHRF G 2 d_yz dt in every material, outside the yield function.
-//    Thickness is constant (ISTUPD 0): block.element_thickness, the mean of the nodal T1..T4.
+//    The thickness t is block.element_thickness: the mean of the nodal T1..T4, constant with
+//    ISTUPD 0, else updated once per step (section 12).
 //
 // 4. Resultants and nodal forces (BLT eq. 25-27), INTERNAL sign as the hexahedra:
 //      N = sum_p (t/2) w_p s_p,  M = sum_p (t/2) w_p z_p s_p,  Q = sum_p (t/2) w_p s_p (yz, zx)
@@ -124,7 +125,8 @@
 //      q = rho l (Q1 l e_A^2 - Q2 c e_A)  while e_A < 0,  q = 0 otherwise,
 //    with e_A = d_x + d_y the mid-surface area rate (the dilatation of a plane-stress membrane:
 //    its in-plane compression waves are what steepen into shocks), c the plate wave speed and
-//    l = L_s the step length of section 8 at x^{n+1}, rho = rho0 A0 / A (constant thickness).
+//    l = L_s the step length of section 8 at x^{n+1}, rho = rho0 A0 t0 / (A t) (mass conserved;
+//    t = t0 without a thickness update).
 //    q acts as a pressure on the in-plane normal stresses through the thickness, N_x and N_y
 //    -= q t; sigma_zz stays 0 and the stored stresses never see q. Bending is left alone (a
 //    compression-only viscosity per thickness point would make the bending response
@@ -172,6 +174,42 @@
 //    Bulk viscosity (TYPE -1/-2): section 10's q from the element's mean area rate
 //    e_A = sum_g det J_g (d_x + d_y)_g / A (the exact rate of the mid-step area), applied on the
 //    in-plane normal resultants of every point; power -q e_A t A as section 10.
+//    Thickness update: one thickness per element (section 12), from the det J-weighted mean of
+//    the four points' through-thickness strain increments.
+//
+// 12. Thickness update (*CONTROL_SHELL ISTUPD 1 and 4; block.thickness_update). LS-DYNA's
+//    Keyword User's Manual (*CONTROL_SHELL): ISTUPD 1, "membrane straining causes thickness
+//    change" of 3- and 4-node shells; 4, the same with the elastic strains neglected, for the
+//    elastic-plastic materials whose elastic response is isotropic. The manuals give no formula;
+//    ours: at each through-thickness point the thickness strain rate d_zz follows from plane
+//    stress with isotropic (hypo)elasticity and plastically incompressible flow (J2 *MAT_003,
+//    *MAT_024; Barlat *MAT_036, whose plane-stress flow has d^p_zz = -(d^p_xx + d^p_yy)):
+//      d_zz = d^e_zz + d^p_zz = -nu/E (sigma_xx + sigma_yy)' - (d^p_xx + d^p_yy), and with the
+//      in-plane elastic rates (d^e_xx + d^e_yy) = (1 - nu)/E (sigma_xx + sigma_yy)',
+//      d_zz dt = -(d_x + d_y) dt + c Delta(sigma_xx + sigma_yy),
+//    c = (1 - 2 nu)/E for ISTUPD 1 (the bulk compliance 1/(3K): the volume changes only
+//    elastically) and c = (1 - nu)/E for ISTUPD 4 (d^p_zz alone). Delta is the point's stress
+//    increment of this step in the co-rotational frame (the material's own: the bulk viscosity
+//    never enters the stored stress), so no material needs to report its d_zz; for the elastic
+//    law this is exactly -nu/(1 - nu) (d_x + d_y), and the J2 update's iterated d_zz (section 3)
+//    agrees with it to the plane-stress tolerance. ISTUPD 4 leaves an elastic material's
+//    thickness alone (nothing but elastic strain to neglect).
+//    Element thickness strain increment: the weighted mean over the points, sum_p (w_p / 2)
+//    d_zz,p dt (ELFORM 16: and over the in-plane points by det J); the bending part of d_x + d_y
+//    cancels in the mean (symmetric rules), what remains is -(e_x + e_y) dt of the mid-surface
+//    plus the stress term. Update t^{n+1} = t^n exp(Delta eps_zz): the logarithmic thickness
+//    strain ln(t / t0) is then exactly the sum of the increments (the midpoint rates of section
+//    2 integrate ln of the stretches), whatever the step, and t stays positive.
+//    Which t where: the point heights z = zeta t^n / 2 of the rates (the start of the step; the
+//    increment depends on the stress update, so t^{n+1} is known only after it), the
+//    resultants at x^{n+1} with t^{n+1} (N, Q scaled by t^{n+1} / t^n, M by its square, as the
+//    forces use the area and frame of x^{n+1}); the hourglass stiffnesses (K_m, K_w ~ t,
+//    K_r ~ t^3) and the bulk viscosity's q t with t^{n+1}. Mass, rotary inertia and the masses
+//    of the viscous hourglass modes keep t0 (mass is conserved; the nodal inertia is not
+//    reassembled): with the stiffness ~ t and the inertia fixed, the rotational and shear
+//    frequencies of section 9 move by sqrt(t / t0), below the membrane limit for any
+//    thinning and for thickening up to (1 / 0.65)^2 = 2.4 times. The critical step (section 8)
+//    does not depend on t.
 #include "element/shell_block.hpp"
 
 #include "element/kernel_partials.hpp"
@@ -219,6 +257,17 @@ inline T tsqrt(T a) {
   } else {
     T r;
     for (int l = 0; l < kLanes; ++l) r[l] = std::sqrt(a[l]);
+    return r;
+  }
+}
+
+template <class T>
+inline T texp(T a) {
+  if constexpr (std::is_same_v<T, double>) {
+    return std::exp(a);
+  } else {
+    T r;
+    for (int l = 0; l < kLanes; ++l) r[l] = std::exp(a[l]);
     return r;
   }
 }
@@ -356,6 +405,9 @@ struct BlockConstants {
   double shear_to_membrane;  // sqrt(K_w / K_m) = sqrt(4 SHRF G / (E' + G))
   int ihq;
   double qm;
+  // Section 12: c of the thickness strain increment -(d_x + d_y) dt + c Delta(s_xx + s_yy)
+  // (0 without a thickness update).
+  double thickness_compliance;
 };
 
 BlockConstants block_constants(const ShellBlock& b) {
@@ -369,6 +421,9 @@ BlockConstants block_constants(const ShellBlock& b) {
   k.shear_to_membrane = std::sqrt(4.0 * k.transverse_shear / (k.plane_modulus + k.shear));
   k.ihq = b.hourglass.ihq;
   k.qm = b.hourglass.qm;
+  k.thickness_compliance = b.thickness_update == 1   ? (1.0 - 2.0 * m.poisson) / m.young
+                           : b.thickness_update == 4 ? (1.0 - m.poisson) / m.young
+                                                     : 0.0;
   return k;
 }
 
@@ -512,6 +567,25 @@ inline void update_point(ShellBlock& block, const BlockConstants& k, const std::
   }
 }
 
+// Section 12: whether the block's thickness changes with material M (ISTUPD 4 leaves an elastic
+// material alone: it has only elastic strains to neglect).
+template <class M>
+inline bool thickness_changes(const ShellBlock& block) {
+  return block.thickness_update == 1 ||
+         (block.thickness_update == 4 && material::history_size<M>() > 0);
+}
+
+// Section 12: t^{n+1} = t^n exp(strain) from the element's thickness strain increment, to the
+// block for the batch's elements; returns t^{n+1} / t^n.
+template <class T, std::size_t L>
+inline T update_thickness(ShellBlock& block, const std::size_t (&elem)[L], int count, T t,
+                          T strain) {
+  const T ratio = texp(strain);
+  const T updated = t * ratio;
+  for (int l = 0; l < count; ++l) block.element_thickness[elem[l]] = material::get_lane(updated, l);
+  return ratio;
+}
+
 // The end of a batch, ELFORM 2 and 16 alike: the critical step of section 8 at x^{n+1}
 // (L_s = (1 + beta) A / max side, beta = `tri`), section 10's while the area shrinks, squared
 // (one square root per block, after the minimum: compute_shell_forces); then lane by lane in
@@ -617,6 +691,8 @@ void shell_batch(ShellBlock& block, const BlockConstants& k, std::size_t first, 
   T N[3] = {}, Mr[3] = {}, Q[2] = {};
   const T half_t = 0.5 * t;
   const double gs_dt = k.transverse_shear * dt;
+  const bool thin = thickness_changes<M>(block);
+  T trace_change{};  // section 12: sum_p w_p Delta(s_xx + s_yy)
   for (int q = 0; q < nip; ++q) {
     std::size_t off[L];
     for (int l = 0; l < L; ++l)
@@ -625,7 +701,9 @@ void shell_batch(ShellBlock& block, const BlockConstants& k, std::size_t first, 
     for (int c = 0; c < 5; ++c) sp[c] = gather<T>(block.stress.data() + c, off);
     const T z = block.zeta[q] * half_t;
     const T d[3] = {em[0] + z * kp[0], em[1] + z * kp[1], em[2] + z * kp[2]};
+    const T trace = sp[0] + sp[1];
     update_point<M>(block, k, elem, count, static_cast<std::size_t>(q), d, dt, sp, part);
+    if (thin) trace_change += block.weight[q] * (sp[0] + sp[1] - trace);
     sp[3] += gs_dt * gyz;
     sp[4] += gs_dt * gzx;
     for (int l = 0; l < count; ++l) {
@@ -643,6 +721,21 @@ void shell_batch(ShellBlock& block, const BlockConstants& k, std::size_t first, 
     Q[0] += wt * sp[3];
     Q[1] += wt * sp[4];
   }
+  // Section 12: t^{n+1}, and the resultants with it; the initial t0 for the masses below.
+  T t0 = t;
+  if (thin) {
+    const T ratio =
+        update_thickness(block, elem, count, t,
+                         (k.thickness_compliance * 0.5) * trace_change - (em[0] + em[1]) * dt);
+    for (int c = 0; c < 3; ++c) {
+      N[c] *= ratio;
+      Mr[c] *= ratio * ratio;
+    }
+    Q[0] *= ratio;
+    Q[1] *= ratio;
+    t *= ratio;
+    t0 = gather<T>(block.element_thickness0.data(), elem);
+  }
 
   // Membrane bulk viscosity (section 10), its length the step's L_s at x^{n+1} (section 8).
   const bool bulk = block.bulk_viscosity.on();
@@ -650,7 +743,8 @@ void shell_batch(ShellBlock& block, const BlockConstants& k, std::size_t first, 
   if (bulk) {
     step_length = (f.area + tri * f.area) / tsqrt(max_side_squared(p));
     area_rate = em[0] + em[1];
-    const T density = block.material.rho * area0 / f.area;
+    T density = block.material.rho * area0 / f.area;
+    if (thin) density *= t0 / t;
     const T q = bulk_viscosity_pressure(block.bulk_viscosity, k.wave_speed, density, step_length,
                                         area_rate);
     N[0] -= q * t;
@@ -696,10 +790,11 @@ void shell_batch(ShellBlock& block, const BlockConstants& k, std::size_t first, 
     } else {
       // sqrt(K_k M_k), M_k the lumped mass (inertia) of the mode: K_w / K_m and the inertia
       // per mass factored out so that one element needs two square roots.
-      const T mass = block.material.rho * 0.25 * t * area0;
+      // Mass and inertia with the initial thickness t0 (section 12), the stiffness with t.
+      const T mass = block.material.rho * 0.25 * t0 * area0;
       const T cm = k.qm * tsqrt(km * mass * tt);
       const T cw = cm * k.shear_to_membrane;
-      const T cr = cm * t * tsqrt((area0 * (1.0 / 4.0) + t * t * (1.0 / 12.0)) * (1.0 / 12.0));
+      const T cr = cm * t * tsqrt((area0 * (1.0 / 4.0) + t0 * t0 * (1.0 / 12.0)) * (1.0 / 12.0));
       const T cc[5] = {cm, cm, cw, cr, cr};
       // The previous step's generalised forces are kept in hourglass_state so that the work is
       // the trapezoidal 0.5 (Q_old + Q_new) qd dt, as for the stiffness forms (header comment,
@@ -834,7 +929,9 @@ inline void point_operators(const Frame<T>& f, int g, PointOps<T>& o) {
 
 // A batch of ELFORM 16 elements, as shell_batch: rates on the mid-step geometry, stress update
 // at the 4 x nip points, forces at x^{n+1}. Quadrilaterals only (initialize_shell_block).
-template <class M, class T>
+// kThin: the block's thickness changes (section 12; thickness_changes<M>), a template argument:
+// with the runtime test inside the point loop this kernel was 1-2 % slower without the update.
+template <class M, class T, bool kThin>
 void shell16_batch(ShellBlock& block, const BlockConstants& k, std::size_t first, int count,
                    const NodalView& nv, const RotationalView& rv, double dt, Partial& part) {
   constexpr int L = lanes_of<T>();
@@ -866,12 +963,14 @@ void shell16_batch(ShellBlock& block, const BlockConstants& k, std::size_t first
   const T half_t = 0.5 * t;
   const double gs_dt = k.transverse_shear * dt;
 
-  // Rates at the four points (mid-step operators); area rate for the bulk viscosity.
-  T em[4][3], kp[4][3], gyz[4], gzx[4];
+  // Rates at the four points (mid-step operators); area rate for the bulk viscosity (and the
+  // thickness update, section 12).
+  T em[4][3], kp[4][3], gyz[4], gzx[4], jac_mid[4];
   T area_rate{};
   for (int g = 0; g < 4; ++g) {
     PointOps<T> o;
     point_operators(fm, g, o);
+    if constexpr (kThin) jac_mid[g] = o.jac;
     T e0{}, e1{}, e2{}, k0{}, k1{}, k2{}, yz{}, zx{};
     for (int I = 0; I < 4; ++I) {
       const T bx = o.dnx[I], by = o.dny[I];
@@ -895,6 +994,8 @@ void shell16_batch(ShellBlock& block, const BlockConstants& k, std::size_t first
 
   // Stress update and resultants per in-plane point.
   T N[4][3] = {}, Mr[4][3] = {}, Q[4][2] = {};
+  constexpr bool thin = kThin;
+  T trace_change{};  // section 12: sum_g det J_g sum_p w_p Delta(s_xx + s_yy)
   for (int g = 0; g < 4; ++g) {
     for (int q = 0; q < nip; ++q) {
       const std::size_t point_in_element = static_cast<std::size_t>(g * nip + q);
@@ -904,7 +1005,10 @@ void shell16_batch(ShellBlock& block, const BlockConstants& k, std::size_t first
       for (int c = 0; c < 5; ++c) sp[c] = gather<T>(block.stress.data() + c, off);
       const T z = block.zeta[q] * half_t;
       const T d[3] = {em[g][0] + z * kp[g][0], em[g][1] + z * kp[g][1], em[g][2] + z * kp[g][2]};
+      T trace{};
+      if constexpr (thin) trace = sp[0] + sp[1];
       update_point<M>(block, k, elem, count, point_in_element, d, dt, sp, part);
+      if constexpr (thin) trace_change += (jac_mid[g] * block.weight[q]) * (sp[0] + sp[1] - trace);
       sp[3] += gs_dt * gyz[g];
       sp[4] += gs_dt * gzx[g];
       for (int l = 0; l < count; ++l) {
@@ -921,13 +1025,33 @@ void shell16_batch(ShellBlock& block, const BlockConstants& k, std::size_t first
       Q[g][1] += wt * sp[4];
     }
   }
+  // Section 12: one thickness per element from the det J-weighted mean of the points'
+  // increments (area_rate is that mean of d_x + d_y); the resultants with t^{n+1}.
+  T t0 = t;
+  if constexpr (thin) {
+    const T jac_sum = jac_mid[0] + jac_mid[1] + jac_mid[2] + jac_mid[3];
+    const T mean_change = trace_change / (jac_sum > 0.0 ? jac_sum : T{} + 1.0);
+    const T ratio = update_thickness(block, elem, count, t,
+                                     (k.thickness_compliance * 0.5) * mean_change - area_rate * dt);
+    for (int g = 0; g < 4; ++g) {
+      for (int c = 0; c < 3; ++c) {
+        N[g][c] *= ratio;
+        Mr[g][c] *= ratio * ratio;
+      }
+      Q[g][0] *= ratio;
+      Q[g][1] *= ratio;
+    }
+    t *= ratio;
+    t0 = gather<T>(block.element_thickness0.data(), elem);
+  }
 
   // Membrane bulk viscosity (section 10 with the element's mean area rate, section 11).
   const bool bulk = block.bulk_viscosity.on();
   T step_length{}, bulk_work{};
   if (bulk) {
     step_length = f.area / tsqrt(max_side_squared(p));
-    const T density = block.material.rho * area0 / f.area;
+    T density = block.material.rho * area0 / f.area;
+    if constexpr (thin) density *= t0 / t;
     const T q = bulk_viscosity_pressure(block.bulk_viscosity, k.wave_speed, density, step_length,
                                         area_rate);
     for (int g = 0; g < 4; ++g) {
@@ -1129,6 +1253,7 @@ void initialize_shell_block(ShellBlock& block, const NodalView& nodes) {
   block.area0.assign(n, 0.0);
   block.area.assign(n, 0.0);
   block.element_thickness.assign(n, 0.0);
+  block.element_thickness0.assign(n, 0.0);
   block.triangle.assign(n, 0);
   const bool anisotropic =
       !block.rigid &&
@@ -1154,6 +1279,7 @@ void initialize_shell_block(ShellBlock& block, const NodalView& nodes) {
       tsum += ti;
     }
     block.element_thickness[e] = tsum / distinct;
+    block.element_thickness0[e] = block.element_thickness[e];
     double p[4][3];
     for (int I = 0; I < 4; ++I) {
       p[I][0] = nodes.x[c[I]];
@@ -1186,6 +1312,7 @@ KernelResult compute_shell_forces(ShellBlock& block, const NodalView& nodes,
   {
     Partial local;
     material::with_material(block.material_index, [&]<class M>(std::type_identity<M>) {
+      const bool thin = thickness_changes<M>(block);  // section 12
       if constexpr (material::history_size<M>() == 0) {
         // Elastic: batches of kLanes elements; a static schedule over batches still gives each
         // thread a contiguous element range.
@@ -1200,8 +1327,10 @@ KernelResult compute_shell_forces(ShellBlock& block, const NodalView& nodes,
             first = static_cast<std::size_t>(owned.batches[static_cast<std::size_t>(bi)].first);
             count = owned.batches[static_cast<std::size_t>(bi)].count;
           }
-          if (full)
-            shell16_batch<M, Lanes>(block, k, first, count, nodes, rotations, dt, local);
+          if (full && thin)
+            shell16_batch<M, Lanes, true>(block, k, first, count, nodes, rotations, dt, local);
+          else if (full)
+            shell16_batch<M, Lanes, false>(block, k, first, count, nodes, rotations, dt, local);
           else
             shell_batch<M, Lanes>(block, k, first, count, nodes, rotations, dt, local);
         }
@@ -1210,8 +1339,10 @@ KernelResult compute_shell_forces(ShellBlock& block, const NodalView& nodes,
 #pragma omp for schedule(static)
         for (std::int64_t i = 0; i < items; ++i) {
           const auto e = static_cast<std::size_t>(owned.element(i));
-          if (full)
-            shell16_batch<M, double>(block, k, e, 1, nodes, rotations, dt, local);
+          if (full && thin)
+            shell16_batch<M, double, true>(block, k, e, 1, nodes, rotations, dt, local);
+          else if (full)
+            shell16_batch<M, double, false>(block, k, e, 1, nodes, rotations, dt, local);
           else
             shell_batch<M, double>(block, k, e, 1, nodes, rotations, dt, local);
         }
@@ -1271,7 +1402,7 @@ void add_shell_lumped_mass(const ShellBlock& block, std::vector<double>& nodal_m
     const std::int32_t* c = &block.conn[4 * e];
     const std::int32_t* rc = &block.rotation_conn[4 * e];
     const int distinct = distinct_nodes(c);
-    const double t = block.element_thickness[e];
+    const double t = block.element_thickness0[e];  // mass is conserved (section 12)
     const double a = block.area0[e];
     const double factor = element_factor ? (*element_factor)[e] : 1.0;
     const double m = factor * block.material.rho * t * a / distinct;

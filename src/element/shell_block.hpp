@@ -70,6 +70,10 @@ struct ShellBlock {
   // Belytschko-Wong-Chiang warping correction (*CONTROL_SHELL BWC = 1 turns it on for ELFORM 2;
   // LS-DYNA's default BWC = 2 leaves it off).
   bool warping_correction = false;
+  // *CONTROL_SHELL ISTUPD: 0 constant thickness; 1 the membrane straining changes the thickness
+  // (elastic and plastic through-thickness strain); 4 the same with the elastic strains
+  // neglected (shell_block.cpp, section 12).
+  int thickness_update = 0;
 
   std::vector<model::Id> element_id;  // user IDs, size n
   std::vector<std::int32_t> conn;     // dense node indices, 4 per element (N3 == N4: triangle)
@@ -89,9 +93,14 @@ struct ShellBlock {
   // sqrt(s_e) of mass scaling (solver/mass_scaling.hpp): the element's mass is s_e times its
   // physical mass, so its step is sqrt(s_e) times longer. Empty without mass scaling.
   std::vector<double> step_scale;
-  // Element thickness: mean of the nodal thicknesses of the distinct nodes, fixed at
-  // initialisation (no thickness update: ISTUPD 0).
+  // Current element thickness: at initialisation the mean of the nodal thicknesses of the
+  // distinct nodes, then changed by the kernel with a thickness update (thickness_update != 0).
+  // Everything that needs the shell's present thickness reads this one (forces, hourglass,
+  // frozen energy of a switch, output).
   std::vector<double> element_thickness;
+  // The initial element thickness (the same mean, never changed): the element's mass
+  // rho t0 A0 and rotary inertia, which a thickness change leaves alone (mass is conserved).
+  std::vector<double> element_thickness0;
   std::vector<double> area;  // current area
   // Anisotropic materials (*MAT_036): cosine and sine of the angle from the element's side 1-2
   // (co-rotational e1) to the material's rolling direction, 2 per element, fixed at
@@ -131,8 +140,9 @@ KernelResult shell_critical_timestep(const ShellBlock& block, const NodalView& n
 
 // Lumped translational mass (to nodal_mass by dense node index) and rotational inertia (to
 // rotational_inertia by rotational index). Per distinct node of an element with mass
-// m = rho t A0 / (number of distinct nodes): rotational inertia m (A0 / 4 + t^2 / 12) about every
-// axis (scaled rotary inertia, see shell_block.cpp), so that rotations never govern the step.
+// m = rho t0 A0 / (number of distinct nodes): rotational inertia m (A0 / 4 + t0^2 / 12) about
+// every axis (scaled rotary inertia, see shell_block.cpp), so that rotations never govern the
+// step. t0 the initial thickness: a thickness update changes neither (section 12).
 // `element_factor` (optional): each element's shares multiplied by it (mass scaling).
 void add_shell_lumped_mass(const ShellBlock& block, std::vector<double>& nodal_mass,
                            std::vector<double>& rotational_inertia,

@@ -29,9 +29,11 @@
 // and a backtracking line search on |r|^2 (Armijo). The first iterate from s_tr is the elastic
 // predictor's cutting-plane step. Where Newton does not converge in 40 iterations the strain
 // increment is split into 4, 16 or 64 substeps. Plane stress is exact: the in-plane update uses
-// the plane-stress elastic law, so no thickness iteration is needed; the thickness strain rate
-// (elastic -nu/(1-nu) (de_xx + de_yy) plus the plastic -(dp_xx + dp_yy)) would follow, but the
-// shells keep their thickness (ISTUPD 0) and do not need it.
+// the plane-stress elastic law, so no thickness iteration is needed. The thickness strain rate
+// (elastic -nu/E (ds_xx + ds_yy) plus the plastic -(dp_xx + dp_yy)) is not formed here: the
+// shell's thickness update (*CONTROL_SHELL ISTUPD, shell_block.cpp section 12) takes it from
+// the in-plane rates and the stress increment, which holds for this plastically incompressible
+// flow with isotropic elasticity.
 //
 // Transverse shear stays elastic (shell_block.cpp), as for the J2 materials on shells.
 #pragma once

@@ -287,6 +287,8 @@ element::ShellBlock probe_block(const element::ShellBlock& source, std::size_t f
   probe.has_force_slots = true;
   // Viscous hourglass control (IHQ 1-3) has no stiffness: the stiffness form IHQ 4, same QM.
   if (probe.hourglass.ihq <= 3) probe.hourglass.ihq = 4;
+  // The tangent at the present thickness: probing must not thin the element.
+  probe.thickness_update = 0;
   const auto from = static_cast<std::ptrdiff_t>(first),
              to = static_cast<std::ptrdiff_t>(first + count);
   probe.element_id.assign(source.element_id.begin() + from, source.element_id.begin() + to);
@@ -652,7 +654,7 @@ StructuralMatrices assemble_structural_matrices(const model::Model& model,
       for (std::size_t e = 0; e < block.size(); ++e) {
         const std::int32_t* c = &block.conn[4 * e];
         const int distinct = c[2] == c[3] ? 3 : 4;
-        const double t = block.element_thickness[e];
+        const double t = block.element_thickness0[e];  // the lumped mass's (initial) t
         const double m = block.material.rho * t * block.area0[e] / distinct;
         for (int a = 0; a < distinct; ++a) {
           rotational_inertia[static_cast<std::size_t>(block.rotation_conn[4 * e + a])] +=

@@ -155,6 +155,9 @@ struct ContactControl {
   // PENOPT: which side's SOFT = 0 stiffness a pair takes: 1 the smaller of the master segment's
   // and the slave node's (0 reads as 1), 2 the master segment's, 3 the slave node's.
   int penopt = 1;
+  // THKCHG: 1 (2) asks the contacts to follow the shells' thickness change. Our contacts keep the
+  // initial thickness offset (THKCHG 0, LS-DYNA's default); refused with ISTUPD != 0.
+  int thkchg = 0;
   SourceLocation where;
 };
 
@@ -162,7 +165,7 @@ struct ContactControl {
 struct ShellControl {
   int theory = 2;  // default ELFORM of *SECTION_SHELL ELFORM 0
   int bwc = 2;     // 1: Belytschko-Wong-Chiang warping correction on
-  int istupd = 0;  // thickness update (0 only)
+  int istupd = 0;  // thickness update: 0 none, 1 membrane straining, 4 plastic strains only
   int intgrd = 0;  // 0 Gauss, 1 Lobatto (NIP 3..10)
   int miter = 1;   // plane-stress plasticity: 1, 2 iterative
   int proj = 0;

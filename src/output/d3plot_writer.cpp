@@ -160,11 +160,8 @@ void D3plotWriter::write_shell_values(const solver::NodalState& nodes,
   for (const double* values : {mid, low, high}) {
     for (int k = 0; k < 7; ++k) buffer_.push_back(static_cast<float>(values[k]));
   }
-  const int corners = block.triangle[e] != 0 ? 3 : 4;
-  double thickness = 0.0;
-  for (int k = 0; k < corners; ++k)
-    thickness += block.thickness[4 * e + static_cast<std::size_t>(k)];
-  buffer_.push_back(static_cast<float>(thickness / corners));
+  // The current thickness (changed by *CONTROL_SHELL ISTUPD 1/4; else the mean of T1..T4).
+  buffer_.push_back(static_cast<float>(block.element_thickness[e]));
   for (int k = 0; k < 3; ++k) buffer_.push_back(0.0f);
 }
 

@@ -432,9 +432,9 @@ void FieldWriter::write_frame(const solver::State& state, const FrameOptions& op
       part_id.push_back(block.part_id);
       element_id.push_back(block.element_id[e]);
       const std::size_t cell = part_id.size() - 1;
-      double t = 0.0;
-      for (int k = 0; k < corners; ++k) t += block.thickness[4 * e + static_cast<std::size_t>(k)];
-      thickness[cell] = t / corners;
+      // The current thickness (*CONTROL_SHELL ISTUPD 1/4 change it; without, the mean of the
+      // corners' T1..T4).
+      thickness[cell] = block.element_thickness[e];
       const std::array<std::array<double, 3>, 3> frame = shell_frame(nodes, c);
       double mean[6] = {0, 0, 0, 0, 0, 0};
       double worst = 0.0;

@@ -121,7 +121,10 @@ void ElementDistribution::gather_element_state(solver::State& state) {
     return std::array<std::vector<double>*, 2>{&block.hourglass_state, &block.volume};
   });
   family(state.shell_blocks, partition_.shell, [](element::ShellBlock& block) {
-    return std::array<std::vector<double>*, 2>{&block.hourglass_state, &block.area};
+    // element_thickness: changed by the kernel with *CONTROL_SHELL ISTUPD 1/4 (constant, and
+    // then the same on every rank, without).
+    return std::array<std::vector<double>*, 3>{&block.hourglass_state, &block.area,
+                                               &block.element_thickness};
   });
   family(state.beam_blocks, partition_.beam, [](element::BeamBlock& block) {
     return std::array<std::vector<double>*, 3>{&block.frame, &block.resultant, &block.length};

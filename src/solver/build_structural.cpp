@@ -64,6 +64,16 @@ std::vector<PartGroup<typename Sections::mapped_type>> group_by_part(
 
 // Shell parts: sections resolved, elements in input order within a part, parts in ID order.
 void build_shell_blocks(const model::Model& model, const NodeIndex& node_index, State& state) {
+  // The contacts keep the shells' initial thickness offset (LS-DYNA's THKCHG 0): a deck that
+  // asks them to follow a thickness update is refused rather than run otherwise.
+  if (model.shell_control.istupd != 0 && model.contact_control.thkchg != 0 &&
+      !model.shells.empty()) {
+    throw InputError(context_of(model.contact_control.where, "THKCHG"),
+                     fmt::format("THKCHG {} (contact thickness following the shell thickness "
+                                 "update of *CONTROL_SHELL ISTUPD {}) is not supported: the "
+                                 "contacts keep the initial shell thickness (THKCHG 0)",
+                                 model.contact_control.thkchg, model.shell_control.istupd));
+  }
   for (const auto& group : group_by_part(model, model.shells, model.shell_sections,
                                          material::kShell, "shell elements", "*SECTION_SHELL")) {
     const model::Id pid = group.pid;
@@ -101,6 +111,9 @@ void build_shell_blocks(const model::Model& model, const NodeIndex& node_index, 
                      ? element::ThroughThicknessRule::kLobatto
                      : element::ThroughThicknessRule::kGauss;
     block.warping_correction = model.shell_control.bwc == 1;
+    // *CONTROL_SHELL ISTUPD 1/4 (shell_block.cpp, section 12). A rigid part runs no kernel, so
+    // its thickness stays as it is until it is switched deformable again.
+    block.thickness_update = model.shell_control.istupd;
     block.element_id.reserve(indices.size());
     for (const std::size_t e : indices) {
       const auto& shell = model.shells[e];

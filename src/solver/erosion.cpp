@@ -73,7 +73,8 @@ void volume_preserving_strains(double xx, double yy, double xy, double out[3]) {
 // Solids: from the deformation gradient F = I + sum_n u_n (x) dN_n/dX on the reference geometry
 // (the element's mean gradients for one point, each 2x2x2 Gauss point's for ELFORM 2), exact for
 // any deformation. Shells: the integrated co-rotational rate of deformation (shell block
-// `strain`), the thickness strain volume-preserving (the thickness is fixed, ISTUPD 0).
+// `strain`), the thickness strain volume-preserving (also with ISTUPD 1/4, whose thickness is one
+// per element, not per point).
 // Trusses: ln(L/L0) along the axis, lateral strains volume-preserving.
 constexpr int kMaxStrainPoints = 40;  // hexahedra 8, shells 4 x NIP <= 40 (ELFORM 16), trusses 1
 

@@ -22,7 +22,7 @@ double element_mass(const element::HexBlock& b, std::size_t e) {
   return b.material.rho * b.volume0[e];
 }
 double element_mass(const element::ShellBlock& b, std::size_t e) {
-  return b.material.rho * b.element_thickness[e] * b.area0[e];
+  return b.material.rho * b.element_thickness0[e] * b.area0[e];  // initial t: mass conserved
 }
 double element_mass(const element::BeamBlock& b, std::size_t e) {
   return b.material.rho * b.area * b.length0[e];

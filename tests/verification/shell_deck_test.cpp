@@ -382,7 +382,7 @@ TEST(ShellDeck, BadInputNamesKeywordAndField) {
   expect_error(mat + "*SECTION_SHELL\n1,7,1,2\n0.01\n", "*SECTION_SHELL", "ELFORM");
   expect_error(mat + "*SECTION_SHELL\n1,2,1,2\n0.01,,,,1\n", "*SECTION_SHELL", "NLOC");
   expect_error(mat + "*SECTION_SOLID\n1,1\n", "*ELEMENT_SHELL", "PID");
-  expect_error(mat + "*SECTION_SHELL\n1,2,1,2\n0.01\n*CONTROL_SHELL\n20,0,-1,1\n", "*CONTROL_SHELL",
+  expect_error(mat + "*SECTION_SHELL\n1,2,1,2\n0.01\n*CONTROL_SHELL\n20,0,-1,2\n", "*CONTROL_SHELL",
                "ISTUPD");
   expect_error(mat + "*SECTION_SHELL\n1,2,1,2\n0.01\n*CONTROL_TIMESTEP\n0,0.9,1\n",
                "*CONTROL_TIMESTEP", "ISDO");

@@ -218,9 +218,15 @@ void control_contact(const Block& block, ReaderContext& context) {
   refuse(c1, 7, "ENMASS", 0.0,
          "nodes left without elements by erosion are removed from the model and from contact "
          "(ENMASS 0)");
-  // ISLCHK (a check), SHLTHK (automatic contacts always offset by the shell thickness), THKCHG
-  // (shell thicknesses do not change, ISTUPD 0), ORIEN (orientation of non-automatic contacts):
-  // no effect.
+  // THKCHG (contact thickness following the shells' thickness update): stored; with a thickness
+  // update (*CONTROL_SHELL ISTUPD != 0) a nonzero value is refused when the shells are built
+  // (solver/build_structural.cpp), as the contacts keep the initial offset (THKCHG 0, LS-DYNA's
+  // default). ISLCHK (a check), SHLTHK (automatic contacts always offset by the shell
+  // thickness), ORIEN (orientation of non-automatic contacts): no effect.
+  const double thkchg = c1.real(5, "THKCHG", 0.0);
+  if (thkchg != 0.0 && thkchg != 1.0 && thkchg != 2.0)
+    throw c1.error("THKCHG", fmt::format("value {} is not 0, 1 or 2", thkchg));
+  control.thkchg = static_cast<int>(thkchg);
   if (const auto c2 = cursor.next_optional(2, kEightByTen)) {
     refuse(*c2, 0, "USRSTR", 0.0, "user contact subroutines are not supported");
     refuse(*c2, 1, "USRFRC", 0.0, "user friction subroutines are not supported");

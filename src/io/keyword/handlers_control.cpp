@@ -223,10 +223,22 @@ void control_shell(const Block& block, ReaderContext& context) {
     if (irnxx != 0 && irnxx != -1) {
       throw card->error("IRNXX", "only IRNXX -1 (normals recomputed every cycle) is supported");
     }
+    // ISTUPD (LS-DYNA Keyword User's Manual, *CONTROL_SHELL): 1 membrane straining changes the
+    // thickness of 3- and 4-node shells, 4 the same with the elastic strains neglected; 2 and 3
+    // concern 8-node thick shells (*SECTION_TSHELL), which this solver does not have.
     c.istupd = card->flag(3, "ISTUPD", 0);
-    if (c.istupd != 0) {
-      throw card->error("ISTUPD", fmt::format("thickness update ISTUPD {} is not supported (0: "
-                                              "constant thickness)",
+    if (c.istupd == 2 || c.istupd == 3) {
+      throw card->error("ISTUPD", fmt::format("ISTUPD {} (thickness change of thick shells, "
+                                              "*SECTION_TSHELL) is not supported: 0 constant "
+                                              "thickness, 1 thickness update of the 3- and "
+                                              "4-node shells, 4 the same without elastic strains",
+                                              c.istupd));
+    }
+    if (c.istupd != 0 && c.istupd != 1 && c.istupd != 4) {
+      throw card->error("ISTUPD", fmt::format("ISTUPD {} is not a thickness change option (0 "
+                                              "constant thickness, 1 thickness update of the 3- "
+                                              "and 4-node shells, 4 the same without elastic "
+                                              "strains)",
                                               c.istupd));
     }
     c.theory = card->flag(4, "THEORY", 2);
