@@ -8,7 +8,8 @@ after the dump, and the later restart dumps themselves. Only run.json and d3hsp.
 command lines) and the dumps up to the one restarted from (the restart does not rewrite them)
 are not compared. Files the restart writes that the uninterrupted run did not: an error.
 
-With --interrupt-after F a further run on N ranks is sent SIGTERM (to one rank only; the ranks
+With --interrupt-after F a further run on N ranks (of the deck --interrupt-deck-command writes,
+or DECK) is sent SIGTERM (to one rank only; the ranks
 agree on an interrupt) F times the first run's wall time after
 its first frame, must end with
 the interrupt's restart dump, and its restart must give the files of an uninterrupted run without
@@ -81,6 +82,9 @@ def main():
     ap.add_argument("--dump-every", required=True)
     ap.add_argument("--restart-from", default="d3dump_0002.h5")
     ap.add_argument("--interrupt-after", type=float, default=0.0)
+    ap.add_argument("--interrupt-deck-command", default="",
+                    help="a generator whose output is the deck of the interrupt test (default: "
+                         "--deck); it should run for a second or more")
     ap.add_argument("--other-ranks", default="")
     ap.add_argument("--rtol", type=float, default=1e-10)
     args = ap.parse_args()
@@ -123,6 +127,17 @@ def main():
               (args.restart_from, m, args.ranks, ", ".join(worst)))
 
     if args.interrupt_after > 0.0:
+        # The deck of the interrupt test and its uninterrupted run without dumps (the reference
+        # for the files after the interrupt, and the wall time the delay is a fraction of).
+        deck = args.deck
+        if args.interrupt_deck_command:
+            deck = os.path.join(args.work, "interrupt_deck.k")
+            with open(deck, "w") as f:
+                subprocess.run(args.interrupt_deck_command.split(), stdout=f, check=True)
+        plain = os.path.join(args.work, "plain")
+        start = time.monotonic()
+        run(mpirun + ["run", deck, "-o", plain, "--quiet"])
+        span = time.monotonic() - start
         # The interrupted run: SIGTERM to the rigidflex process of one rank (not to mpirun, which
         # would end the job at once); every rank ends in the same cycle and rank 0 writes the
         # dump. The delay after the first frame is a fraction of the uninterrupted run's wall time
@@ -131,7 +146,7 @@ def main():
         delay, stopped, dumps = args.interrupt_after * span, None, []
         for attempt in range(4):
             stopped = os.path.join(args.work, "interrupted%d" % attempt)
-            p = subprocess.Popen(mpirun + ["run", args.deck, "-o", stopped, "--quiet"],
+            p = subprocess.Popen(mpirun + ["run", deck, "-o", stopped, "--quiet"],
                                  stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
             # The signal handlers are installed before the model is read; the first frame (at
             # t = 0, in the first cycle) shows the time loop has started. A signal during MPI's
@@ -163,9 +178,6 @@ def main():
             sys.exit(1)
         again = os.path.join(args.work, "after_interrupt")
         run(mpirun + ["restart", os.path.join(stopped, dumps[0]), "-o", again, "--quiet"])
-        # The uninterrupted run without dumps: the reference for the files after the interrupt.
-        plain = os.path.join(args.work, "plain")
-        run(mpirun + ["run", args.deck, "-o", plain, "--quiet"])
         n = compare(plain, again, dumps[0])
         print("interrupted on %d ranks (exit %d) after %.2f s, restart from its dump: %d files "
               "identical" % (args.ranks, p.returncode, delay, n))
