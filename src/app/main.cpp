@@ -181,14 +181,9 @@ int command_run_follower(const std::string& deck, const rf::io::ReadOptions& rea
 }
 
 // A rank > 0 of a distributed restart: the same state from the same dump, no files.
-int command_restart_follower(const std::string& dump, const std::string& restart_deck, int threads,
-                             std::optional<double> dump_every) {
-  rf::restart::RestartOptions options;
-  options.dump = dump;
-  options.restart_deck = restart_deck;
-  options.threads = threads;
-  options.dump_interval = dump_every;
+int command_restart_follower(rf::restart::RestartOptions options) {
   options.writes_files = false;
+  options.output_directory.clear();
   rf::restart::Restarted restarted = rf::restart::restart_from_dump(options);
   restarted.simulation->run();
   return 0;
@@ -425,15 +420,9 @@ int command_run(const std::string& deck, std::string output_dir, int threads, bo
   return status;
 }
 
-int command_restart(const std::string& dump, const std::string& restart_deck,
-                    const std::string& output_dir, int threads, bool quiet,
-                    std::optional<double> dump_every, const std::string& command_line) {
-  rf::restart::RestartOptions options;
-  options.dump = dump;
-  options.restart_deck = restart_deck;
-  options.output_directory = output_dir;
-  options.threads = threads;
-  options.dump_interval = dump_every;
+int command_restart(const rf::restart::RestartOptions& options, bool quiet,
+                    const std::string& command_line) {
+  const std::string dump = options.dump.string();
   rf::restart::Restarted restarted = rf::restart::restart_from_dump(options);
   rf::output::RunSummary summary;
   summary.threads = restarted.threads;
@@ -688,12 +677,14 @@ int main(int argc, char** argv) {
       return rf::app::run_eigen_command(std::move(model), options);
     }
     if (*restart) {
-      std::optional<double> interval;
-      if (restart_dump_every->count() > 0) interval = dump_every;
-      if (rf::parallel::world().rank() != 0)
-        return command_restart_follower(dump, restart_deck, threads, interval);
-      return command_restart(dump, restart_deck, output_dir, threads, quiet, interval,
-                             command_line);
+      rf::restart::RestartOptions options;
+      options.dump = dump;
+      options.restart_deck = restart_deck;
+      options.output_directory = output_dir;
+      options.threads = threads;
+      if (restart_dump_every->count() > 0) options.dump_interval = dump_every;
+      if (rf::parallel::world().rank() != 0) return command_restart_follower(options);
+      return command_restart(options, quiet, command_line);
     }
     return command_run(deck, output_dir, threads, quiet, read_options, dialect, dump_every,
                        command_line);
