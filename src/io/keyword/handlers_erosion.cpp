@@ -36,10 +36,6 @@ void mat_add_erosion(const Block& block, ReaderContext& context) {
     if (value == 0.0 || value == excl) return std::nullopt;
     return value;
   };
-  auto refuse = [&](const Card& c, std::size_t i, const char* field, const char* what) {
-    if (criterion(c, i, field))
-      throw c.error(field, fmt::format("{} is not supported (leave it blank, 0 or EXCL)", what));
-  };
   // The strain criteria: LS-DYNA reads a negative MXEPS (and EPSSH, EFFEPS in some versions) as
   // a load curve of the limit against the strain rate, which is not supported; a positive MNEPS
   // would fail every element at rest.
