@@ -866,6 +866,8 @@ void write_boundary(const Group& g, const solver::Boundary& boundary, const mode
   // The damping forces in f_ext (their work share is summed in the next cycle); the damping
   // terms themselves are rebuilt from the deck.
   if (!boundary.damping.empty()) write_vec3(g, "damping_force", boundary.damping.force);
+  if (!boundary.damping.empty() && boundary.damping.moment.size() > 0)
+    write_vec3(g, "damping_moment", boundary.damping.moment);
 
   const Group pg = g.create_group("prescribed");
   const auto& prescribed = boundary.prescribed;
@@ -924,10 +926,19 @@ void read_boundary(const Group& g, solver::Boundary& boundary, const model::Mode
       read_exact<double>(g, "body_force_mass", boundary.body_force_mass.size());
   if (!boundary.damping.empty()) {
     if (!g.has("damping_force_x")) {
-      g.fail("damping_force", "is missing: the dump was written without the deck's *DAMPING_* "
-                              "cards");
+      g.fail("damping_force",
+             "is missing: the dump was written without the deck's *DAMPING_* "
+             "cards");
     }
     read_vec3(g, "damping_force", boundary.damping.force, n);
+    if (boundary.damping.moment.size() > 0) {
+      if (!g.has("damping_moment_x")) {
+        g.fail("damping_moment",
+               "is missing: the dump was written by a version that did not damp "
+               "the spins of shell and beam nodes; restart with that version");
+      }
+      read_vec3(g, "damping_moment", boundary.damping.moment, boundary.damping.moment.size());
+    }
   }
 
   const Group pg = g.group("prescribed");

@@ -97,7 +97,7 @@ struct BodyAcceleration {
 struct DampingTerm {
   ScaledCurve d;               // d(t) = SF * curve(t), or the constant VALDMP
   std::array<double, 3> st{};  // scales of the translational forces (global x, y, z)
-  std::array<double, 3> sr{};  // scales of a rigid body's damping moments
+  std::array<double, 3> sr{};  // scales of the damping moments (rigid bodies, nodal spins)
 };
 
 struct MassDampingSystem {
@@ -111,6 +111,10 @@ struct MassDampingSystem {
   // d(t) ST per term at that time. Written by add_damping_forces.
   mutable Vec3Array force;
   mutable std::vector<std::array<double, 3>> coefficient;
+  // The same for the nodal spins of shells and beams (per rotational index): the damping
+  // moments in m_ext and d(t) SR per term.
+  mutable Vec3Array moment;
+  mutable std::vector<std::array<double, 3>> rotation_coefficient;
   bool empty() const { return terms.empty(); }
 };
 

@@ -135,10 +135,12 @@ MassDampingSystem resolve_mass_damping(const model::Model& model, const State& s
       }
     };
     mark(state.hex_blocks);
-    mark(state.shell_blocks);  // translations only: rotations are not damped (docs/keywords.md)
+    mark(state.shell_blocks);  // their nodes' spins too (add_damping_forces)
     mark(state.beam_blocks);
   }
   system.coefficient.resize(system.terms.size());
+  system.rotation_coefficient.resize(system.terms.size());
+  system.moment.resize(state.rotations.size());
   return system;
 }
 
@@ -148,7 +150,10 @@ void add_damping_forces(const MassDampingSystem& damping, const std::vector<doub
   NodalState& nodes = state.nodes;
   for (std::size_t k = 0; k < damping.terms.size(); ++k) {
     const double d = damping.terms[k].d(t);
-    for (int a = 0; a < 3; ++a) damping.coefficient[k][a] = d * damping.terms[k].st[a];
+    for (int a = 0; a < 3; ++a) {
+      damping.coefficient[k][a] = d * damping.terms[k].st[a];
+      damping.rotation_coefficient[k][a] = d * damping.terms[k].sr[a];
+    }
   }
   const std::int64_t n = static_cast<std::int64_t>(nodes.size());
   const std::int16_t* term_of = damping.term_of_node.data();
@@ -168,6 +173,31 @@ void add_damping_forces(const MassDampingSystem& damping, const std::vector<doub
     nodes.f_ext.x[i] += force.x[i];
     nodes.f_ext.y[i] += force.y[i];
     nodes.f_ext.z[i] += force.z[i];
+  }
+  // The spins of shell and beam nodes: m = -d(t) SR J w with J the node's rotary inertia (the
+  // mass-weighted damping of every DOF: a free body's angular momentum, spins included, then
+  // decays as exp(-d t) when ST = SR). Nodes on rigid bodies (mass 0 here) turn with their body,
+  // which is damped at its centre.
+  RotationalState& rot = state.rotations;
+  if (rot.empty()) return;
+  const std::int64_t nr = static_cast<std::int64_t>(rot.size());
+  Vec3Array& moment = damping.moment;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t r = 0; r < nr; ++r) {
+    const std::int32_t i = rot.node[r];
+    const int k = term_of[i];
+    if (k < 0 || m[i] == 0.0) {
+      moment.x[r] = moment.y[r] = moment.z[r] = 0.0;
+      continue;
+    }
+    const std::array<double, 3>& c = damping.rotation_coefficient[k];
+    const double inertia = rot.inertia[r];
+    moment.x[r] = -c[0] * inertia * rot.w.x[r];
+    moment.y[r] = -c[1] * inertia * rot.w.y[r];
+    moment.z[r] = -c[2] * inertia * rot.w.z[r];
+    rot.m_ext.x[r] += moment.x[r];
+    rot.m_ext.y[r] += moment.y[r];
+    rot.m_ext.z[r] += moment.z[r];
   }
 }
 

@@ -29,8 +29,10 @@ MassDampingSystem resolve_mass_damping(const model::Model& model, const State& s
 // Adds the damping forces f = -d(t) ST m v to f_ext of every node that is not on a rigid body
 // (`mass_of_node` = Boundary::body_force_mass: the lumped mass, 0 on rigid-body nodes), with the
 // velocity v^{n+1/2} that carried the nodes to t: the forces at t^{n+1} see v^{n+1/2}, the usual
-// explicit lag of velocity-dependent forces (stable for d dt < 2). Rigid bodies are damped at
-// their centre of mass in advance_rigid_bodies. Also records the forces in damping.force.
+// explicit lag of velocity-dependent forces (stable for d dt < 2), and the moments
+// m = -d(t) SR J w to m_ext of the nodal spins (shells, beams). Rigid bodies are damped at
+// their centre of mass in advance_rigid_bodies. Also records the forces in damping.force and the
+// moments in damping.moment.
 void add_damping_forces(const MassDampingSystem& damping, const std::vector<double>& mass_of_node,
                         double t, State& state);
 

@@ -870,7 +870,7 @@ void Simulation::update_velocities() {
     }
   }
 
-  const std::array<double, 6> rotation_sums = update_rotations(dt_avg);
+  const std::array<double, 7> rotation_sums = update_rotations(dt_avg);
 
   // Energy and momenta at n+1/2: d = dt_avg (v^{n-1/2} + v^{n+1/2}) / 2 per DOF. Work is
   // summed over every node (forces on rigid-body nodes do work on the bodies); kinetic energy
@@ -969,7 +969,7 @@ void Simulation::update_velocities() {
   energy_.external_work +=
       sums[2] - sums[9] + reaction_work + rigid_sums.external_work + rigid_sums.modal_inertia_work;
   energy_.contact_energy -= sums[9];
-  energy_.damping_work += sums[10] + rigid_sums.damping_work;
+  energy_.damping_work += sums[10] + rigid_sums.damping_work + rotation_sums[6];
   energy_.modal_elastic = rigid_sums.modal_elastic;
   if (!walls_.empty()) {  // already in sums[2] (the wall forces are in f_ext): its share
     energy_.rigidwall_work += contact::rigid_wall_work(walls_, rigid_, vp, state_, dt_avg);
@@ -1028,10 +1028,11 @@ void Simulation::update_velocities() {
 
 // Central difference for the rotations, alpha = (m_ext - m_int) / I with an isotropic lumped
 // inertia (no gyroscopic term), constrained components held at zero; nodes of rigid bodies turn
-// with their body. Returns {kinetic, internal work, external work, spin x, y, z} of the step
+// with their body. Returns {kinetic, internal work, external work, spin x, y, z, the damping
+// moments' share of the external work} of the step
 // with d theta = dt_avg (omega^{n-1/2} + omega^{n+1/2}) / 2, as for the translations.
-std::array<double, 6> Simulation::update_rotations(double dt_avg) {
-  std::array<double, 6> out{};
+std::array<double, 7> Simulation::update_rotations(double dt_avg) {
+  std::array<double, 7> out{};
   RotationalState& rot = state_.rotations;
   if (rot.empty()) return out;
   const std::int64_t count = static_cast<std::int64_t>(rot.size());
@@ -1077,8 +1078,11 @@ std::array<double, 6> Simulation::update_rotations(double dt_avg) {
       boundary_.prescribed_directions.empty()
           ? 0.0
           : constrain_rotations(boundary_, state_.time, state_.dt, dt_avg, state_);
-  out = deterministic_sum<6>(
-      count, reduction_scratch_rotations_, [&](std::int64_t r, std::array<double, 6>& acc) {
+  const Vec3Array* damping_moment =
+      boundary_.damping.empty() || boundary_.damping.moment.size() == 0 ? nullptr
+                                                                        : &boundary_.damping.moment;
+  out = deterministic_sum<7>(
+      count, reduction_scratch_rotations_, [&](std::int64_t r, std::array<double, 7>& acc) {
         const double wx = rot.w.x[r], wy = rot.w.y[r], wz = rot.w.z[r];
         // As for translations: on a flexible body the body's turn dt_avg w_mid plus the modes'
         // R^n Psi_j s_mid (solver/step_rotation.hpp).
@@ -1086,6 +1090,10 @@ std::array<double, 6> Simulation::update_rotations(double dt_avg) {
         const std::int32_t i = rot.node[r];
         acc[1] += rot.m_int.x[r] * dx + rot.m_int.y[r] * dy + rot.m_int.z[r] * dz;
         acc[2] += rot.m_ext.x[r] * dx + rot.m_ext.y[r] * dy + rot.m_ext.z[r] * dz;
+        if (damping_moment) {  // the damping share of m_ext
+          acc[6] +=
+              damping_moment->x[r] * dx + damping_moment->y[r] * dy + damping_moment->z[r] * dz;
+        }
         if (body_of && body_of[i] >= 0) return;  // the body holds its kinetic energy and momentum
         const double I = rot.inertia[r];
         acc[0] += 0.5 * I * (wx * wx + wy * wy + wz * wz);

@@ -218,7 +218,7 @@ class Simulation {
   // The phases of a cycle, in order.
   void update_velocities();  // a^n -> v^{n+1/2}, constraints, rigid bodies, energy
   // omega^{n-1/2} -> omega^{n+1/2} of the nodes with rotations; their energy and spin sums.
-  std::array<double, 6> update_rotations(double dt_avg);
+  std::array<double, 7> update_rotations(double dt_avg);
   template <class Describe>
   void record_kernel_result(const element::KernelResult& r,
                             const std::vector<model::Id>& element_id, Describe&& describe);
