@@ -152,21 +152,7 @@ void ElementDistribution::gather_restart_state(solver::State& state) {
 }
 
 void ElementDistribution::keep_own_force_slots(solver::State& state) const {
-  auto family = [&](auto& blocks, const std::vector<std::vector<std::int32_t>>& owners) {
-    for (std::size_t b = 0; b < blocks.size(); ++b) {
-      const Owners o = owners_of(owners, b, comm_.rank());
-      auto& block = blocks[b];
-      if (!o.owner || block.size() == 0) continue;
-      const std::size_t slot = block.force.size() / block.size();
-      for (std::size_t e = 0; e < block.size(); ++e) {
-        if ((*o.owner)[e] == o.rank) continue;
-        std::fill_n(block.force.begin() + static_cast<std::ptrdiff_t>(slot * e), slot, 0.0);
-      }
-    }
-  };
-  family(state.hex_blocks, partition_.hex);
-  family(state.shell_blocks, partition_.shell);
-  family(state.beam_blocks, partition_.beam);
+  zero_other_ranks_force_slots(partition_, comm_.rank(), state);
 }
 
 void ElementDistribution::check_replicated(double value, const char* what) const {

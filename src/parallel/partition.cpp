@@ -218,7 +218,7 @@ void unflatten_owners(const std::vector<std::int32_t>& owners, const solver::Sta
 
 namespace {
 
-// The rank's elements of one block; the other elements' force slots zeroed.
+// The rank's elements of one block.
 template <class Block>
 void restrict_block(const std::vector<std::vector<std::int32_t>>& owners, std::size_t b, int rank,
                     Block& block) {
@@ -228,14 +228,20 @@ void restrict_block(const std::vector<std::vector<std::int32_t>>& owners, std::s
   block.owned.elements.clear();
   block.owned.batches.clear();
   block.owned.batch_lanes = 0;
-  const std::size_t slot = block.size() ? block.force.size() / block.size() : 0;
-  for (std::size_t e = 0; e < block.size(); ++e) {
-    if (owner[e] == rank) {
-      block.owned.elements.push_back(static_cast<std::int64_t>(e));
-    } else {
+  for (std::size_t e = 0; e < block.size(); ++e)
+    if (owner[e] == rank) block.owned.elements.push_back(static_cast<std::int64_t>(e));
+}
+
+// The force slots of one block's elements that other ranks own, zeroed.
+template <class Block>
+void zero_other_slots(const std::vector<std::vector<std::int32_t>>& owners, std::size_t b, int rank,
+                      Block& block) {
+  if (b >= owners.size() || owners[b].empty() || block.size() == 0) return;
+  const std::vector<std::int32_t>& owner = owners[b];
+  const std::size_t slot = block.force.size() / block.size();
+  for (std::size_t e = 0; e < block.size(); ++e)
+    if (owner[e] != rank)
       std::fill_n(block.force.begin() + static_cast<std::ptrdiff_t>(slot * e), slot, 0.0);
-    }
-  }
 }
 
 }  // namespace
@@ -247,6 +253,16 @@ void apply_partition(const Partition& p, int rank, solver::State& state) {
     restrict_block(p.shell, b, rank, state.shell_blocks[b]);
   for (std::size_t b = 0; b < state.beam_blocks.size(); ++b)
     restrict_block(p.beam, b, rank, state.beam_blocks[b]);
+  zero_other_ranks_force_slots(p, rank, state);
+}
+
+void zero_other_ranks_force_slots(const Partition& p, int rank, solver::State& state) {
+  for (std::size_t b = 0; b < state.hex_blocks.size(); ++b)
+    zero_other_slots(p.hex, b, rank, state.hex_blocks[b]);
+  for (std::size_t b = 0; b < state.shell_blocks.size(); ++b)
+    zero_other_slots(p.shell, b, rank, state.shell_blocks[b]);
+  for (std::size_t b = 0; b < state.beam_blocks.size(); ++b)
+    zero_other_slots(p.beam, b, rank, state.beam_blocks[b]);
 }
 
 std::string describe_partition(const Partition& p) {

@@ -56,6 +56,10 @@ void unflatten_owners(const std::vector<std::int32_t>& owners, const solver::Sta
 // assembly on this rank sums only its own elements.
 void apply_partition(const Partition& p, int rank, solver::State& state);
 
+// Zeroes the force slots of the elements other ranks own, leaving this rank's: what
+// apply_partition does to the slots, again after a restart dump made them complete.
+void zero_other_ranks_force_slots(const Partition& p, int rank, solver::State& state);
+
 // Lines for `rigidflex check --ranks N`.
 std::string describe_partition(const Partition& p);
 
