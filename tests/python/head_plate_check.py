@@ -28,7 +28,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, HERE)
-from rigidflex_results import read_csv  # noqa: E402
+from rigidflex_results import read_csv, support_impulse  # noqa: E402
 
 DRILLING_FACTOR = "1e-2"  # as examples/run_head_plate.py
 failures = []
@@ -65,23 +65,8 @@ def main():
         worst = max(abs(r["energy_ratio"] - 1.0) for r in glstat)
         check(worst <= 1e-6, f"{v['name']}: |energy ratio - 1| = {worst:.1e} <= 1e-6")
 
-        # Impulse of the support reactions: spcforc rows of one time are summed; the row at t^n
-        # is the step's reaction, m (v^{n+1/2} - v^{n-1/2}) / dt_avg - f, and glstat's momentum
-        # at t^n is taken with v^{n+1/2}.
-        spc = {}
-        for r in read_csv(os.path.join(out, "spcforc.csv")):
-            s = spc.setdefault(r["time"], [0.0, 0.0, 0.0])
-            for d, c in enumerate(("force_x", "force_y", "force_z")):
-                s[d] += r[c]
-        times = [r["time"] for r in glstat]
-        dts = [r["dt"] for r in glstat]
-        check(len(spc) == len(glstat) and sorted(spc) == times,
-              f"{v['name']}: spcforc and glstat at every cycle ({len(glstat)} rows)")
-        impulse = [0.0, 0.0, 0.0]
-        for n in range(1, len(glstat)):
-            dt_avg = 0.5 * (dts[n - 1] + dts[n])
-            for d in range(3):
-                impulse[d] += dt_avg * spc[times[n]][d]
+        impulse, every_cycle = support_impulse(out, glstat)
+        check(every_cycle, f"{v['name']}: spcforc and glstat at every cycle ({len(glstat)} rows)")
         for d, c in enumerate(("momentum_x", "momentum_y", "momentum_z")):
             change = glstat[-1][c] - glstat[0][c]
             check(abs(change - impulse[d]) <= 1e-9 * p0_head,

@@ -209,3 +209,24 @@ def read_pvd(path):
 def read_csv(path):
     with open(path) as f:
         return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+
+
+def support_impulse(out, glstat):
+    """Impulse of the support reactions over a run whose spcforc.csv has a row per constrained
+    node and cycle, summed with glstat's steps: the rows of one time are summed; the row at t^n is
+    the step's reaction, m (v^{n+1/2} - v^{n-1/2}) / dt_avg - f, and glstat's momentum at t^n is
+    taken with v^{n+1/2}, so sum_n dt_avg^n R^n (n >= 1) is the momentum change the supports
+    caused. Returns (impulse [x, y, z], whether spcforc has exactly glstat's times)."""
+    spc = {}
+    for r in read_csv(os.path.join(out, "spcforc.csv")):
+        s = spc.setdefault(r["time"], [0.0, 0.0, 0.0])
+        for d, c in enumerate(("force_x", "force_y", "force_z")):
+            s[d] += r[c]
+    times = [r["time"] for r in glstat]
+    dts = [r["dt"] for r in glstat]
+    impulse = [0.0, 0.0, 0.0]
+    for n in range(1, len(glstat)):
+        dt_avg = 0.5 * (dts[n - 1] + dts[n])
+        for d in range(3):
+            impulse[d] += dt_avg * spc.get(times[n], (0.0, 0.0, 0.0))[d]
+    return impulse, len(spc) == len(glstat) and sorted(spc) == times
