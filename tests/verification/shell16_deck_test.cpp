@@ -7,6 +7,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "cantilever_strip.hpp"
 #include "deck_builder.hpp"
 #include "model/error.hpp"
 #include "output/history_writers.hpp"
@@ -18,44 +19,16 @@ namespace {
 
 constexpr double kRho = 7800.0, kE = 2.0e11;
 
-// Strip 1 x 0.1 x 0.01 m (L / t = 100) along x, clamped at x = 0, 10 x 1 shells.
-struct Strip {
-  double length = 1.0, width = 0.1, thickness = 0.01;
-  ShellPlate plate() const {
-    ShellPlate p;
-    p.nx = 10;
-    p.ny = 1;
-    p.lx = length;
-    p.ly = width;
-    return p;
-  }
-  double ei() const { return kE * width * thickness * thickness * thickness / 12.0; }
-  std::string deck(int elform) const {
-    const ShellPlate p = plate();
-    return "*KEYWORD\n" + p.text() + shell_part(1, thickness, kRho, kE, 0.0, 2, 4, 0.05, elform) +
-           node_set(1, p.column(0)) + "*BOUNDARY_SPC_SET\n1,0,1,1,1,1,1,1\n";
-  }
-};
-
 // Static tip load (ramped, then damped to rest as in shell_deck_test.cpp): within 2 % of beam
 // theory with 10 elements over L / t = 100, i.e. no transverse shear locking.
 double static_tip_ratio(int elform) {
-  const Strip strip;
-  const ShellPlate p = strip.plate();
+  const CantileverStrip strip;
   const double load = 5.0;
   const double expected = load * std::pow(strip.length, 3) / (3.0 * strip.ei());
-  std::string deck = strip.deck(elform);
-  for (const int id : p.column(p.nx))
-    deck += fmt::format("*LOAD_NODE_POINT\n{},3,1,{}\n", id, load / 2);
-  deck += "*DEFINE_CURVE\n1\n0,0\n0.2,1\n10,1\n*DAMPING_GLOBAL\n0,50.0\n";
-  deck += "*CONTROL_TERMINATION\n0.6\n*END\n";
-  solver::Simulation sim(read(deck), {});
+  solver::Simulation sim(read(strip.deck(elform) + strip.static_tip_load(load, 3)), {});
   sim.run();
   EXPECT_EQ(sim.energy().hourglass, 0.0);
-  const auto& nodes = sim.state().nodes;
-  double tip = 0.0;
-  for (const int id : p.column(p.nx)) tip += nodes.x.z[static_cast<std::size_t>(id - 1)] / 2;
-  return tip / expected;
+  return strip.tip_displacement(sim, 2) / expected;
 }
 
 TEST(Shell16Deck, ThinCantileverStaticTipDeflectionMatchesBeamTheory) {
@@ -66,50 +39,14 @@ TEST(Shell16Deck, ThinCantileverStaticTipDeflectionMatchesBeamTheory) {
 }
 
 TEST(Shell16Deck, ThinCantileverFirstFrequencyAndEnergy) {
-  const Strip strip;
-  const ShellPlate p = strip.plate();
-  const double f1 =
-      1.8751 * 1.8751 / (2.0 * std::numbers::pi) *
-      std::sqrt(strip.ei() / (kRho * strip.width * strip.thickness * std::pow(strip.length, 4)));
-  const double beta = 1.8751 / strip.length;
-  const double sigma = (std::sinh(beta * strip.length) - std::sin(beta * strip.length)) /
-                       (std::cosh(beta * strip.length) + std::cos(beta * strip.length));
-  auto mode = [&](double x) {
-    return std::cosh(beta * x) - std::cos(beta * x) -
-           sigma * (std::sinh(beta * x) - std::sin(beta * x));
-  };
-  auto slope = [&](double x) {
-    return beta * (std::sinh(beta * x) + std::sin(beta * x) -
-                   sigma * (std::cosh(beta * x) - std::cos(beta * x)));
-  };
-  const double tip_mode = mode(strip.length);
-  std::string deck = strip.deck(16) + "*INITIAL_VELOCITY_NODE\n";
-  for (int j = 0; j <= p.ny; ++j)
-    for (int i = 1; i <= p.nx; ++i) {
-      const double x = strip.length * i / p.nx;
-      deck += fmt::format("{},0,0,{:.17g},0,{:.17g},0\n", p.node_id(i, j),
-                          0.01 * mode(x) / tip_mode, -0.01 * slope(x) / tip_mode);
-    }
-  deck += fmt::format("*CONTROL_TERMINATION\n{:.17g},\n*END\n", 3.2 / f1);
-  solver::Simulation sim(read(deck), {});
-  const auto tip = static_cast<std::size_t>(p.node_id(p.nx, 0) - 1);
-  std::vector<double> crossings;
-  double previous = 0.01, previous_time = 0.0;
-  sim.run([&](const solver::Simulation& s) {
-    const double v = s.state().nodes.v.z[tip];
-    const double t = s.state().time;
-    if (previous > 0.0 && v <= 0.0 && t > 0.0)
-      crossings.push_back(previous_time + (t - previous_time) * previous / (previous - v));
-    previous = v;
-    previous_time = t;
-  });
-  ASSERT_GE(crossings.size(), 3u);
-  const double period =
-      (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
-  RecordProperty("frequency_ratio", std::to_string(1.0 / period / f1));
+  const CantileverStrip strip;
+  const double f1 = strip.first_frequency();
+  solver::Simulation sim(read(strip.deck(16) + strip.first_mode_velocity()), {});
+  const double f = strip.run_and_measure_frequency(sim);
+  RecordProperty("frequency_ratio", std::to_string(f / f1));
   std::printf("ELFORM 16 cantilever first frequency / beam theory = %.5f, energy ratio %.8f\n",
-              1.0 / period / f1, sim.energy().ratio());
-  EXPECT_NEAR(1.0 / period / f1, 1.0, 0.02);
+              f / f1, sim.energy().ratio());
+  EXPECT_NEAR(f / f1, 1.0, 0.02);
   EXPECT_NEAR(sim.energy().ratio(), 1.0, 1e-3);
   EXPECT_EQ(sim.energy().hourglass, 0.0);
 }
@@ -149,30 +86,16 @@ TEST(Shell16Deck, FreeVibratingPlateConservesEnergy) {
 // Timoshenko's beam, P L^3 / (3 E I) + P L / (k G A) (shear locking in the plane; the one-point
 // ELFORM 2 with its hourglass stiffness IHQ 4 is measured alongside).
 double in_plane_tip_ratio(int elform, int ny) {
-  const Strip strip;
-  ShellPlate p = strip.plate();
-  p.ny = ny;
+  CantileverStrip strip;
+  strip.ny = ny;
   const double load = 5.0;
   const double iz = strip.thickness * std::pow(strip.width, 3) / 12.0;
   const double area = strip.thickness * strip.width;
   const double expected = load * std::pow(strip.length, 3) / (3.0 * kE * iz) +
                           load * strip.length / (5.0 / 6.0 * 0.5 * kE * area);
-  std::string deck = "*KEYWORD\n" + p.text() +
-                     shell_part(1, strip.thickness, kRho, kE, 0.0, 2, 4, 0.05, elform) +
-                     node_set(1, p.column(0)) + "*BOUNDARY_SPC_SET\n1,0,1,1,1,1,1,1\n";
-  for (const int id : p.column(p.nx))
-    deck += fmt::format("*LOAD_NODE_POINT\n{},2,1,{}\n", id, load / (ny + 1));
-  deck += "*DEFINE_CURVE\n1\n0,0\n0.2,1\n10,1\n*DAMPING_GLOBAL\n0,50.0\n";
-  deck += "*CONTROL_TERMINATION\n0.6\n*END\n";
-  solver::Simulation sim(read(deck), {});
+  solver::Simulation sim(read(strip.deck(elform) + strip.static_tip_load(load, 2)), {});
   sim.run();
-  const auto& nodes = sim.state().nodes;
-  double tip = 0.0;
-  for (const int id : p.column(p.nx))
-    tip += (nodes.x.y[static_cast<std::size_t>(id - 1)] -
-            nodes.x0.y[static_cast<std::size_t>(id - 1)]) /
-           (ny + 1);
-  return tip / expected;
+  return strip.tip_displacement(sim, 1) / expected;
 }
 
 TEST(Shell16Deck, InPlaneBendingOfCoarseStripLocksAsBilinearElements) {

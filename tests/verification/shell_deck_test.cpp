@@ -10,6 +10,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "cantilever_strip.hpp"
 #include "deck_builder.hpp"
 #include "model/error.hpp"
 #include "shell_builder.hpp"
@@ -19,43 +20,13 @@ namespace {
 
 constexpr double kRho = 7800.0, kE = 2.0e11;
 
-// A strip L x b x t along x, clamped at x = 0 (all six DOFs).
-struct Strip {
-  double length = 1.0, width = 0.1, thickness = 0.01;
-  int elements = 10;
-  ShellPlate plate() const {
-    ShellPlate p;
-    p.nx = elements;
-    p.ny = 1;
-    p.lx = length;
-    p.ly = width;
-    return p;
-  }
-  double second_moment() const { return width * thickness * thickness * thickness / 12.0; }
-  std::string clamped(const ShellPlate& p) const {
-    return node_set(1, p.column(0)) + "*BOUNDARY_SPC_SET\n1,0,1,1,1,1,1,1\n";
-  }
-};
-
 TEST(ShellDeck, CantileverStaticTipDeflectionMatchesBeamTheory) {
-  const Strip strip;
-  const ShellPlate p = strip.plate();
+  const CantileverStrip strip;
   const double load = 5.0;  // total tip load in z, N
-  const double ei = kE * strip.second_moment();
-  const double expected = load * std::pow(strip.length, 3) / (3.0 * ei);
-  std::string deck = "*KEYWORD\n" + p.text() + shell_part(1, strip.thickness, kRho, kE, 0.0);
-  deck += strip.clamped(p);
-  // Load ramped over 0.2 s and held; mass-proportional damping near critical for mode 1
-  // (omega_1 = 51 rad/s) lets the strip settle to the static answer by 0.6 s.
-  for (const int id : p.column(p.nx))
-    deck += fmt::format("*LOAD_NODE_POINT\n{},3,1,{}\n", id, load / 2);
-  deck += "*DEFINE_CURVE\n1\n0,0\n0.2,1\n10,1\n*DAMPING_GLOBAL\n0,50.0\n";
-  deck += "*CONTROL_TERMINATION\n0.6\n*END\n";
-  solver::Simulation sim(read(deck), {});
+  const double expected = load * std::pow(strip.length, 3) / (3.0 * strip.ei());
+  solver::Simulation sim(read(strip.deck(2) + strip.static_tip_load(load, 3)), {});
   sim.run();
-  const auto& nodes = sim.state().nodes;
-  double tip = 0.0;
-  for (const int id : p.column(p.nx)) tip += nodes.x.z[static_cast<std::size_t>(id - 1)] / 2;
+  const double tip = strip.tip_displacement(sim, 2);
   RecordProperty("tip_deflection_ratio", std::to_string(tip / expected));
   EXPECT_NEAR(tip / expected, 1.0, 0.03) << "tip " << tip << " beam theory " << expected;
   // The hourglass energy stays a small part of the strain energy in this bending problem.
@@ -63,56 +34,12 @@ TEST(ShellDeck, CantileverStaticTipDeflectionMatchesBeamTheory) {
 }
 
 TEST(ShellDeck, CantileverFirstFrequencyMatchesBeamTheory) {
-  const Strip strip;
-  const ShellPlate p = strip.plate();
-  const double ei = kE * strip.second_moment();
-  const double mass_per_length = kRho * strip.width * strip.thickness;
-  const double f1 = 1.8751 * 1.8751 / (2.0 * std::numbers::pi) *
-                    std::sqrt(ei / (mass_per_length * std::pow(strip.length, 4)));
-  // Initial velocity in the shape of the first Euler-Bernoulli mode (small amplitude).
-  const double beta = 1.8751 / strip.length;
-  const double sigma = (std::sinh(beta * strip.length) - std::sin(beta * strip.length)) /
-                       (std::cosh(beta * strip.length) + std::cos(beta * strip.length));
-  auto mode = [&](double x) {
-    return std::cosh(beta * x) - std::cos(beta * x) -
-           sigma * (std::sinh(beta * x) - std::sin(beta * x));
-  };
-  auto slope = [&](double x) {
-    return beta * (std::sinh(beta * x) + std::sin(beta * x) -
-                   sigma * (std::cosh(beta * x) - std::cos(beta * x)));
-  };
-  const double tip_mode = mode(strip.length);
-  std::string deck = "*KEYWORD\n" + p.text() + shell_part(1, strip.thickness, kRho, kE, 0.0);
-  deck += strip.clamped(p);
-  deck += "*INITIAL_VELOCITY_NODE\n";
-  for (int j = 0; j <= p.ny; ++j)
-    for (int i = 1; i <= p.nx; ++i) {
-      const double x = strip.length * i / p.nx;
-      // v_z = 0.01 phi / phi(L); the section turns with -d v_z / dx about y.
-      deck += fmt::format("{},0,0,{:.17g},0,{:.17g},0\n", p.node_id(i, j),
-                          0.01 * mode(x) / tip_mode, -0.01 * slope(x) / tip_mode);
-    }
-  const double end = 3.2 / f1;
-  deck += fmt::format("*CONTROL_TERMINATION\n{:.17g},\n*END\n", end);
-  solver::Simulation sim(read(deck), {});
-  // Zero crossings of the tip velocity's z component (downward) mark whole periods.
-  const auto tip = static_cast<std::size_t>(p.node_id(p.nx, 0) - 1);
-  std::vector<double> crossings;
-  double previous = 0.01, previous_time = 0.0;
-  sim.run([&](const solver::Simulation& s) {
-    const double v = s.state().nodes.v.z[tip];
-    const double t = s.state().time;
-    if (previous > 0.0 && v <= 0.0 && t > 0.0) {
-      crossings.push_back(previous_time + (t - previous_time) * previous / (previous - v));
-    }
-    previous = v;
-    previous_time = t;
-  });
-  ASSERT_GE(crossings.size(), 3u);
-  const double period =
-      (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
-  RecordProperty("frequency_ratio", std::to_string(1.0 / period / f1));
-  EXPECT_NEAR(1.0 / period / f1, 1.0, 0.02) << "f " << 1.0 / period << " beam theory " << f1;
+  const CantileverStrip strip;
+  const double f1 = strip.first_frequency();
+  solver::Simulation sim(read(strip.deck(2) + strip.first_mode_velocity()), {});
+  const double f = strip.run_and_measure_frequency(sim);
+  RecordProperty("frequency_ratio", std::to_string(f / f1));
+  EXPECT_NEAR(f / f1, 1.0, 0.02) << "f " << f << " beam theory " << f1;
   EXPECT_NEAR(sim.energy().ratio(), 1.0, 2e-3);
 }
 
