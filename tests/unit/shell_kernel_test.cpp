@@ -25,6 +25,8 @@ using rf::test::element_axes;
 using rf::test::make_patch;
 using rf::test::node_force;
 using rf::test::Patch;
+using rf::test::plane_stress_of_in_plane_rate;
+using rf::test::set_in_plane_linear_velocity;
 using rf::test::ShellMesh;
 using rf::test::to_element_axes;
 
@@ -82,28 +84,14 @@ TEST(ShellPatch, MembraneLinearFieldGivesUniformPlaneStress) {
     // In-plane rate L (plane coordinates a, b along u, w): symmetric with a spin part too.
     const double Lab[2][2] = {{2.0e-2, 0.7e-2}, {-0.3e-2, -1.1e-2}};
     const auto X = m.positions();
-    for (std::size_t i = 0; i < X.size(); ++i) {
-      double r[3] = {X[i][0] - 0.3, X[i][1] + 0.2, X[i][2] - 0.5};
-      const double a = r[0] * u[0] + r[1] * u[1] + r[2] * u[2];
-      const double b = r[0] * w[0] + r[1] * w[1] + r[2] * w[2];
-      const double va = Lab[0][0] * a + Lab[0][1] * b, vb = Lab[1][0] * a + Lab[1][1] * b;
-      m.vx[i] = va * u[0] + vb * w[0];
-      m.vy[i] = va * u[1] + vb * w[1];
-      m.vz[i] = va * u[2] + vb * w[2];
-    }
+    set_in_plane_linear_velocity(m, X, u, w, Lab);
     const double dt = 1e-3;
     m.place_for_step(X, dt);
     const auto r = m.step(dt);
     ASSERT_FALSE(r.failed);
     // Analytic plane stress in plane axes, then in each element's axes (at X, the mid-step).
-    const double exx = Lab[0][0] * dt, eyy = Lab[1][1] * dt, gxy = (Lab[0][1] + Lab[1][0]) * dt;
-    const double ep = kE / (1 - kNu * kNu), G = kE / (2 * (1 + kNu));
-    const double sa = ep * (exx + kNu * eyy), sb = ep * (eyy + kNu * exx), sab = G * gxy;
     double T[3][3];
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j)
-        T[i][j] = sa * u[i] * u[j] + sb * w[i] * w[j] + sab * (u[i] * w[j] + w[i] * u[j]);
-    const double scale = std::abs(sa) + std::abs(sb);
+    const double scale = plane_stress_of_in_plane_rate(Lab, dt, u, w, kE, kNu, T);
     for (std::size_t e = 0; e < 4; ++e) {
       std::array<double, 3> pe[4];
       for (int I = 0; I < 4; ++I) pe[I] = X[m.block.conn[4 * e + I]];

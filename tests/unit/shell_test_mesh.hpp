@@ -110,6 +110,37 @@ inline std::array<double, 3> to_element_axes(const Axes& a, const double T[3][3]
 
 // Irregular 4-element patch on the unit square, interior node at (0.45, 0.58), in a plane
 // spanned by unit vectors u and w through the point o.
+// A linear in-plane velocity field on a patch in the plane spanned by the unit vectors u, w:
+// v = (Lab (a, b)) in plane coordinates a, b along u, w about the point (0.3, -0.2, 0.5), at the
+// node positions X (a spin part in Lab turns the patch rigidly).
+inline void set_in_plane_linear_velocity(ShellMesh& m, const std::vector<std::array<double, 3>>& X,
+                                         const double u[3], const double w[3],
+                                         const double Lab[2][2]) {
+  for (std::size_t i = 0; i < X.size(); ++i) {
+    const double r[3] = {X[i][0] - 0.3, X[i][1] + 0.2, X[i][2] - 0.5};
+    const double a = r[0] * u[0] + r[1] * u[1] + r[2] * u[2];
+    const double b = r[0] * w[0] + r[1] * w[1] + r[2] * w[2];
+    const double va = Lab[0][0] * a + Lab[0][1] * b, vb = Lab[1][0] * a + Lab[1][1] * b;
+    m.vx[i] = va * u[0] + vb * w[0];
+    m.vy[i] = va * u[1] + vb * w[1];
+    m.vz[i] = va * u[2] + vb * w[2];
+  }
+}
+
+// The plane stress C eps (isotropic, E, nu) of that field's strain over dt, as a global tensor
+// T; returns |s_a| + |s_b|, the scale of the tests' tolerances.
+inline double plane_stress_of_in_plane_rate(const double Lab[2][2], double dt, const double u[3],
+                                            const double w[3], double young, double nu,
+                                            double T[3][3]) {
+  const double exx = Lab[0][0] * dt, eyy = Lab[1][1] * dt, gxy = (Lab[0][1] + Lab[1][0]) * dt;
+  const double ep = young / (1 - nu * nu), G = young / (2 * (1 + nu));
+  const double sa = ep * (exx + nu * eyy), sb = ep * (eyy + nu * exx), sab = G * gxy;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      T[i][j] = sa * u[i] * u[j] + sb * w[i] * w[j] + sab * (u[i] * w[j] + w[i] * u[j]);
+  return std::abs(sa) + std::abs(sb);
+}
+
 struct Patch {
   ShellMesh mesh;
   int interior = 4;
